@@ -1,0 +1,146 @@
+//! Banded matrices of the chain: the tridiagonal tangent stiffness (every spring couples two
+//! neighbouring rotors, paper Eq. `eq:prestress8`) and the bidiagonal compatibility matrix.
+//!
+//! Fixed-size forms carry their sizes in the type: `N` rotors and `M = N - 1` springs (stable Rust
+//! cannot write `N - 1` in a type, so the macro writes both numbers out).
+
+use nalgebra::SMatrix;
+
+/// A symmetric tridiagonal `N x N` matrix: `diag[i] = K[i][i]`, `off[i] = K[i][i+1] = K[i+1][i]`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Tridiagonal<const N: usize, const M: usize> {
+    pub diag: [f64; N],
+    pub off: [f64; M],
+}
+
+/// The bidiagonal `M x N` compatibility matrix `C[p][i] = dl_p / d(r_i theta_i)` (paper Sec. VII-A;
+/// Appendix D's `n_p`): row `p` has `left[p]` in column `p` and `right[p]` in column `p + 1`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Bidiagonal<const M: usize, const N: usize> {
+    pub left: [f64; M],
+    pub right: [f64; M],
+}
+
+impl<const N: usize, const M: usize> Tridiagonal<N, M> {
+    const SIZES_MATCH: () = assert!(M + 1 == N, "a chain of N rotors has N - 1 springs");
+
+    pub fn new(diag: [f64; N], off: [f64; M]) -> Self {
+        let () = Self::SIZES_MATCH;
+        Self { diag, off }
+    }
+
+    /// Entry `(i, j)`; zero outside the band.
+    pub fn get(&self, i: usize, j: usize) -> f64 {
+        tridiagonal_entry(&self.diag, &self.off, i, j)
+    }
+
+    /// The dense matrix.
+    pub fn to_dense(&self) -> SMatrix<f64, N, N> {
+        let mut m = SMatrix::<f64, N, N>::zeros();
+        for i in 0..N {
+            m[(i, i)] = self.diag[i];
+        }
+        for i in 0..M {
+            m[(i, i + 1)] = self.off[i];
+            m[(i + 1, i)] = self.off[i];
+        }
+        m
+    }
+
+    /// `K x`.
+    pub fn mul_vec(&self, x: &[f64; N]) -> [f64; N] {
+        let mut y = [0.0; N];
+        tridiagonal_mul(&self.diag, &self.off, x, &mut y);
+        y
+    }
+
+    /// `x^T K x`.
+    pub fn quadratic_form(&self, x: &[f64; N]) -> f64 {
+        self.mul_vec(x).iter().zip(x).map(|(a, b)| a * b).sum()
+    }
+}
+
+impl<const M: usize, const N: usize> Bidiagonal<M, N> {
+    pub fn new(left: [f64; M], right: [f64; M]) -> Self {
+        const { assert!(M + 1 == N, "a chain of N rotors has N - 1 springs") };
+        Self { left, right }
+    }
+
+    /// Entry `(p, i)`; zero outside the band.
+    pub fn get(&self, p: usize, i: usize) -> f64 {
+        if p >= M {
+            0.0
+        } else if i == p {
+            self.left[p]
+        } else if i == p + 1 {
+            self.right[p]
+        } else {
+            0.0
+        }
+    }
+
+    /// The dense `M x N` matrix.
+    pub fn to_dense(&self) -> SMatrix<f64, M, N> {
+        let mut m = SMatrix::<f64, M, N>::zeros();
+        for p in 0..M {
+            m[(p, p)] = self.left[p];
+            m[(p, p + 1)] = self.right[p];
+        }
+        m
+    }
+}
+
+/// Entry `(i, j)` of the symmetric tridiagonal matrix with the given bands.
+pub fn tridiagonal_entry(diag: &[f64], off: &[f64], i: usize, j: usize) -> f64 {
+    if i == j {
+        diag.get(i).copied().unwrap_or(0.0)
+    } else if i + 1 == j {
+        off.get(i).copied().unwrap_or(0.0)
+    } else if j + 1 == i {
+        off.get(j).copied().unwrap_or(0.0)
+    } else {
+        0.0
+    }
+}
+
+/// `y = K x` for the symmetric tridiagonal `K` with the given bands.
+pub fn tridiagonal_mul(diag: &[f64], off: &[f64], x: &[f64], y: &mut [f64]) {
+    let n = diag.len();
+    for i in 0..n {
+        let mut s = diag[i] * x[i];
+        if i > 0 {
+            s += off[i - 1] * x[i - 1];
+        }
+        if i + 1 < n {
+            s += off[i] * x[i + 1];
+        }
+        y[i] = s;
+    }
+}
+
+/// The dense form of a runtime-sized symmetric tridiagonal matrix.
+#[cfg(feature = "alloc")]
+pub fn tridiagonal_to_dmatrix(diag: &[f64], off: &[f64]) -> nalgebra::DMatrix<f64> {
+    let n = diag.len();
+    nalgebra::DMatrix::from_fn(n, n, |i, j| tridiagonal_entry(diag, off, i, j))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn dense_form_and_product_agree() {
+        let t = Tridiagonal::<3, 2>::new([1.0, 2.0, 3.0], [0.5, -1.0]);
+        let d = t.to_dense();
+        assert_eq!(d, d.transpose());
+        let x = [1.0, -2.0, 0.5];
+        let y = t.mul_vec(&x);
+        let yd = d * nalgebra::Vector3::from(x);
+        for i in 0..3 {
+            assert!((y[i] - yd[i]).abs() < 1e-15);
+        }
+        assert_eq!(t.get(0, 2), 0.0);
+        assert_eq!(t.get(2, 1), -1.0);
+    }
+}

@@ -1,0 +1,26 @@
+//! Model layer of `rotor-chain`: the [`ChainModel`] trait every analysis is generic over, the
+//! runtime-sized [`RuntimeChain`], banded stiffness types, and the branch solve of paper
+//! Appendix A.
+//!
+//! `no_std` without allocation when default features are off (math from `libm`); the `alloc`
+//! feature adds the runtime-sized chain and dense conversions, `std` the platform math.
+#![cfg_attr(not(feature = "std"), no_std)]
+
+#[cfg(feature = "alloc")]
+extern crate alloc;
+
+pub mod banded;
+pub mod branch;
+pub mod error;
+pub mod kernel;
+pub mod math;
+pub mod model;
+#[cfg(feature = "alloc")]
+pub mod runtime;
+
+pub use banded::{Bidiagonal, Tridiagonal};
+pub use chain_geometry as geometry;
+pub use error::{BranchError, ParameterError};
+pub use model::ChainModel;
+#[cfg(feature = "alloc")]
+pub use runtime::{ChainBuilder, Law, RuntimeChain};

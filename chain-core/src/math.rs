@@ -1,0 +1,77 @@
+//! The few transcendental functions generated code calls: `std`'s when the `std` feature is on
+//! (they compile to the platform's libm, and `sqrt` to one instruction), the pure-Rust `libm`
+//! crate otherwise, so the same generated code builds on `no_std` targets.
+
+#[cfg(feature = "std")]
+mod imp {
+    #[inline(always)]
+    pub fn sin_cos(x: f64) -> (f64, f64) {
+        x.sin_cos()
+    }
+    #[inline(always)]
+    pub fn sqrt(x: f64) -> f64 {
+        x.sqrt()
+    }
+    #[inline(always)]
+    pub fn sin(x: f64) -> f64 {
+        x.sin()
+    }
+    #[inline(always)]
+    pub fn cos(x: f64) -> f64 {
+        x.cos()
+    }
+    #[inline(always)]
+    pub fn exp(x: f64) -> f64 {
+        x.exp()
+    }
+    #[inline(always)]
+    pub fn ln(x: f64) -> f64 {
+        x.ln()
+    }
+    #[inline(always)]
+    pub fn powi(x: f64, n: i32) -> f64 {
+        x.powi(n)
+    }
+    #[inline(always)]
+    pub fn atan2(y: f64, x: f64) -> f64 {
+        y.atan2(x)
+    }
+}
+
+#[cfg(not(feature = "std"))]
+mod imp {
+    #[inline(always)]
+    pub fn sin_cos(x: f64) -> (f64, f64) {
+        libm::sincos(x)
+    }
+    #[inline(always)]
+    pub fn sqrt(x: f64) -> f64 {
+        libm::sqrt(x)
+    }
+    #[inline(always)]
+    pub fn sin(x: f64) -> f64 {
+        libm::sin(x)
+    }
+    #[inline(always)]
+    pub fn cos(x: f64) -> f64 {
+        libm::cos(x)
+    }
+    #[inline(always)]
+    pub fn exp(x: f64) -> f64 {
+        libm::exp(x)
+    }
+    #[inline(always)]
+    pub fn ln(x: f64) -> f64 {
+        libm::log(x)
+    }
+    #[inline(always)]
+    pub fn powi(x: f64, n: i32) -> f64 {
+        libm::pow(x, f64::from(n))
+    }
+    #[inline(always)]
+    pub fn atan2(y: f64, x: f64) -> f64 {
+        libm::atan2(y, x)
+    }
+}
+
+pub use imp::*;

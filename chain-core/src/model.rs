@@ -1,0 +1,116 @@
+//! The model trait every analysis is generic over.
+//!
+//! Both kinds of chain implement it: the structs of `#[rotor_chain]` (sizes and constants fixed at
+//! compile time, code unrolled) and [`crate::RuntimeChain`] (sizes and parameters chosen at run
+//! time). The trait works on slices so it needs no allocation; the structs' inherent methods add
+//! array-typed conveniences.
+//!
+//! Units: angles in radians, lengths in the units of `a`, energies in units of `k a^2` times the
+//! unit of `k`. Slices of rotor quantities have length `n`, slices of spring quantities `n - 1`.
+//!
+//! # Panics
+//! The `*_into` methods panic if a slice has the wrong length: that is a programming error, not
+//! a property of the model.
+
+use crate::branch;
+use crate::error::BranchError;
+
+/// A topological rotor chain: `n` rotors on a line, their tips joined by `n - 1` springs.
+pub trait ChainModel {
+    /// Number of rotors `n`.
+    fn rotor_count(&self) -> usize;
+
+    /// Number of springs `n - 1`.
+    fn spring_count(&self) -> usize {
+        self.rotor_count() - 1
+    }
+
+    /// Lattice spacing `a` (distance between neighbouring pivots).
+    fn lattice_spacing(&self) -> f64;
+
+    /// Length `r_i` of rotor `i`.
+    fn rotor_length(&self, i: usize) -> f64;
+
+    /// Mass `M` at each rotor tip.
+    fn mass(&self) -> f64;
+
+    /// Moment of inertia `M r_i^2` of rotor `i` (the kinetic energy is `sum_i M r_i^2 thetadot_i^2 / 2`).
+    fn inertia(&self, i: usize) -> f64 {
+        let r = self.rotor_length(i);
+        self.mass() * r * r
+    }
+
+    /// Equilibrium angle `theta_bar` of the uniform states `theta_i = +-theta_bar`.
+    fn theta_bar(&self) -> f64;
+
+    /// Stiffness `k_p` of spring `p`.
+    fn stiffness(&self, p: usize) -> f64;
+
+    /// Rest length `l0_p` of spring `p`.
+    fn rest_length(&self, p: usize) -> f64;
+
+    /// Potential energy `V = sum_p law(l_p)`.
+    fn energy(&self, theta: &[f64]) -> f64;
+
+    /// `out[i] = dV/dtheta_i` (the forces are `-out`).
+    fn gradient_into(&self, theta: &[f64], out: &mut [f64]);
+
+    /// The tangent stiffness `d2V/dtheta_i dtheta_j`: `diag` (length `n`) and `off` (length
+    /// `n - 1`, entry `(p, p + 1)`).
+    fn tangent_stiffness_into(&self, theta: &[f64], diag: &mut [f64], off: &mut [f64]);
+
+    /// The material part `sum_p g^_p a_p a_p^T` of the tangent stiffness (paper Appendix D).
+    fn material_stiffness_into(&self, theta: &[f64], diag: &mut [f64], off: &mut [f64]);
+
+    /// The stress matrix `sum_p S_p` (paper Appendix D); material part + stress matrix = tangent stiffness.
+    fn stress_matrix_into(&self, theta: &[f64], diag: &mut [f64], off: &mut [f64]);
+
+    /// Spring lengths `l_p`.
+    fn spring_lengths_into(&self, theta: &[f64], out: &mut [f64]);
+
+    /// Spring tensions `t_p = dlaw/dl` at the current lengths.
+    fn tensions_into(&self, theta: &[f64], out: &mut [f64]);
+
+    /// The compatibility matrix `C[p][i] = dl_p / d(r_i theta_i)`: `left[p] = C[p][p]`,
+    /// `right[p] = C[p][p+1]`.
+    fn compatibility_into(&self, theta: &[f64], left: &mut [f64], right: &mut [f64]);
+
+    /// Both `theta_{p+1}` that put spring `p` at its rest length given `theta_p` (paper Appendix A),
+    /// flipper branch first.
+    fn next_angles(&self, p: usize, theta_p: f64) -> Result<[f64; 2], BranchError> {
+        self.check_spring(p)?;
+        branch::next_angles(
+            p,
+            self.lattice_spacing(),
+            self.rotor_length(p),
+            self.rotor_length(p + 1),
+            self.rest_length(p),
+            theta_p,
+        )
+    }
+
+    /// Both `theta_p` that put spring `p` at its rest length given `theta_{p+1}`: the inverse map.
+    fn previous_angles(&self, p: usize, theta_next: f64) -> Result<[f64; 2], BranchError> {
+        self.check_spring(p)?;
+        branch::previous_angles(
+            p,
+            self.lattice_spacing(),
+            self.rotor_length(p),
+            self.rotor_length(p + 1),
+            self.rest_length(p),
+            theta_next,
+        )
+    }
+
+    /// `Ok` if `p` is a spring of this chain.
+    fn check_spring(&self, p: usize) -> Result<(), BranchError> {
+        if p < self.spring_count() {
+            Ok(())
+        } else {
+            Err(BranchError::NoSuchSpring {
+                spring: p,
+                springs: self.spring_count(),
+            })
+        }
+    }
+}

@@ -1,0 +1,309 @@
+//! A chain whose size and parameters are chosen at run time, for sweeps and large chains.
+//!
+//! Its spring terms come from the same rendered kernels ([`crate::kernel`]) that `#[rotor_chain]`
+//! emits for large chains, called in one loop that computes each angle's `sin_cos` once.
+
+use alloc::vec::Vec;
+
+use chain_geometry::{IndexKind, Key, ParameterError};
+
+use crate::kernel;
+use crate::math;
+use crate::model::ChainModel;
+
+/// The spring laws a runtime chain offers (a custom law needs the macro, which compiles it).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum Law {
+    /// `k (l - l0)^2 / 2` (paper Eq. `eq:discretelagrangian`).
+    #[default]
+    Harmonic,
+    /// `k (l^2 - l0^2)^2 / (8 l0^2)` (paper Eq. `eq:discretepotential`).
+    Quartic,
+}
+
+/// A runtime-sized rotor chain. Build it with [`RuntimeChain::builder`].
+#[derive(Clone, Debug, PartialEq)]
+pub struct RuntimeChain {
+    a: f64,
+    mass: f64,
+    theta_bar: f64,
+    law: Law,
+    rotor_lengths: Vec<f64>,
+    stiffness: Vec<f64>,
+    rest_lengths: Vec<f64>,
+}
+
+/// How the uniform state is given: by its angle or by the springs' rest length.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Uniform {
+    ThetaBar(f64),
+    RestLength(f64),
+}
+
+/// Builder of a [`RuntimeChain`]; defaults as in the macro: `a = 1`, `mass = 1`, harmonic law.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ChainBuilder {
+    n: usize,
+    a: f64,
+    r: f64,
+    k: f64,
+    mass: f64,
+    uniform: Uniform,
+    law: Law,
+    springs: Vec<(usize, Option<f64>, Option<f64>)>,
+    rotors: Vec<(usize, f64)>,
+}
+
+impl RuntimeChain {
+    /// A chain of `n` rotors of length `r`, springs of stiffness `k`, uniform angle `theta_bar`.
+    pub fn builder(n: usize, r: f64, k: f64, theta_bar: f64) -> ChainBuilder {
+        ChainBuilder {
+            n,
+            a: 1.0,
+            r,
+            k,
+            mass: 1.0,
+            uniform: Uniform::ThetaBar(theta_bar),
+            law: Law::Harmonic,
+            springs: Vec::new(),
+            rotors: Vec::new(),
+        }
+    }
+
+    /// The spring law.
+    pub fn law(&self) -> Law {
+        self.law
+    }
+
+    /// Calls `f(p, [s1, c1, s2, c2, a, r1, r2, k, l0])` for every spring, computing each angle's
+    /// sine and cosine once.
+    fn for_each_spring(&self, theta: &[f64], mut f: impl FnMut(usize, [f64; 9])) {
+        let n = self.rotor_lengths.len();
+        assert_eq!(theta.len(), n, "theta must have one angle per rotor");
+        let (mut s1, mut c1) = math::sin_cos(theta[0]);
+        for p in 0..n - 1 {
+            let (s2, c2) = math::sin_cos(theta[p + 1]);
+            let args = [
+                s1,
+                c1,
+                s2,
+                c2,
+                self.a,
+                self.rotor_lengths[p],
+                self.rotor_lengths[p + 1],
+                self.stiffness[p],
+                self.rest_lengths[p],
+            ];
+            f(p, args);
+            (s1, c1) = (s2, c2);
+        }
+    }
+
+    /// Assembles 2x2 blocks `[11, 12, 22]` from `block` into tridiagonal bands.
+    fn assemble(
+        &self,
+        theta: &[f64],
+        diag: &mut [f64],
+        off: &mut [f64],
+        block: fn(Law, [f64; 9]) -> [f64; 3],
+    ) {
+        assert_eq!(
+            diag.len(),
+            self.rotor_lengths.len(),
+            "diag must have n entries"
+        );
+        assert_eq!(
+            off.len(),
+            self.rotor_lengths.len() - 1,
+            "off must have n - 1 entries"
+        );
+        diag.fill(0.0);
+        let law = self.law;
+        self.for_each_spring(theta, |p, x| {
+            let [b11, b12, b22] = block(law, x);
+            diag[p] += b11;
+            diag[p + 1] += b22;
+            off[p] = b12;
+        });
+    }
+}
+
+/// Dispatches one kernel function on the law; `$f` is the function's name in every kernel module.
+macro_rules! kernel_call {
+    ($law:expr, $f:ident, $x:expr) => {{
+        let [s1, c1, s2, c2, a, r1, r2, k, l0] = $x;
+        match $law {
+            Law::Harmonic => kernel::harmonic::$f(s1, c1, s2, c2, a, r1, r2, k, l0),
+            Law::Quartic => kernel::quartic::$f(s1, c1, s2, c2, a, r1, r2, k, l0),
+        }
+    }};
+}
+
+impl ChainModel for RuntimeChain {
+    fn rotor_count(&self) -> usize {
+        self.rotor_lengths.len()
+    }
+    fn lattice_spacing(&self) -> f64 {
+        self.a
+    }
+    fn rotor_length(&self, i: usize) -> f64 {
+        self.rotor_lengths[i]
+    }
+    fn mass(&self) -> f64 {
+        self.mass
+    }
+    fn theta_bar(&self) -> f64 {
+        self.theta_bar
+    }
+    fn stiffness(&self, p: usize) -> f64 {
+        self.stiffness[p]
+    }
+    fn rest_length(&self, p: usize) -> f64 {
+        self.rest_lengths[p]
+    }
+
+    fn energy(&self, theta: &[f64]) -> f64 {
+        let mut e = 0.0;
+        self.for_each_spring(theta, |_, x| e += kernel_call!(self.law, energy, x));
+        e
+    }
+
+    fn gradient_into(&self, theta: &[f64], out: &mut [f64]) {
+        assert_eq!(
+            out.len(),
+            self.rotor_lengths.len(),
+            "out must have n entries"
+        );
+        out.fill(0.0);
+        self.for_each_spring(theta, |p, x| {
+            let [g1, g2] = kernel_call!(self.law, gradient, x);
+            out[p] += g1;
+            out[p + 1] += g2;
+        });
+    }
+
+    fn tangent_stiffness_into(&self, theta: &[f64], diag: &mut [f64], off: &mut [f64]) {
+        self.assemble(theta, diag, off, |law, x| kernel_call!(law, hessian, x));
+    }
+
+    fn material_stiffness_into(&self, theta: &[f64], diag: &mut [f64], off: &mut [f64]) {
+        self.assemble(theta, diag, off, |law, x| kernel_call!(law, material, x));
+    }
+
+    fn stress_matrix_into(&self, theta: &[f64], diag: &mut [f64], off: &mut [f64]) {
+        self.assemble(theta, diag, off, |law, x| kernel_call!(law, stress, x));
+    }
+
+    fn spring_lengths_into(&self, theta: &[f64], out: &mut [f64]) {
+        assert_eq!(
+            out.len(),
+            self.rotor_lengths.len() - 1,
+            "out must have n - 1 entries"
+        );
+        self.for_each_spring(theta, |p, x| out[p] = kernel_call!(self.law, length, x));
+    }
+
+    fn tensions_into(&self, theta: &[f64], out: &mut [f64]) {
+        assert_eq!(
+            out.len(),
+            self.rotor_lengths.len() - 1,
+            "out must have n - 1 entries"
+        );
+        self.for_each_spring(theta, |p, x| out[p] = kernel_call!(self.law, tension, x));
+    }
+
+    fn compatibility_into(&self, theta: &[f64], left: &mut [f64], right: &mut [f64]) {
+        assert_eq!(
+            left.len(),
+            self.rotor_lengths.len() - 1,
+            "left must have n - 1 entries"
+        );
+        assert_eq!(
+            right.len(),
+            self.rotor_lengths.len() - 1,
+            "right must have n - 1 entries"
+        );
+        self.for_each_spring(theta, |p, x| {
+            [left[p], right[p]] = kernel_call!(self.law, compatibility, x);
+        });
+    }
+}
+
+impl ChainBuilder {
+    /// Lattice spacing `a` (default 1).
+    pub fn lattice_spacing(mut self, a: f64) -> Self {
+        self.a = a;
+        self
+    }
+    /// Tip mass `M` (default 1).
+    pub fn mass(mut self, mass: f64) -> Self {
+        self.mass = mass;
+        self
+    }
+    /// Give the uniform state by the springs' rest length instead of `theta_bar`.
+    pub fn rest_length(mut self, rest_length: f64) -> Self {
+        self.uniform = Uniform::RestLength(rest_length);
+        self
+    }
+    /// The spring law (default harmonic).
+    pub fn law(mut self, law: Law) -> Self {
+        self.law = law;
+        self
+    }
+    /// Override spring `p`'s stiffness and/or rest length (`None` keeps the chain's value).
+    pub fn spring(mut self, p: usize, k: Option<f64>, l0: Option<f64>) -> Self {
+        self.springs.push((p, k, l0));
+        self
+    }
+    /// Override rotor `i`'s length.
+    pub fn rotor(mut self, i: usize, r: f64) -> Self {
+        self.rotors.push((i, r));
+        self
+    }
+
+    /// Checks every parameter with the same rules as the macro's compile-time checks.
+    pub fn build(self) -> Result<RuntimeChain, ParameterError> {
+        use chain_geometry as geo;
+        let n = geo::check_rotor_count(self.n)?;
+        let a = geo::check_positive(Key::LatticeSpacing, self.a)?;
+        let r = geo::check_positive(Key::RotorLength, self.r)?;
+        let k = geo::check_positive(Key::Stiffness, self.k)?;
+        let mass = geo::check_positive(Key::Mass, self.mass)?;
+        let (theta_bar, lbar) = match self.uniform {
+            Uniform::ThetaBar(t) => {
+                let t = geo::check_flipper_phase(a, r, t)?;
+                (t, geo::rest_length(a, r, t))
+            }
+            Uniform::RestLength(l) => {
+                let t = geo::theta_bar_from_rest_length(a, r, l)?;
+                (geo::check_flipper_phase(a, r, t)?, l)
+            }
+        };
+        let mut rotor_lengths = alloc::vec![r; n];
+        for (i, ri) in self.rotors {
+            geo::check_index(IndexKind::Rotor, i, n)?;
+            rotor_lengths[i] = geo::check_positive(Key::RotorLength, ri)?;
+        }
+        let mut stiffness = alloc::vec![k; n - 1];
+        let mut rest_lengths = alloc::vec![lbar; n - 1];
+        for (p, kp, lp) in self.springs {
+            geo::check_index(IndexKind::Spring, p, n - 1)?;
+            if let Some(kp) = kp {
+                stiffness[p] = geo::check_positive(Key::Stiffness, kp)?;
+            }
+            if let Some(lp) = lp {
+                rest_lengths[p] = geo::check_positive(Key::RestLength, lp)?;
+            }
+        }
+        Ok(RuntimeChain {
+            a,
+            mass,
+            theta_bar,
+            law: self.law,
+            rotor_lengths,
+            stiffness,
+            rest_lengths,
+        })
+    }
+}

@@ -1,0 +1,233 @@
+//! Closed-form geometry and parameter rules of the topological rotor chain.
+//!
+//! One source of truth for what a valid chain is: the `#[rotor_chain]` macro calls these rules at
+//! compile time (and turns a violation into a compile error at the offending key), and
+//! `chain-core`'s runtime-sized chain calls them when it is built. `no_std`, no allocation.
+//!
+//! Conventions are those of `docs/theory.md` (paper Sec. II): lattice spacing `a`, rotor length
+//! `r`, equilibrium angle `theta_bar` measured from the vertical, spring rest length
+//! `lbar = sqrt(a^2 + 4 r^2 cos^2 theta_bar)`.
+#![no_std]
+
+use core::fmt;
+
+/// A parameter of the chain that violates a rule. The `Display` text is the message the macro
+/// shows at compile time and the runtime model returns, so both say the same thing.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum ParameterError {
+    /// Fewer than two rotors: there is no spring.
+    #[error("`n` must be at least 2 (a chain needs two rotors and one spring), got {n}")]
+    TooFewRotors { n: usize },
+    /// A length, stiffness or mass that must be positive is not (or is not finite).
+    #[error("`{key}` must be a finite number > 0, got {value}")]
+    NotPositive { key: Key, value: f64 },
+    /// `theta_bar` outside the flipper phase `0 < theta_bar < pi/2`, `2 r sin(theta_bar) < a`.
+    #[error(
+        "theta_bar = {theta_bar} is outside the flipper phase: need 0 < theta_bar < pi/2 and \
+         2 r sin(theta_bar) < a, here 2 r sin(theta_bar) = {two_r_sin} with a = {a}, r = {r} \
+         (the flipper phase ends at theta_bar = {limit:.6}, where the chain turns into a wobbler)"
+    )]
+    OutsideFlipperPhase {
+        theta_bar: f64,
+        a: f64,
+        r: f64,
+        two_r_sin: f64,
+        limit: f64,
+    },
+    /// A rest length that no uniform state `theta_i = theta_bar` can have.
+    #[error(
+        "rest_length = {rest_length} admits no uniform state: need a < rest_length < \
+         sqrt(a^2 + 4 r^2) = {max} (a = {a}, r = {r})"
+    )]
+    RestLengthOutOfRange {
+        rest_length: f64,
+        a: f64,
+        r: f64,
+        max: f64,
+    },
+    /// A spring or rotor index past the end of the chain.
+    #[error(
+        "{kind} index {index} is out of range: the chain has {count} {kind}s (indices 0..{count})"
+    )]
+    IndexOutOfRange {
+        kind: IndexKind,
+        index: usize,
+        count: usize,
+    },
+}
+
+/// Which parameter a [`ParameterError::NotPositive`] is about.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Key {
+    LatticeSpacing,
+    RotorLength,
+    Stiffness,
+    Mass,
+    RestLength,
+    ThetaBar,
+}
+
+impl fmt::Display for Key {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            Key::LatticeSpacing => "a",
+            Key::RotorLength => "r",
+            Key::Stiffness => "k",
+            Key::Mass => "mass",
+            Key::RestLength => "l0",
+            Key::ThetaBar => "theta_bar",
+        })
+    }
+}
+
+/// Spring or rotor, for [`ParameterError::IndexOutOfRange`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum IndexKind {
+    Spring,
+    Rotor,
+}
+
+impl fmt::Display for IndexKind {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            IndexKind::Spring => "spring",
+            IndexKind::Rotor => "rotor",
+        })
+    }
+}
+
+/// `value` must be finite and strictly positive.
+pub fn check_positive(key: Key, value: f64) -> Result<f64, ParameterError> {
+    if value.is_finite() && value > 0.0 {
+        Ok(value)
+    } else {
+        Err(ParameterError::NotPositive { key, value })
+    }
+}
+
+/// A chain needs at least two rotors.
+pub fn check_rotor_count(n: usize) -> Result<usize, ParameterError> {
+    if n >= 2 {
+        Ok(n)
+    } else {
+        Err(ParameterError::TooFewRotors { n })
+    }
+}
+
+/// `index` must address one of `count` springs or rotors.
+pub fn check_index(kind: IndexKind, index: usize, count: usize) -> Result<usize, ParameterError> {
+    if index < count {
+        Ok(index)
+    } else {
+        Err(ParameterError::IndexOutOfRange { kind, index, count })
+    }
+}
+
+/// The end of the flipper phase: `theta_bar = asin(a / 2r)` if `2r > a`, else `pi/2`.
+pub fn flipper_limit(a: f64, r: f64) -> f64 {
+    if 2.0 * r > a {
+        libm::asin(a / (2.0 * r))
+    } else {
+        core::f64::consts::FRAC_PI_2
+    }
+}
+
+/// The flipper phase (paper Sec. II, footnote; Chen et al. 2014): `0 < theta_bar < pi/2` and
+/// `2 r sin(theta_bar) < a`. Outside it the continuum theory is not phi^4 and the kink construction
+/// of Sec. II does not apply.
+pub fn check_flipper_phase(a: f64, r: f64, theta_bar: f64) -> Result<f64, ParameterError> {
+    let two_r_sin = 2.0 * r * libm::sin(theta_bar);
+    let inside = theta_bar.is_finite()
+        && theta_bar > 0.0
+        && theta_bar < core::f64::consts::FRAC_PI_2
+        && two_r_sin < a;
+    if inside {
+        Ok(theta_bar)
+    } else {
+        Err(ParameterError::OutsideFlipperPhase {
+            theta_bar,
+            a,
+            r,
+            two_r_sin,
+            limit: flipper_limit(a, r),
+        })
+    }
+}
+
+/// The rest length of the uniform state, `lbar = sqrt(a^2 + 4 r^2 cos^2 theta_bar)` (paper Sec. III,
+/// below Eq. `eq:instantlength`).
+pub fn rest_length(a: f64, r: f64, theta_bar: f64) -> f64 {
+    let c = libm::cos(theta_bar);
+    libm::sqrt(a * a + 4.0 * r * r * c * c)
+}
+
+/// The equilibrium angle `theta_bar` in `[0, pi/2)` whose uniform state has springs of length
+/// `rest_length`: the inverse of [`rest_length`].
+pub fn theta_bar_from_rest_length(a: f64, r: f64, rest_length: f64) -> Result<f64, ParameterError> {
+    let max = libm::sqrt(a * a + 4.0 * r * r);
+    if !(rest_length.is_finite() && rest_length > a && rest_length < max) {
+        return Err(ParameterError::RestLengthOutOfRange {
+            rest_length,
+            a,
+            r,
+            max,
+        });
+    }
+    let cos = libm::sqrt(rest_length * rest_length - a * a) / (2.0 * r);
+    Ok(libm::acos(cos.min(1.0)))
+}
+
+/// Spring length for two rotor angles (paper Eq. `eq:instantlength`, with rotor lengths `r1`, `r2`;
+/// angles measured alternately, so the formula is the same for every spring).
+pub fn spring_length(a: f64, r1: f64, r2: f64, theta1: f64, theta2: f64) -> f64 {
+    let dx = a + r2 * libm::sin(theta2) - r1 * libm::sin(theta1);
+    let dy = r1 * libm::cos(theta1) + r2 * libm::cos(theta2);
+    libm::sqrt(dx * dx + dy * dy)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn rest_length_and_its_inverse_agree() {
+        let l = rest_length(1.0, 0.8, 0.58);
+        // sqrt(1 + 4 * 0.64 * cos^2 0.58) = 1.6707; paper Fig. `fig:longbar` quotes lbar / a = 1.68,
+        // within its two-digit rounding of a slightly different theta_bar (docs/theory.md).
+        assert!((l - 1.6707).abs() < 1e-4, "{l}");
+        assert!((l - 1.68).abs() < 0.01, "{l}");
+        let back = theta_bar_from_rest_length(1.0, 0.8, l).unwrap();
+        assert!((back - 0.58).abs() < 1e-12);
+    }
+
+    #[test]
+    fn uniform_state_has_rest_length_springs() {
+        for t in [0.1, 0.58, -0.58] {
+            let l = spring_length(1.0, 0.8, 0.8, t, t);
+            assert!((l - rest_length(1.0, 0.8, t)).abs() < 1e-14);
+        }
+    }
+
+    #[test]
+    fn flipper_phase_ends_at_the_wobbler_transition() {
+        // paper Fig. `fig:akenergy` caption: asin(a / 2r) = 0.67 for r / a = 0.8
+        assert!((flipper_limit(1.0, 0.8) - 0.6751).abs() < 1e-4);
+        assert!(check_flipper_phase(1.0, 0.8, 0.58).is_ok());
+        assert!(matches!(
+            check_flipper_phase(1.0, 0.8, 0.7),
+            Err(ParameterError::OutsideFlipperPhase { .. })
+        ));
+        assert!(check_flipper_phase(1.0, 0.8, 0.0).is_err());
+        assert!(check_flipper_phase(1.0, 0.3, 1.6).is_err());
+    }
+
+    #[test]
+    fn rules_reject_bad_values() {
+        assert!(check_positive(Key::Stiffness, 0.0).is_err());
+        assert!(check_positive(Key::Stiffness, f64::NAN).is_err());
+        assert!(check_rotor_count(1).is_err());
+        assert!(check_index(IndexKind::Spring, 59, 59).is_err());
+        assert!(theta_bar_from_rest_length(1.0, 0.8, 0.9).is_err());
+    }
+}
