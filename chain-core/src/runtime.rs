@@ -8,7 +8,6 @@ use alloc::vec::Vec;
 use chain_geometry::{IndexKind, Key, ParameterError};
 
 use crate::kernel;
-use crate::math;
 use crate::model::ChainModel;
 
 /// The spring laws a runtime chain offers (a custom law needs the macro, which compiles it).
@@ -76,66 +75,25 @@ impl RuntimeChain {
         self.law
     }
 
-    /// Calls `f(p, [s1, c1, s2, c2, a, r1, r2, k, l0])` for every spring, computing each angle's
-    /// sine and cosine once.
-    fn for_each_spring(&self, theta: &[f64], mut f: impl FnMut(usize, [f64; 9])) {
-        let n = self.rotor_lengths.len();
-        assert_eq!(theta.len(), n, "theta must have one angle per rotor");
-        let (mut s1, mut c1) = math::sin_cos(theta[0]);
-        for p in 0..n - 1 {
-            let (s2, c2) = math::sin_cos(theta[p + 1]);
-            let args = [
-                s1,
-                c1,
-                s2,
-                c2,
-                self.a,
-                self.rotor_lengths[p],
-                self.rotor_lengths[p + 1],
-                self.stiffness[p],
-                self.rest_lengths[p],
-            ];
-            f(p, args);
-            (s1, c1) = (s2, c2);
-        }
+    /// `[a, r_p, r_{p+1}, k_p, l0_p]` of spring `p`.
+    #[inline(always)]
+    fn params(&self, p: usize) -> [f64; 5] {
+        [self.a, self.rotor_lengths[p], self.rotor_lengths[p + 1], self.stiffness[p], self.rest_lengths[p]]
     }
 
-    /// Assembles 2x2 blocks `[11, 12, 22]` from `block` into tridiagonal bands.
-    fn assemble(
-        &self,
-        theta: &[f64],
-        diag: &mut [f64],
-        off: &mut [f64],
-        block: fn(Law, [f64; 9]) -> [f64; 3],
-    ) {
-        assert_eq!(
-            diag.len(),
-            self.rotor_lengths.len(),
-            "diag must have n entries"
-        );
-        assert_eq!(
-            off.len(),
-            self.rotor_lengths.len() - 1,
-            "off must have n - 1 entries"
-        );
-        diag.fill(0.0);
-        let law = self.law;
-        self.for_each_spring(theta, |p, x| {
-            let [b11, b12, b22] = block(law, x);
-            diag[p] += b11;
-            diag[p + 1] += b22;
-            off[p] = b12;
-        });
+    fn check_len(&self, theta: &[f64]) {
+        assert_eq!(theta.len(), self.rotor_lengths.len(), "theta must have one angle per rotor");
     }
 }
 
-/// Dispatches one kernel function on the law; `$f` is the function's name in every kernel module.
-macro_rules! kernel_call {
-    ($law:expr, $f:ident, $x:expr) => {{
-        let [s1, c1, s2, c2, a, r1, r2, k, l0] = $x;
-        match $law {
-            Law::Harmonic => kernel::harmonic::$f(s1, c1, s2, c2, a, r1, r2, k, l0),
-            Law::Quartic => kernel::quartic::$f(s1, c1, s2, c2, a, r1, r2, k, l0),
+/// Runs kernel driver `$driver` on `$theta` with the kernel function `$f` of the chain's law.
+/// Each arm monomorphises the driver for that law's function, so the kernel inlines.
+macro_rules! with_law {
+    ($self:ident, $theta:ident, $driver:path, $f:ident $(, $out:expr)*) => {{
+        $self.check_len($theta);
+        match $self.law {
+            Law::Harmonic => $driver($theta, |p| $self.params(p) $(, $out)*, kernel::harmonic::$f),
+            Law::Quartic => $driver($theta, |p| $self.params(p) $(, $out)*, kernel::quartic::$f),
         }
     }};
 }
@@ -164,69 +122,35 @@ impl ChainModel for RuntimeChain {
     }
 
     fn energy(&self, theta: &[f64]) -> f64 {
-        let mut e = 0.0;
-        self.for_each_spring(theta, |_, x| e += kernel_call!(self.law, energy, x));
-        e
+        with_law!(self, theta, kernel::sum, energy)
     }
 
     fn gradient_into(&self, theta: &[f64], out: &mut [f64]) {
-        assert_eq!(
-            out.len(),
-            self.rotor_lengths.len(),
-            "out must have n entries"
-        );
-        out.fill(0.0);
-        self.for_each_spring(theta, |p, x| {
-            let [g1, g2] = kernel_call!(self.law, gradient, x);
-            out[p] += g1;
-            out[p + 1] += g2;
-        });
+        with_law!(self, theta, kernel::assemble_pairs, gradient, out)
     }
 
     fn tangent_stiffness_into(&self, theta: &[f64], diag: &mut [f64], off: &mut [f64]) {
-        self.assemble(theta, diag, off, |law, x| kernel_call!(law, hessian, x));
+        with_law!(self, theta, kernel::assemble_blocks, hessian, diag, off)
     }
 
     fn material_stiffness_into(&self, theta: &[f64], diag: &mut [f64], off: &mut [f64]) {
-        self.assemble(theta, diag, off, |law, x| kernel_call!(law, material, x));
+        with_law!(self, theta, kernel::assemble_blocks, material, diag, off)
     }
 
     fn stress_matrix_into(&self, theta: &[f64], diag: &mut [f64], off: &mut [f64]) {
-        self.assemble(theta, diag, off, |law, x| kernel_call!(law, stress, x));
+        with_law!(self, theta, kernel::assemble_blocks, stress, diag, off)
     }
 
     fn spring_lengths_into(&self, theta: &[f64], out: &mut [f64]) {
-        assert_eq!(
-            out.len(),
-            self.rotor_lengths.len() - 1,
-            "out must have n - 1 entries"
-        );
-        self.for_each_spring(theta, |p, x| out[p] = kernel_call!(self.law, length, x));
+        with_law!(self, theta, kernel::per_spring, length, out)
     }
 
     fn tensions_into(&self, theta: &[f64], out: &mut [f64]) {
-        assert_eq!(
-            out.len(),
-            self.rotor_lengths.len() - 1,
-            "out must have n - 1 entries"
-        );
-        self.for_each_spring(theta, |p, x| out[p] = kernel_call!(self.law, tension, x));
+        with_law!(self, theta, kernel::per_spring, tension, out)
     }
 
     fn compatibility_into(&self, theta: &[f64], left: &mut [f64], right: &mut [f64]) {
-        assert_eq!(
-            left.len(),
-            self.rotor_lengths.len() - 1,
-            "left must have n - 1 entries"
-        );
-        assert_eq!(
-            right.len(),
-            self.rotor_lengths.len() - 1,
-            "right must have n - 1 entries"
-        );
-        self.for_each_spring(theta, |p, x| {
-            [left[p], right[p]] = kernel_call!(self.law, compatibility, x);
-        });
+        with_law!(self, theta, kernel::per_spring_pairs, compatibility, left, right)
     }
 }
 

@@ -1,1 +1,25 @@
+//! The `#[rotor_chain]` attribute macro.
+//!
+//! A thin entry over a pipeline of named phases, one file each:
+//! [`attr`] parses the attribute into a typed [`attr::Spec`] that keeps every span,
+//! [`valid`] checks it against the chain's rules (all errors at once, each at its key),
+//! [`law`] turns a custom spring law into the symbolic graph,
+//! [`model`] builds the chain's energy in `chain-symbolic` and derives everything from it,
+//! [`expand`] emits the code, and [`fallback`] emits the bare struct plus the errors when the
+//! model is invalid. See `docs/macro.md` for the keys.
 
+mod attr;
+mod ctxt;
+mod expand;
+mod fallback;
+mod law;
+mod model;
+mod valid;
+
+use proc_macro::TokenStream;
+
+/// Declares a topological rotor chain on a struct. See the `rotor-chain` crate for the keys.
+#[proc_macro_attribute]
+pub fn rotor_chain(attr: TokenStream, item: TokenStream) -> TokenStream {
+    expand::expand(attr.into(), item.into()).into()
+}

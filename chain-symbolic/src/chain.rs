@@ -153,7 +153,7 @@ impl ChainOutputs {
 
 /// The per-spring kernel: one spring derived with every parameter symbolic.
 ///
-/// Its functions take `(s1, c1, s2, c2, a, r1, r2, k, l0)`: the sine and cosine of the two
+/// Its functions take `x = [s1, c1, s2, c2, a, r1, r2, k, l0]`: the sine and cosine of the two
 /// rotors' angles (so that a loop computes each angle's `sin_cos` once and hands it to both of
 /// its springs), the lattice spacing, the two rotor lengths, and the spring's stiffness and rest
 /// length.
@@ -162,7 +162,7 @@ pub struct Kernel {
     pub terms: SpringTerms,
 }
 
-/// The kernel's argument list, in order.
+/// The kernel's argument, element by element.
 pub const KERNEL_ARGS: [&str; 9] = ["s1", "c1", "s2", "c2", "a", "r1", "r2", "k", "l0"];
 
 /// One rendered kernel function: its name, documentation, and what it returns.
@@ -249,7 +249,7 @@ impl Kernel {
                 _ => None,
             }
         };
-        let args = KERNEL_ARGS.map(|a| format!("{a}: f64")).join(", ");
+        let destructure = format!("let [{}] = x;", KERNEL_ARGS.join(", "));
         let mut out = String::new();
         for f in &KERNEL_FUNCTIONS {
             let outputs = (f.outputs)(&self.terms);
@@ -269,9 +269,10 @@ impl Kernel {
             let _ = writeln!(out, "#[inline(always)]");
             let _ = writeln!(
                 out,
-                "#[allow(unused_variables, clippy::too_many_arguments)]"
+                "#[allow(unused_variables)]"
             );
-            let _ = writeln!(out, "pub fn {}({args}) -> {ret} {{", f.name);
+            let _ = writeln!(out, "pub fn {}(x: [f64; 9]) -> {ret} {{", f.name);
+            let _ = writeln!(out, "{destructure}");
             out.push_str(&program.render("t", math));
             let _ = writeln!(out, "{value}\n}}\n");
         }

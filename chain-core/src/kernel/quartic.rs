@@ -3,8 +3,9 @@ use crate::math as m;
 
 /// The spring's stored energy.
 #[inline(always)]
-#[allow(unused_variables, clippy::too_many_arguments)]
-pub fn energy(s1: f64, c1: f64, s2: f64, c2: f64, a: f64, r1: f64, r2: f64, k: f64, l0: f64) -> f64 {
+#[allow(unused_variables)]
+pub fn energy(x: [f64; 9]) -> f64 {
+let [s1, c1, s2, c2, a, r1, r2, k, l0] = x;
 let t0 = r2 * s2;
 let t1 = r1 * s1;
 let t2 = a + t0;
@@ -26,8 +27,9 @@ t15
 
 /// The spring's length.
 #[inline(always)]
-#[allow(unused_variables, clippy::too_many_arguments)]
-pub fn length(s1: f64, c1: f64, s2: f64, c2: f64, a: f64, r1: f64, r2: f64, k: f64, l0: f64) -> f64 {
+#[allow(unused_variables)]
+pub fn length(x: [f64; 9]) -> f64 {
+let [s1, c1, s2, c2, a, r1, r2, k, l0] = x;
 let t0 = r2 * s2;
 let t1 = r1 * s1;
 let t2 = a + t0;
@@ -44,8 +46,9 @@ t10
 
 /// The spring's tension `dlaw/dl`.
 #[inline(always)]
-#[allow(unused_variables, clippy::too_many_arguments)]
-pub fn tension(s1: f64, c1: f64, s2: f64, c2: f64, a: f64, r1: f64, r2: f64, k: f64, l0: f64) -> f64 {
+#[allow(unused_variables)]
+pub fn tension(x: [f64; 9]) -> f64 {
+let [s1, c1, s2, c2, a, r1, r2, k, l0] = x;
 let t0 = r2 * s2;
 let t1 = r1 * s1;
 let t2 = a + t0;
@@ -69,8 +72,9 @@ t17
 
 /// `[dE/dtheta1, dE/dtheta2]`.
 #[inline(always)]
-#[allow(unused_variables, clippy::too_many_arguments)]
-pub fn gradient(s1: f64, c1: f64, s2: f64, c2: f64, a: f64, r1: f64, r2: f64, k: f64, l0: f64) -> [f64; 2] {
+#[allow(unused_variables)]
+pub fn gradient(x: [f64; 9]) -> [f64; 2] {
+let [s1, c1, s2, c2, a, r1, r2, k, l0] = x;
 let t0 = r2 * s2;
 let t1 = r1 * s1;
 let t2 = a + t0;
@@ -102,8 +106,9 @@ let t25 = 4.0f64 * t24;
 
 /// The Hessian block `[11, 12, 22]` in the two angles.
 #[inline(always)]
-#[allow(unused_variables, clippy::too_many_arguments)]
-pub fn hessian(s1: f64, c1: f64, s2: f64, c2: f64, a: f64, r1: f64, r2: f64, k: f64, l0: f64) -> [f64; 3] {
+#[allow(unused_variables)]
+pub fn hessian(x: [f64; 9]) -> [f64; 3] {
+let [s1, c1, s2, c2, a, r1, r2, k, l0] = x;
 let t0 = r2 * s2;
 let t1 = r1 * s1;
 let t2 = a + t0;
@@ -165,8 +170,9 @@ let t55 = 4.0f64 * t54;
 
 /// The material part `g^ (dl/dtheta)(dl/dtheta)^T` of the block (paper Eq. `eq:prestress6`).
 #[inline(always)]
-#[allow(unused_variables, clippy::too_many_arguments)]
-pub fn material(s1: f64, c1: f64, s2: f64, c2: f64, a: f64, r1: f64, r2: f64, k: f64, l0: f64) -> [f64; 3] {
+#[allow(unused_variables)]
+pub fn material(x: [f64; 9]) -> [f64; 3] {
+let [s1, c1, s2, c2, a, r1, r2, k, l0] = x;
 let t0 = r2 * s2;
 let t1 = r1 * s1;
 let t2 = a + t0;
@@ -212,8 +218,9 @@ let t39 = 4.0f64 * t38;
 
 /// The stress-matrix part `t^ d2(l^2/2)/dtheta dtheta` of the block (paper Eq. `eq:prestress7`).
 #[inline(always)]
-#[allow(unused_variables, clippy::too_many_arguments)]
-pub fn stress(s1: f64, c1: f64, s2: f64, c2: f64, a: f64, r1: f64, r2: f64, k: f64, l0: f64) -> [f64; 3] {
+#[allow(unused_variables)]
+pub fn stress(x: [f64; 9]) -> [f64; 3] {
+let [s1, c1, s2, c2, a, r1, r2, k, l0] = x;
 let t0 = r2 * s2;
 let t1 = r1 * s1;
 let t2 = a + t0;
@@ -261,8 +268,9 @@ let t41 = 4.0f64 * t40;
 
 /// The compatibility-matrix row `[dl/d(r1 theta1), dl/d(r2 theta2)]`.
 #[inline(always)]
-#[allow(unused_variables, clippy::too_many_arguments)]
-pub fn compatibility(s1: f64, c1: f64, s2: f64, c2: f64, a: f64, r1: f64, r2: f64, k: f64, l0: f64) -> [f64; 2] {
+#[allow(unused_variables)]
+pub fn compatibility(x: [f64; 9]) -> [f64; 2] {
+let [s1, c1, s2, c2, a, r1, r2, k, l0] = x;
 let t0 = r2 * s2;
 let t1 = r1 * s1;
 let t2 = a + t0;
