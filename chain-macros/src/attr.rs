@@ -9,25 +9,29 @@ use syn::{Expr, Ident, Lit, Meta, Token, UnOp};
 use crate::ctxt::Ctxt;
 
 /// Every key the attribute accepts, for "did you mean" suggestions.
-pub const KEYS: [&str; 11] =
-    ["n", "a", "r", "theta_bar", "rest_length", "k", "mass", "unroll", "law", "spring", "rotor"];
+pub const KEYS: [&str; 11] = [
+    "n",
+    "a",
+    "r",
+    "theta_bar",
+    "rest_length",
+    "k",
+    "mass",
+    "unroll",
+    "law",
+    "spring",
+    "rotor",
+];
 
 /// A parameter value: a float literal folded into the generated code, or a struct field read
 /// at run time.
 #[derive(Clone, Debug)]
 pub enum Value {
-    Literal { value: f64, span: Span },
+    Literal { value: f64 },
     Field(Ident),
 }
 
 impl Value {
-    pub fn span(&self) -> Span {
-        match self {
-            Value::Literal { span, .. } => *span,
-            Value::Field(ident) => ident.span(),
-        }
-    }
-
     pub fn literal(&self) -> Option<f64> {
         match self {
             Value::Literal { value, .. } => Some(*value),
@@ -37,7 +41,7 @@ impl Value {
 }
 
 /// A value together with the key that introduced it.
-#[derive(Clone, Debug)]
+#[derive(Clone)]
 pub struct Keyed<T> {
     pub key: Ident,
     pub value: T,
@@ -46,7 +50,7 @@ pub struct Keyed<T> {
 }
 
 /// `spring(p, k = .., l0 = ..)`.
-#[derive(Clone, Debug)]
+#[derive(Clone)]
 pub struct SpringOverride {
     pub index: Keyed<usize>,
     pub k: Option<Keyed<Value>>,
@@ -54,14 +58,14 @@ pub struct SpringOverride {
 }
 
 /// `rotor(i, r = ..)`.
-#[derive(Clone, Debug)]
+#[derive(Clone)]
 pub struct RotorOverride {
     pub index: Keyed<usize>,
     pub r: Option<Keyed<Value>>,
 }
 
 /// The parsed attribute.
-#[derive(Clone, Debug, Default)]
+#[derive(Clone)]
 pub struct Spec {
     pub n: Option<Keyed<usize>>,
     pub a: Option<Keyed<Value>>,
@@ -90,10 +94,20 @@ pub fn suggest<'a>(unknown: &str, known: &[&'a str]) -> Option<&'a str> {
 
 fn unknown_key(cx: &Ctxt, ident: &Ident, known: &[&str], context: &str) {
     let name = ident.to_string();
-    let list = known.iter().map(|k| format!("`{k}`")).collect::<Vec<_>>().join(", ");
+    let list = known
+        .iter()
+        .map(|k| format!("`{k}`"))
+        .collect::<Vec<_>>()
+        .join(", ");
     match suggest(&name, known) {
-        Some(s) => cx.error_spanned_by(ident, format!("unknown key `{name}`{context}; did you mean `{s}`?")),
-        None => cx.error_spanned_by(ident, format!("unknown key `{name}`{context}; expected one of {list}")),
+        Some(s) => cx.error_spanned_by(
+            ident,
+            format!("unknown key `{name}`{context}; did you mean `{s}`?"),
+        ),
+        None => cx.error_spanned_by(
+            ident,
+            format!("unknown key `{name}`{context}; expected one of {list}"),
+        ),
     }
 }
 
@@ -117,16 +131,19 @@ fn parse_value(cx: &Ctxt, expr: &Expr) -> Option<Value> {
         Some(if negate { -v } else { v })
     };
     let parsed = match expr {
-        Expr::Lit(l) => literal(&l.lit, false).map(|value| Value::Literal { value, span: expr.span() }),
+        Expr::Lit(l) => literal(&l.lit, false).map(|value| Value::Literal { value }),
         Expr::Unary(u) if matches!(u.op, UnOp::Neg(_)) => match &*u.expr {
-            Expr::Lit(l) => literal(&l.lit, true).map(|value| Value::Literal { value, span: expr.span() }),
+            Expr::Lit(l) => literal(&l.lit, true).map(|value| Value::Literal { value }),
             _ => None,
         },
         Expr::Path(p) if p.qself.is_none() => p.path.get_ident().cloned().map(Value::Field),
         _ => None,
     };
     if parsed.is_none() {
-        cx.error_spanned_by(expr, "expected a float literal (e.g. `0.8`) or the name of an `f64` field of the struct");
+        cx.error_spanned_by(
+            expr,
+            "expected a float literal (e.g. `0.8`) or the name of an `f64` field of the struct",
+        );
     }
     parsed
 }
@@ -138,7 +155,10 @@ fn parse_usize(cx: &Ctxt, expr: &Expr, what: &str) -> Option<usize> {
     {
         return Some(v);
     }
-    cx.error_spanned_by(expr, format!("{what} must be a non-negative integer literal"));
+    cx.error_spanned_by(
+        expr,
+        format!("{what} must be a non-negative integer literal"),
+    );
     None
 }
 
@@ -161,10 +181,25 @@ fn parse_override_args(input: ParseStream) -> syn::Result<(Expr, Vec<(Ident, Exp
 
 /// Parses the attribute tokens. Errors go to `cx`; whatever parsed is returned.
 pub fn parse(cx: &Ctxt, attr: TokenStream) -> Spec {
-    let mut spec = Spec { span: attr.span(), ..Spec::default() };
-    if attr.is_empty() {
-        spec.span = Span::call_site();
-    }
+    let span = if attr.is_empty() {
+        Span::call_site()
+    } else {
+        attr.span()
+    };
+    let mut spec = Spec {
+        n: None,
+        a: None,
+        r: None,
+        theta_bar: None,
+        rest_length: None,
+        k: None,
+        mass: None,
+        unroll: None,
+        law: None,
+        springs: Vec::new(),
+        rotors: Vec::new(),
+        span,
+    };
     let items = match Punctuated::<Meta, Token![,]>::parse_terminated.parse2(attr) {
         Ok(items) => items,
         Err(err) => {
@@ -174,7 +209,10 @@ pub fn parse(cx: &Ctxt, attr: TokenStream) -> Spec {
     };
     for item in items {
         let Some(key) = item.path().get_ident().cloned() else {
-            cx.error_spanned_by(item.path(), "expected a key such as `n`, `r` or `spring(..)`");
+            cx.error_spanned_by(
+                item.path(),
+                "expected a key such as `n`, `r` or `spring(..)`",
+            );
             continue;
         };
         let name = key.to_string();
@@ -184,11 +222,31 @@ pub fn parse(cx: &Ctxt, attr: TokenStream) -> Spec {
                 match name.as_str() {
                     "n" | "unroll" => {
                         if let Some(v) = parse_usize(cx, &nv.value, &format!("`{name}`")) {
-                            let slot = if name == "n" { &mut spec.n } else { &mut spec.unroll };
-                            set_once(cx, slot, Keyed { key, value: v, span });
+                            let slot = if name == "n" {
+                                &mut spec.n
+                            } else {
+                                &mut spec.unroll
+                            };
+                            set_once(
+                                cx,
+                                slot,
+                                Keyed {
+                                    key,
+                                    value: v,
+                                    span,
+                                },
+                            );
                         }
                     }
-                    "law" => set_once(cx, &mut spec.law, Keyed { key, value: nv.value, span }),
+                    "law" => set_once(
+                        cx,
+                        &mut spec.law,
+                        Keyed {
+                            key,
+                            value: nv.value,
+                            span,
+                        },
+                    ),
                     "a" | "r" | "theta_bar" | "rest_length" | "k" | "mass" => {
                         if let Some(v) = parse_value(cx, &nv.value) {
                             let slot = match name.as_str() {
@@ -199,63 +257,102 @@ pub fn parse(cx: &Ctxt, attr: TokenStream) -> Spec {
                                 "k" => &mut spec.k,
                                 _ => &mut spec.mass,
                             };
-                            set_once(cx, slot, Keyed { key, value: v, span });
+                            set_once(
+                                cx,
+                                slot,
+                                Keyed {
+                                    key,
+                                    value: v,
+                                    span,
+                                },
+                            );
                         }
                     }
                     "spring" | "rotor" => cx.error_spanned_by(
                         &key,
-                        format!("`{name}` takes arguments: `{name}(index, {} = ..)`", if name == "spring" { "k" } else { "r" }),
+                        format!(
+                            "`{name}` takes arguments: `{name}(index, {} = ..)`",
+                            if name == "spring" { "k" } else { "r" }
+                        ),
                     ),
                     _ => unknown_key(cx, &key, &KEYS, ""),
                 }
             }
-            Meta::List(list) => match name.as_str() {
-                "spring" | "rotor" => {
-                    let (index_expr, pairs) = match parse_override_args.parse2(list.tokens.clone()) {
-                        Ok(parsed) => parsed,
-                        Err(err) => {
-                            cx.syn_error(err);
+            Meta::List(list) => {
+                match name.as_str() {
+                    "spring" | "rotor" => {
+                        let (index_expr, pairs) =
+                            match parse_override_args.parse2(list.tokens.clone()) {
+                                Ok(parsed) => parsed,
+                                Err(err) => {
+                                    cx.syn_error(err);
+                                    continue;
+                                }
+                            };
+                        let Some(index) =
+                            parse_usize(cx, &index_expr, &format!("the {name} index"))
+                        else {
                             continue;
-                        }
-                    };
-                    let Some(index) = parse_usize(cx, &index_expr, &format!("the {name} index")) else { continue };
-                    let index = Keyed { key: key.clone(), value: index, span: index_expr.span() };
-                    let allowed: &[&str] = if name == "spring" { &["k", "l0"] } else { &["r"] };
-                    let mut k = None;
-                    let mut l0 = None;
-                    let mut r = None;
-                    for (pkey, pvalue) in pairs {
-                        let pname = pkey.to_string();
-                        if !allowed.contains(&pname.as_str()) {
-                            unknown_key(cx, &pkey, allowed, &format!(" in `{name}(..)`"));
-                            continue;
-                        }
-                        let span = pvalue.span();
-                        let Some(v) = parse_value(cx, &pvalue) else { continue };
-                        let slot = match pname.as_str() {
-                            "k" => &mut k,
-                            "l0" => &mut l0,
-                            _ => &mut r,
                         };
-                        set_once(cx, slot, Keyed { key: pkey, value: v, span });
-                    }
-                    if name == "spring" {
-                        if k.is_none() && l0.is_none() {
-                            cx.error_spanned_by(&key, "`spring(..)` overrides nothing: give `k = ..` and/or `l0 = ..`");
+                        let index = Keyed {
+                            key: key.clone(),
+                            value: index,
+                            span: index_expr.span(),
+                        };
+                        let allowed: &[&str] = if name == "spring" {
+                            &["k", "l0"]
+                        } else {
+                            &["r"]
+                        };
+                        let mut k = None;
+                        let mut l0 = None;
+                        let mut r = None;
+                        for (pkey, pvalue) in pairs {
+                            let pname = pkey.to_string();
+                            if !allowed.contains(&pname.as_str()) {
+                                unknown_key(cx, &pkey, allowed, &format!(" in `{name}(..)`"));
+                                continue;
+                            }
+                            let span = pvalue.span();
+                            let Some(v) = parse_value(cx, &pvalue) else {
+                                continue;
+                            };
+                            let slot = match pname.as_str() {
+                                "k" => &mut k,
+                                "l0" => &mut l0,
+                                _ => &mut r,
+                            };
+                            set_once(
+                                cx,
+                                slot,
+                                Keyed {
+                                    key: pkey,
+                                    value: v,
+                                    span,
+                                },
+                            );
                         }
-                        spec.springs.push(SpringOverride { index, k, l0 });
-                    } else {
-                        if r.is_none() {
-                            cx.error_spanned_by(&key, "`rotor(..)` overrides nothing: give `r = ..`");
+                        if name == "spring" {
+                            if k.is_none() && l0.is_none() {
+                                cx.error_spanned_by(&key, "`spring(..)` overrides nothing: give `k = ..` and/or `l0 = ..`");
+                            }
+                            spec.springs.push(SpringOverride { index, k, l0 });
+                        } else {
+                            if r.is_none() {
+                                cx.error_spanned_by(
+                                    &key,
+                                    "`rotor(..)` overrides nothing: give `r = ..`",
+                                );
+                            }
+                            spec.rotors.push(RotorOverride { index, r });
                         }
-                        spec.rotors.push(RotorOverride { index, r });
                     }
+                    _ if KEYS.contains(&name.as_str()) => {
+                        cx.error_spanned_by(&key, format!("`{name}` takes a value: `{name} = ..`"))
+                    }
+                    _ => unknown_key(cx, &key, &KEYS, ""),
                 }
-                _ if KEYS.contains(&name.as_str()) => {
-                    cx.error_spanned_by(&key, format!("`{name}` takes a value: `{name} = ..`"))
-                }
-                _ => unknown_key(cx, &key, &KEYS, ""),
-            },
+            }
             Meta::Path(_) => {
                 if KEYS.contains(&name.as_str()) {
                     cx.error_spanned_by(&key, format!("`{name}` needs a value: `{name} = ..`"));
@@ -284,23 +381,45 @@ mod tests {
         let cx = Ctxt::new();
         let _ = parse(&cx, tokens);
         let err = cx.check().expect_err("an error");
-        err.into_iter().map(|e| e.to_string()).collect::<Vec<_>>().join("\n")
+        err.into_iter()
+            .map(|e| e.to_string())
+            .collect::<Vec<_>>()
+            .join("\n")
     }
 
     #[test]
     fn parses_the_issue_example() {
-        let spec = parse_ok(quote!(n = 60, a = 1.0, r = 0.8, theta_bar = 0.58, k = 1.0e4, mass = 1.0,
-            spring(29, k = k_imp), spring(7, l0 = 2.30)));
+        let spec = parse_ok(quote!(
+            n = 60,
+            a = 1.0,
+            r = 0.8,
+            theta_bar = 0.58,
+            k = 1.0e4,
+            mass = 1.0,
+            spring(29, k = k_imp),
+            spring(7, l0 = 2.30)
+        ));
         assert_eq!(spec.n.unwrap().value, 60);
         assert_eq!(spec.k.unwrap().value.literal(), Some(1.0e4));
         assert_eq!(spec.springs.len(), 2);
-        assert!(matches!(&spec.springs[0].k.as_ref().unwrap().value, Value::Field(f) if f == "k_imp"));
-        assert_eq!(spec.springs[1].l0.as_ref().unwrap().value.literal(), Some(2.30));
+        assert!(
+            matches!(&spec.springs[0].k.as_ref().unwrap().value, Value::Field(f) if f == "k_imp")
+        );
+        assert_eq!(
+            spec.springs[1].l0.as_ref().unwrap().value.literal(),
+            Some(2.30)
+        );
     }
 
     #[test]
     fn reports_every_error_with_suggestions() {
-        let msg = parse_err(quote!(n = 60, thetabar = 0.5, k = 1.0, k = 2.0, spring(3, stiffness = 2.0)));
+        let msg = parse_err(quote!(
+            n = 60,
+            thetabar = 0.5,
+            k = 1.0,
+            k = 2.0,
+            spring(3, stiffness = 2.0)
+        ));
         assert!(msg.contains("did you mean `theta_bar`"), "{msg}");
         assert!(msg.contains("duplicate key `k`"), "{msg}");
         assert!(msg.contains("in `spring(..)`"), "{msg}");

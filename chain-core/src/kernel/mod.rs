@@ -32,7 +32,9 @@ pub fn for_each_spring(
     params: impl Fn(usize) -> [f64; 5],
     mut f: impl FnMut(usize, KernelArgs),
 ) {
-    let Some((&first, rest)) = theta.split_first() else { return };
+    let Some((&first, rest)) = theta.split_first() else {
+        return;
+    };
     let (mut s1, mut c1) = math::sin_cos(first);
     for (p, &next) in rest.iter().enumerate() {
         let (s2, c2) = math::sin_cos(next);
@@ -44,7 +46,11 @@ pub fn for_each_spring(
 
 /// `sum_p kernel(p)`: the energy.
 #[inline(always)]
-pub fn sum(theta: &[f64], params: impl Fn(usize) -> [f64; 5], kernel: impl Fn(KernelArgs) -> f64) -> f64 {
+pub fn sum(
+    theta: &[f64],
+    params: impl Fn(usize) -> [f64; 5],
+    kernel: impl Fn(KernelArgs) -> f64,
+) -> f64 {
     let mut total = 0.0;
     for_each_spring(theta, params, |_, x| total += kernel(x));
     total

@@ -1,0 +1,528 @@
+//! Phase 4: emit the code. Two strategies from the one derivation:
+//! - unrolled (n <= `unroll`, default 128): every function is straight-line code, one `sin_cos`
+//!   per angle, every spring's parameters folded in;
+//! - looped: the per-spring kernel (rendered once, as a hidden module) driven by
+//!   `chain-core`'s loops, so n = 100000 compiles fast.
+//!
+//! Generated code reaches support items only through `::rotor_chain::__private`.
+
+use chain_symbolic::chain::ChainOutputs;
+use chain_symbolic::{Graph, Id, lower};
+use proc_macro2::{Ident, Span, TokenStream};
+use quote::{format_ident, quote};
+use syn::ItemStruct;
+
+use crate::attr;
+use crate::ctxt::Ctxt;
+use crate::fallback;
+use crate::model::{PRIVATE, math_prefix, value_tokens};
+use crate::valid::{self, Model, Uniform};
+
+/// The dense `hessian()` (an `N x N` matrix on the stack) is emitted up to this many rotors;
+/// larger chains use the banded `tangent_stiffness()`.
+pub const DENSE_LIMIT: usize = 256;
+
+pub fn expand(attr: TokenStream, item: TokenStream) -> TokenStream {
+    let parsed: ItemStruct = match syn::parse2(item.clone()) {
+        Ok(s) => s,
+        Err(_) => {
+            let err = syn::Error::new(
+                Span::call_site(),
+                "#[rotor_chain] goes on a struct (with named `f64` fields, or none)",
+            );
+            return fallback::emit(&item, err);
+        }
+    };
+    let cx = Ctxt::new();
+    let spec = attr::parse(&cx, attr);
+    let model = valid::validate(&cx, spec, &parsed);
+    match cx.check() {
+        Err(errors) => fallback::emit(&item, errors),
+        Ok(()) => {
+            let model = model.expect("validation without errors yields a model");
+            let generated = emit(&parsed, &model);
+            quote! {
+                #item
+                #generated
+            }
+        }
+    }
+}
+
+fn private() -> TokenStream {
+    PRIVATE.parse().expect("path")
+}
+
+fn parse_block(src: &str) -> TokenStream {
+    format!("{{\n{src}\n}}")
+        .parse()
+        .expect("generated source parses")
+}
+
+/// `match i { 3 => v3, _ => default }` (or just `default`).
+fn indexed(
+    index: &Ident,
+    overrides: Vec<(usize, TokenStream)>,
+    default: TokenStream,
+) -> TokenStream {
+    if overrides.is_empty() {
+        return quote!({
+            let _ = #index;
+            #default
+        });
+    }
+    let arms = overrides.into_iter().map(|(i, v)| quote!(#i => #v,));
+    quote!(match #index { #(#arms)* _ => #default })
+}
+
+/// What each function returns, built from its output expressions.
+enum Shape {
+    Scalar,
+    Array,
+    Tridiagonal,
+    Bidiagonal,
+}
+
+fn unrolled_body(g: &Graph, out: &ChainOutputs, ids: &[Id], shape: Shape) -> TokenStream {
+    let math = math_prefix();
+    let namer = out.leaf_namer(g);
+    let program = lower(g, ids, &namer).expect("every symbol is a field or an angle");
+    let mut src = String::new();
+    for i in out.angles_used(g, ids) {
+        src.push_str(&format!("let (s{i}, c{i}) = {math}sin_cos(theta[{i}]);\n"));
+    }
+    src.push_str(&program.render("t", &math));
+    let outs: Vec<String> = (0..ids.len())
+        .map(|k| program.render_output(k, "t"))
+        .collect();
+    let n = out.n;
+    let p = PRIVATE;
+    let value = match shape {
+        Shape::Scalar => outs[0].clone(),
+        Shape::Array => format!("[{}]", outs.join(", ")),
+        Shape::Tridiagonal => {
+            format!(
+                "{p}::Tridiagonal::new([{}], [{}])",
+                outs[..n].join(", "),
+                outs[n..].join(", ")
+            )
+        }
+        Shape::Bidiagonal => {
+            let m = n - 1;
+            format!(
+                "{p}::Bidiagonal::new([{}], [{}])",
+                outs[..m].join(", "),
+                outs[m..].join(", ")
+            )
+        }
+    };
+    src.push_str(&value);
+    parse_block(&src)
+}
+
+struct Bodies {
+    energy: TokenStream,
+    gradient: TokenStream,
+    tangent_stiffness: TokenStream,
+    material: TokenStream,
+    stress: TokenStream,
+    lengths: TokenStream,
+    tensions: TokenStream,
+    compatibility: TokenStream,
+    support: TokenStream,
+}
+
+fn unrolled_bodies(model: &Model) -> Bodies {
+    let (g, out) = model.unrolled_outputs();
+    let cat = |a: &[Id], b: &[Id]| -> Vec<Id> { a.iter().chain(b).copied().collect() };
+    Bodies {
+        energy: unrolled_body(&g, &out, &[out.energy], Shape::Scalar),
+        gradient: unrolled_body(&g, &out, &out.gradient, Shape::Array),
+        tangent_stiffness: unrolled_body(
+            &g,
+            &out,
+            &cat(&out.hessian_diag, &out.hessian_off),
+            Shape::Tridiagonal,
+        ),
+        material: unrolled_body(
+            &g,
+            &out,
+            &cat(&out.material_diag, &out.material_off),
+            Shape::Tridiagonal,
+        ),
+        stress: unrolled_body(
+            &g,
+            &out,
+            &cat(&out.stress_diag, &out.stress_off),
+            Shape::Tridiagonal,
+        ),
+        lengths: unrolled_body(&g, &out, &out.lengths, Shape::Array),
+        tensions: unrolled_body(&g, &out, &out.tensions, Shape::Array),
+        compatibility: unrolled_body(
+            &g,
+            &out,
+            &cat(&out.compatibility_left, &out.compatibility_right),
+            Shape::Bidiagonal,
+        ),
+        support: TokenStream::new(),
+    }
+}
+
+fn looped_bodies(model: &Model, ident: &Ident) -> Bodies {
+    let p = private();
+    let (n, m) = (model.n, model.springs());
+    let kmod = format_ident!("__rotor_chain_kernel_{}", valid::snake_name(ident));
+    let kernel: TokenStream = model.kernel_source().parse().expect("kernel source parses");
+    let support = quote! {
+        #[doc(hidden)]
+        #[allow(non_snake_case, clippy::all)]
+        mod #kmod {
+            use #p::math as m;
+            #kernel
+        }
+    };
+    let params = quote!(|p: usize| self.__rotor_chain_spring(p));
+    let k = |f: &str| -> TokenStream {
+        let f = format_ident!("{f}");
+        quote!(#kmod::#f)
+    };
+    let (ke, kg, kh, km, ks, kl, kt, kc) = (
+        k("energy"),
+        k("gradient"),
+        k("hessian"),
+        k("material"),
+        k("stress"),
+        k("length"),
+        k("tension"),
+        k("compatibility"),
+    );
+    let blocks = |kern: TokenStream| {
+        quote!({
+            let mut diag = [0.0f64; #n];
+            let mut off = [0.0f64; #m];
+            #p::kernel::assemble_blocks(theta, #params, &mut diag, &mut off, #kern);
+            #p::Tridiagonal::new(diag, off)
+        })
+    };
+    let per_spring = |kern: TokenStream| {
+        quote!({
+            let mut out = [0.0f64; #m];
+            #p::kernel::per_spring(theta, #params, &mut out, #kern);
+            out
+        })
+    };
+    Bodies {
+        energy: quote!({ #p::kernel::sum(theta, #params, #ke) }),
+        gradient: quote!({
+            let mut out = [0.0f64; #n];
+            #p::kernel::assemble_pairs(theta, #params, &mut out, #kg);
+            out
+        }),
+        tangent_stiffness: blocks(kh),
+        material: blocks(km),
+        stress: blocks(ks),
+        lengths: per_spring(kl),
+        tensions: per_spring(kt),
+        compatibility: quote!({
+            let mut left = [0.0f64; #m];
+            let mut right = [0.0f64; #m];
+            #p::kernel::per_spring_pairs(theta, #params, &mut left, &mut right, #kc);
+            #p::Bidiagonal::new(left, right)
+        }),
+        support,
+    }
+}
+
+/// `check()`: the chain's rules applied to the values at run time (fields can hold anything).
+fn check_body(model: &Model) -> TokenStream {
+    let p = private();
+    let (a, r, k, mass) = (
+        value_tokens(&model.a),
+        value_tokens(&model.r),
+        value_tokens(&model.k),
+        value_tokens(&model.mass),
+    );
+    let uniform = match &model.uniform {
+        Uniform::ThetaBar(tb) => {
+            let tb = value_tokens(tb);
+            quote!(g::check_flipper_phase(#a, #r, #tb)?;)
+        }
+        Uniform::RestLength(rl) => {
+            let rl = value_tokens(rl);
+            quote!(g::check_flipper_phase(#a, #r, g::theta_bar_from_rest_length(#a, #r, #rl)?)?;)
+        }
+    };
+    let springs = model.springs.values().flat_map(|(k, l0)| {
+        let k = k.as_ref().map(|v| {
+            let v = value_tokens(v);
+            quote!(g::check_positive(g::Key::Stiffness, #v)?;)
+        });
+        let l0 = l0.as_ref().map(|v| {
+            let v = value_tokens(v);
+            quote!(g::check_positive(g::Key::RestLength, #v)?;)
+        });
+        k.into_iter().chain(l0)
+    });
+    let rotors = model.rotors.values().map(|v| {
+        let v = value_tokens(v);
+        quote!(g::check_positive(g::Key::RotorLength, #v)?;)
+    });
+    quote!({
+        use #p::geometry as g;
+        g::check_positive(g::Key::LatticeSpacing, #a)?;
+        g::check_positive(g::Key::RotorLength, #r)?;
+        g::check_positive(g::Key::Stiffness, #k)?;
+        g::check_positive(g::Key::Mass, #mass)?;
+        #uniform
+        #(#springs)*
+        #(#rotors)*
+        Ok(())
+    })
+}
+
+fn emit(item: &ItemStruct, model: &Model) -> TokenStream {
+    let p = private();
+    let ident = &item.ident;
+    let (n, m) = (model.n, model.springs());
+    let bodies = if model.unrolled() {
+        unrolled_bodies(model)
+    } else {
+        looped_bodies(model, ident)
+    };
+    let Bodies {
+        energy,
+        gradient,
+        tangent_stiffness,
+        material,
+        stress,
+        lengths,
+        tensions,
+        compatibility,
+        support,
+    } = bodies;
+
+    let a = value_tokens(&model.a);
+    let mass = value_tokens(&model.mass);
+    let lbar = model.rest_length_tokens();
+    let theta_bar = model.theta_bar_tokens();
+    let idx_i = format_ident!("i");
+    let idx_p = format_ident!("p");
+    let rotor_length = indexed(
+        &idx_i,
+        model
+            .rotors
+            .iter()
+            .map(|(i, v)| (*i, value_tokens(v)))
+            .collect(),
+        value_tokens(&model.r),
+    );
+    let stiffness = indexed(
+        &idx_p,
+        model
+            .springs
+            .iter()
+            .filter_map(|(i, (k, _))| k.as_ref().map(|v| (*i, value_tokens(v))))
+            .collect(),
+        value_tokens(&model.k),
+    );
+    let rest_length = indexed(
+        &idx_p,
+        model
+            .springs
+            .iter()
+            .filter_map(|(i, (_, l0))| l0.as_ref().map(|v| (*i, value_tokens(v))))
+            .collect(),
+        lbar.clone(),
+    );
+    let check = check_body(model);
+    let hessian = (n <= DENSE_LIMIT).then(|| {
+        quote! {
+            /// The dense Hessian `d2V/dtheta_i dtheta_j` (the tangent stiffness as an `n x n` matrix).
+            pub fn hessian(&self, theta: &[f64; #n]) -> #p::SMatrix<f64, #n, #n> {
+                self.tangent_stiffness(theta).to_dense()
+            }
+        }
+    });
+    let strategy = if model.unrolled() {
+        "unrolled straight-line code"
+    } else {
+        "the per-spring kernel in a loop"
+    };
+    let doc_strategy = format!(" Generated by `#[rotor_chain]` as {strategy}.");
+
+    quote! {
+        #support
+
+        #[automatically_derived]
+        #[allow(clippy::all, clippy::pedantic, unused_variables, unused_parens)]
+        impl #ident {
+            /// Number of rotors `n`.
+            pub const N: usize = #n;
+            /// Number of springs `n - 1`.
+            pub const SPRINGS: usize = #m;
+
+            /// Potential energy `V = sum_p law(l_p)`.
+            #[doc = #doc_strategy]
+            pub fn energy(&self, theta: &[f64; #n]) -> f64 #energy
+
+            /// `dV/dtheta_i` for every rotor (the forces are its negative).
+            #[doc = #doc_strategy]
+            pub fn gradient(&self, theta: &[f64; #n]) -> [f64; #n] #gradient
+
+            /// Writes `dV/dtheta_i` into `out`.
+            pub fn gradient_into(&self, theta: &[f64; #n], out: &mut [f64; #n]) {
+                *out = self.gradient(theta);
+            }
+
+            /// The tangent stiffness `d2V/dtheta_i dtheta_j`, tridiagonal (paper Eq. `eq:prestress8`).
+            #[doc = #doc_strategy]
+            pub fn tangent_stiffness(&self, theta: &[f64; #n]) -> #p::Tridiagonal<#n, #m> #tangent_stiffness
+
+            #hessian
+
+            /// The material part `sum_p g^_p a_p a_p^T` of the tangent stiffness (paper Appendix D).
+            pub fn material_stiffness(&self, theta: &[f64; #n]) -> #p::Tridiagonal<#n, #m> #material
+
+            /// The stress matrix `sum_p S_p` (paper Appendix D): material part + stress matrix = tangent stiffness.
+            pub fn stress_matrix(&self, theta: &[f64; #n]) -> #p::Tridiagonal<#n, #m> #stress
+
+            /// Spring lengths `l_p`.
+            pub fn spring_lengths(&self, theta: &[f64; #n]) -> [f64; #m] #lengths
+
+            /// Spring tensions `t_p = dlaw/dl` at the current lengths.
+            pub fn tensions(&self, theta: &[f64; #n]) -> [f64; #m] #tensions
+
+            /// The compatibility matrix `C[p][i] = dl_p / d(r_i theta_i)` (bidiagonal).
+            pub fn compatibility(&self, theta: &[f64; #n]) -> #p::Bidiagonal<#m, #n> #compatibility
+
+            /// Checks the parameters against the chain's rules at run time (literal values were
+            /// already checked at compile time; this covers values read from fields).
+            pub fn check(&self) -> ::core::result::Result<(), #p::ParameterError> #check
+
+            #[doc(hidden)]
+            #[inline(always)]
+            fn __rotor_chain_rotor_length(&self, i: usize) -> f64 { #rotor_length }
+
+            #[doc(hidden)]
+            #[inline(always)]
+            fn __rotor_chain_stiffness(&self, p: usize) -> f64 { #stiffness }
+
+            #[doc(hidden)]
+            #[inline(always)]
+            fn __rotor_chain_rest_length(&self, p: usize) -> f64 { #rest_length }
+
+            #[doc(hidden)]
+            #[inline(always)]
+            fn __rotor_chain_spring(&self, p: usize) -> [f64; 5] {
+                [
+                    #a,
+                    self.__rotor_chain_rotor_length(p),
+                    self.__rotor_chain_rotor_length(p + 1),
+                    self.__rotor_chain_stiffness(p),
+                    self.__rotor_chain_rest_length(p),
+                ]
+            }
+        }
+
+        #[automatically_derived]
+        impl #p::ChainModel for #ident {
+            fn rotor_count(&self) -> usize { #n }
+            fn lattice_spacing(&self) -> f64 { #a }
+            fn rotor_length(&self, i: usize) -> f64 { self.__rotor_chain_rotor_length(i) }
+            fn mass(&self) -> f64 { #mass }
+            fn theta_bar(&self) -> f64 { #theta_bar }
+            fn stiffness(&self, p: usize) -> f64 { self.__rotor_chain_stiffness(p) }
+            fn rest_length(&self, p: usize) -> f64 { self.__rotor_chain_rest_length(p) }
+            fn energy(&self, theta: &[f64]) -> f64 {
+                #ident::energy(self, #p::as_array(theta))
+            }
+            fn gradient_into(&self, theta: &[f64], out: &mut [f64]) {
+                out.copy_from_slice(&#ident::gradient(self, #p::as_array(theta)));
+            }
+            fn tangent_stiffness_into(&self, theta: &[f64], diag: &mut [f64], off: &mut [f64]) {
+                let t = #ident::tangent_stiffness(self, #p::as_array(theta));
+                diag.copy_from_slice(&t.diag);
+                off.copy_from_slice(&t.off);
+            }
+            fn material_stiffness_into(&self, theta: &[f64], diag: &mut [f64], off: &mut [f64]) {
+                let t = #ident::material_stiffness(self, #p::as_array(theta));
+                diag.copy_from_slice(&t.diag);
+                off.copy_from_slice(&t.off);
+            }
+            fn stress_matrix_into(&self, theta: &[f64], diag: &mut [f64], off: &mut [f64]) {
+                let t = #ident::stress_matrix(self, #p::as_array(theta));
+                diag.copy_from_slice(&t.diag);
+                off.copy_from_slice(&t.off);
+            }
+            fn spring_lengths_into(&self, theta: &[f64], out: &mut [f64]) {
+                out.copy_from_slice(&#ident::spring_lengths(self, #p::as_array(theta)));
+            }
+            fn tensions_into(&self, theta: &[f64], out: &mut [f64]) {
+                out.copy_from_slice(&#ident::tensions(self, #p::as_array(theta)));
+            }
+            fn compatibility_into(&self, theta: &[f64], left: &mut [f64], right: &mut [f64]) {
+                let c = #ident::compatibility(self, #p::as_array(theta));
+                left.copy_from_slice(&c.left);
+                right.copy_from_slice(&c.right);
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn pretty(tokens: TokenStream) -> String {
+        let file: syn::File = syn::parse2(tokens).expect("expansion parses as a file");
+        prettyplease::unparse(&file)
+    }
+
+    /// The expansion of a 3-rotor chain, snapshotted (reviewed by eye when it changes).
+    #[test]
+    fn expansion_of_a_three_rotor_chain() {
+        let out = expand(
+            quote!(
+                n = 3,
+                r = 0.8,
+                theta_bar = 0.58,
+                k = 1.0e4,
+                spring(1, k = k_imp)
+            ),
+            quote!(
+                pub struct Tiny {
+                    pub k_imp: f64,
+                }
+            ),
+        );
+        insta::assert_snapshot!(pretty(out));
+    }
+
+    #[test]
+    fn looped_expansion_uses_the_kernel_module() {
+        let out = expand(
+            quote!(n = 3, r = 0.8, theta_bar = 0.58, k = 1.0e4, unroll = 2),
+            quote!(
+                struct Looped;
+            ),
+        );
+        let text = pretty(out);
+        assert!(text.contains("mod __rotor_chain_kernel_looped"), "{text}");
+        assert!(text.contains("kernel::assemble_pairs"), "{text}");
+    }
+
+    #[test]
+    fn invalid_models_keep_the_struct_and_report_every_error() {
+        let out = expand(
+            quote!(n = 1, r = -1.0, theta_bar = 0.58, k = 1.0),
+            quote!(
+                struct Bad;
+            ),
+        );
+        let text = out.to_string();
+        assert!(text.contains("struct Bad"), "{text}");
+        assert!(text.contains("at least 2"), "{text}");
+        assert!(text.contains("must be a finite number > 0"), "{text}");
+        assert!(!text.contains("fn energy"), "{text}");
+    }
+}
