@@ -91,10 +91,8 @@ fn unrolled_body(g: &Graph, out: &ChainOutputs, ids: &[Id], shape: Shape) -> Tok
     for i in out.angles_used(g, ids) {
         src.push_str(&format!("let (s{i}, c{i}) = {math}sin_cos(theta[{i}]);\n"));
     }
-    src.push_str(&program.render("t", &math));
-    let outs: Vec<String> = (0..ids.len())
-        .map(|k| program.render_output(k, "t"))
-        .collect();
+    let (steps, outs) = program.render_registers("t", &math);
+    src.push_str(&steps);
     let n = out.n;
     let p = PRIVATE;
     let value = match shape {
@@ -354,7 +352,7 @@ fn emit(item: &ItemStruct, model: &Model) -> TokenStream {
         #support
 
         #[automatically_derived]
-        #[allow(clippy::all, clippy::pedantic, unused_variables, unused_parens)]
+        #[allow(clippy::all, clippy::pedantic, unused_variables, unused_parens, unused_mut, unused_assignments)]
         impl #ident {
             /// Number of rotors `n`.
             pub const N: usize = #n;
