@@ -367,11 +367,6 @@ fn emit(item: &ItemStruct, model: &Model) -> TokenStream {
             #[doc = #doc_strategy]
             pub fn gradient(&self, theta: &[f64; #n]) -> [f64; #n] #gradient
 
-            /// Writes `dV/dtheta_i` into `out`.
-            pub fn gradient_into(&self, theta: &[f64; #n], out: &mut [f64; #n]) {
-                *out = self.gradient(theta);
-            }
-
             /// The tangent stiffness `d2V/dtheta_i dtheta_j`, tridiagonal (paper Eq. `eq:prestress8`).
             #[doc = #doc_strategy]
             pub fn tangent_stiffness(&self, theta: &[f64; #n]) -> #p::Tridiagonal<#n, #m> #tangent_stiffness

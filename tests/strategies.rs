@@ -1,0 +1,124 @@
+//! The three ways to get a chain agree to 1e-12 relative: the macro's unrolled code, the macro's
+//! looped per-spring kernel, and the runtime-sized `RuntimeChain` built from the same kernel.
+
+mod common;
+
+use common::{assert_close, wavy};
+use rotor_chain::prelude::*;
+
+#[rotor_chain(n = 60, r = 0.8, theta_bar = 0.58, k = 1.0e4, mass = 1.0,
+              spring(29, k = k_imp), spring(7, l0 = 2.30), rotor(12, r = 0.7))]
+struct Unrolled {
+    k_imp: f64,
+}
+
+#[rotor_chain(n = 60, r = 0.8, theta_bar = 0.58, k = 1.0e4, mass = 1.0, unroll = 0,
+              spring(29, k = k_imp), spring(7, l0 = 2.30), rotor(12, r = 0.7))]
+struct Looped {
+    k_imp: f64,
+}
+
+fn runtime(k_imp: f64) -> RuntimeChain {
+    RuntimeChain::builder(60, 0.8, 1.0e4, 0.58)
+        .spring(29, Some(k_imp), None)
+        .spring(7, None, Some(2.30))
+        .rotor(12, 0.7)
+        .build()
+        .expect("valid chain")
+}
+
+/// Every output of a chain through the trait, flattened with labels.
+fn outputs(model: &impl ChainModel, theta: &[f64]) -> Vec<(String, f64)> {
+    let n = model.rotor_count();
+    let mut out = vec![("energy".to_owned(), model.energy(theta))];
+    let mut v = vec![0.0; n];
+    model.gradient_into(theta, &mut v);
+    out.extend(v.iter().enumerate().map(|(i, x)| (format!("gradient[{i}]"), *x)));
+    type Band = fn(&dyn ChainModelDyn, &[f64], &mut [f64], &mut [f64]);
+    let bands: [(&str, Band); 3] = [
+        ("stiffness", |m, t, d, o| m.k(t, d, o)),
+        ("material", |m, t, d, o| m.m(t, d, o)),
+        ("stress", |m, t, d, o| m.s(t, d, o)),
+    ];
+    for (name, f) in bands {
+        let (mut d, mut o) = (vec![0.0; n], vec![0.0; n - 1]);
+        f(&Wrap(model), theta, &mut d, &mut o);
+        out.extend(d.iter().enumerate().map(|(i, x)| (format!("{name}.diag[{i}]"), *x)));
+        out.extend(o.iter().enumerate().map(|(i, x)| (format!("{name}.off[{i}]"), *x)));
+    }
+    let mut s = vec![0.0; n - 1];
+    model.spring_lengths_into(theta, &mut s);
+    out.extend(s.iter().enumerate().map(|(i, x)| (format!("length[{i}]"), *x)));
+    model.tensions_into(theta, &mut s);
+    out.extend(s.iter().enumerate().map(|(i, x)| (format!("tension[{i}]"), *x)));
+    let (mut l, mut r) = (vec![0.0; n - 1], vec![0.0; n - 1]);
+    model.compatibility_into(theta, &mut l, &mut r);
+    out.extend(l.iter().enumerate().map(|(i, x)| (format!("C.left[{i}]"), *x)));
+    out.extend(r.iter().enumerate().map(|(i, x)| (format!("C.right[{i}]"), *x)));
+    out
+}
+
+/// Object-safe access to the three banded outputs (so one table drives them).
+trait ChainModelDyn {
+    fn k(&self, t: &[f64], d: &mut [f64], o: &mut [f64]);
+    fn m(&self, t: &[f64], d: &mut [f64], o: &mut [f64]);
+    fn s(&self, t: &[f64], d: &mut [f64], o: &mut [f64]);
+}
+struct Wrap<'a, M>(&'a M);
+impl<M: ChainModel> ChainModelDyn for Wrap<'_, M> {
+    fn k(&self, t: &[f64], d: &mut [f64], o: &mut [f64]) {
+        self.0.tangent_stiffness_into(t, d, o)
+    }
+    fn m(&self, t: &[f64], d: &mut [f64], o: &mut [f64]) {
+        self.0.material_stiffness_into(t, d, o)
+    }
+    fn s(&self, t: &[f64], d: &mut [f64], o: &mut [f64]) {
+        self.0.stress_matrix_into(t, d, o)
+    }
+}
+
+#[test]
+fn unrolled_looped_and_runtime_agree_to_1e12() {
+    let (u, l, r) = (Unrolled { k_imp: 100.0 }, Looped { k_imp: 100.0 }, runtime(100.0));
+    for seed in 0..5 {
+        let theta = wavy(60, 0.58, seed);
+        let (ou, ol, or) = (outputs(&u, &theta), outputs(&l, &theta), outputs(&r, &theta));
+        assert_eq!(ou.len(), ol.len());
+        for ((name, a), ((_, b), (_, c))) in ou.iter().zip(ol.iter().zip(&or)) {
+            assert_close(*a, *b, 1e-12, &format!("{name}: unrolled vs looped"));
+            assert_close(*a, *c, 1e-12, &format!("{name}: unrolled vs runtime"));
+        }
+    }
+}
+
+#[test]
+fn parameters_agree_between_macro_and_runtime() {
+    let (u, r) = (Unrolled { k_imp: 100.0 }, runtime(100.0));
+    assert_eq!(u.rotor_count(), r.rotor_count());
+    for p in 0..59 {
+        assert_eq!(u.stiffness(p), r.stiffness(p), "k_{p}");
+        assert_close(u.rest_length(p), r.rest_length(p), 1e-15, &format!("l0_{p}"));
+    }
+    for i in 0..60 {
+        assert_eq!(u.rotor_length(i), r.rotor_length(i), "r_{i}");
+        assert_eq!(u.inertia(i), r.inertia(i), "M r_{i}^2");
+    }
+    assert_eq!(u.theta_bar(), r.theta_bar());
+}
+
+#[test]
+fn a_large_looped_chain_matches_the_runtime_chain() {
+    #[rotor_chain(n = 2000, r = 0.8, theta_bar = 0.3, k = 1.0e4)]
+    struct Long;
+    let runtime = RuntimeChain::builder(2000, 0.8, 1.0e4, 0.3).build().unwrap();
+    let theta = wavy(2000, 0.3, 11);
+    let mut g1 = vec![0.0; 2000];
+    let mut g2 = vec![0.0; 2000];
+    Long.gradient_into(&theta, &mut g1);
+    runtime.gradient_into(&theta, &mut g2);
+    for i in 0..2000 {
+        assert_close(g1[i], g2[i], 1e-12, &format!("gradient[{i}]"));
+    }
+    // Inherent methods take `&[f64; N]`; through the trait they take slices.
+    assert_close(ChainModel::energy(&Long, &theta), runtime.energy(&theta), 1e-12, "energy");
+}
