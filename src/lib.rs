@@ -32,12 +32,14 @@
 #![cfg_attr(not(feature = "std"), no_std)]
 
 pub use chain_core::{
-    Bidiagonal, BranchError, ChainModel, ParameterError, Tridiagonal, banded, branch, error,
-    geometry, kernel, math, model,
+    Bidiagonal, BranchError, ChainModel, ParameterError, Tridiagonal, banded, branch, error, geometry,
+    kernel, math, model,
 };
 #[cfg(feature = "alloc")]
 pub use chain_core::{ChainBuilder, Law, RuntimeChain, runtime};
 pub use chain_macros::rotor_chain;
+/// The linear-algebra crate of the matrices this crate returns, re-exported so versions match.
+pub use nalgebra;
 
 /// The macro and every trait and type a user needs.
 pub mod prelude {
@@ -51,9 +53,7 @@ pub mod prelude {
 /// `#[rotor_chain]` reaches its dependencies, so users depend on this crate alone.
 #[doc(hidden)]
 pub mod __private {
-    pub use chain_core::{
-        Bidiagonal, ChainModel, ParameterError, Tridiagonal, geometry, kernel, math,
-    };
+    pub use chain_core::{Bidiagonal, ChainModel, ParameterError, Tridiagonal, geometry, kernel, math};
     pub use nalgebra::SMatrix;
 
     /// `theta` as a fixed-size array, for the slice-based [`ChainModel`] methods.
@@ -65,11 +65,9 @@ pub mod __private {
     pub fn as_array<const N: usize>(theta: &[f64]) -> &[f64; N] {
         match theta.try_into() {
             Ok(a) => a,
-            Err(_) => panic!(
-                "expected one angle per rotor: {} angles for a chain of {} rotors",
-                theta.len(),
-                N
-            ),
+            Err(_) => {
+                panic!("expected one angle per rotor: {} angles for a chain of {} rotors", theta.len(), N)
+            }
         }
     }
 }

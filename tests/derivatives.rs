@@ -138,8 +138,12 @@ fn tensions_and_compatibility_follow_their_definitions() {
         assert_close(tensions[p], 1.0e4 * (l - reference.l0[p]), 1e-10, &format!("t_{p}"));
         // C[p][i] = dl_p / d(r theta_i), by a central difference of the reference length.
         let h = 1e-7;
-        let dl1 = (reference.length(p, theta[p] + h, theta[p + 1]) - reference.length(p, theta[p] - h, theta[p + 1])) / (2.0 * h);
-        let dl2 = (reference.length(p, theta[p], theta[p + 1] + h) - reference.length(p, theta[p], theta[p + 1] - h)) / (2.0 * h);
+        let dl1 = (reference.length(p, theta[p] + h, theta[p + 1])
+            - reference.length(p, theta[p] - h, theta[p + 1]))
+            / (2.0 * h);
+        let dl2 = (reference.length(p, theta[p], theta[p + 1] + h)
+            - reference.length(p, theta[p], theta[p + 1] - h))
+            / (2.0 * h);
         assert_close(c.left[p], dl1 / 0.8, 1e-7, &format!("C[{p}][{p}]"));
         assert_close(c.right[p], dl2 / 0.8, 1e-7, &format!("C[{p}][{}]", p + 1));
         assert_eq!(c.get(p, p + 2), 0.0);

@@ -13,8 +13,8 @@ pub struct Tridiagonal<const N: usize, const M: usize> {
     pub off: [f64; M],
 }
 
-/// The bidiagonal `M x N` compatibility matrix `C[p][i] = dl_p / d(r_i theta_i)` (paper Sec. VII-A;
-/// Appendix D's `n_p`): row `p` has `left[p]` in column `p` and `right[p]` in column `p + 1`.
+/// The bidiagonal `M x N` compatibility matrix `C[p][i] = dl_p / d(r_i theta_i)` (paper
+/// Introduction and Appendix D, whose `n_p` are its entries): row `p` has `left[p]` in column `p` and `right[p]` in column `p + 1`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Bidiagonal<const M: usize, const N: usize> {
     pub left: [f64; M],
@@ -22,10 +22,8 @@ pub struct Bidiagonal<const M: usize, const N: usize> {
 }
 
 impl<const N: usize, const M: usize> Tridiagonal<N, M> {
-    const SIZES_MATCH: () = assert!(M + 1 == N, "a chain of N rotors has N - 1 springs");
-
     pub fn new(diag: [f64; N], off: [f64; M]) -> Self {
-        let () = Self::SIZES_MATCH;
+        const { assert!(M + 1 == N, "a chain of N rotors has N - 1 springs") };
         Self { diag, off }
     }
 

@@ -70,11 +70,7 @@ pub fn next_angles(
     let qc = c * (r2 * r2);
     let disc = beta * beta - qa * qc * 4.0;
     let root = ComplexField::sqrt(disc);
-    let root = if (beta.conj() * root).re >= 0.0 {
-        root
-    } else {
-        -root
-    };
+    let root = if (beta.conj() * root).re >= 0.0 { root } else { -root };
     let q = (beta + root) * -0.5;
     let w = [q / qa, qc / q];
     // theta_{p+1} from w = -i r2 e^{i theta}:  r2 sin theta = Re w, r2 cos theta = -Im w.
@@ -85,11 +81,7 @@ pub fn next_angles(
         let u = c + w; // from tip p to tip p+1
         v.re * u.im - v.im * u.re
     };
-    let (first, second) = if side(w[0]) <= side(w[1]) {
-        (w[0], w[1])
-    } else {
-        (w[1], w[0])
-    };
+    let (first, second) = if side(w[0]) <= side(w[1]) { (w[0], w[1]) } else { (w[1], w[0]) };
     Ok([angle(first), angle(second)])
 }
 
@@ -103,18 +95,9 @@ pub fn previous_angles(
     l0: f64,
     theta_next: f64,
 ) -> Result<[f64; 2], BranchError> {
-    next_angles(spring, a, r2, r1, l0, -theta_next)
-        .map(|[x, y]| [-x, -y])
-        .map_err(|e| match e {
+    next_angles(spring, a, r2, r1, l0, -theta_next).map(|[x, y]| [-x, -y]).map_err(|e| match e {
+        BranchError::NoRealRoot { spring, distance, rotor_length, rest_length, min, max, .. } => {
             BranchError::NoRealRoot {
-                spring,
-                distance,
-                rotor_length,
-                rest_length,
-                min,
-                max,
-                ..
-            } => BranchError::NoRealRoot {
                 spring,
                 theta: theta_next,
                 distance,
@@ -122,9 +105,10 @@ pub fn previous_angles(
                 rest_length,
                 min,
                 max,
-            },
-            other => other,
-        })
+            }
+        }
+        other => other,
+    })
 }
 
 #[cfg(test)]
@@ -144,10 +128,7 @@ mod tests {
                 };
                 for t2 in roots {
                     let l = spring_length(A, r1, r2, theta, t2);
-                    assert!(
-                        (l - l0).abs() < 1e-12,
-                        "theta {theta} -> {t2}: length {l} != {l0}"
-                    );
+                    assert!((l - l0).abs() < 1e-12, "theta {theta} -> {t2}: length {l} != {l0}");
                 }
             }
         }
@@ -166,7 +147,7 @@ mod tests {
     #[test]
     fn slope_at_the_fixed_point_matches_the_closed_form() {
         // F'(theta_bar) = (a + 2 r sin theta_bar) / (a - 2 r sin theta_bar), from implicit
-        // differentiation of Eq. (eq:spring) at theta_i = theta_{i+1} = theta_bar.
+        // differentiation of Eq. (eq:instantlength) at theta_i = theta_{i+1} = theta_bar.
         let tb = 0.58;
         let l0 = rest_length(A, R, tb);
         let h = 1e-6;
@@ -183,10 +164,7 @@ mod tests {
             let roots = next_angles(0, A, 0.8, 0.7, l0, theta).unwrap();
             for (b, t2) in roots.into_iter().enumerate() {
                 let back = previous_angles(0, A, 0.8, 0.7, l0, t2).unwrap();
-                assert!(
-                    back.iter().any(|&t| (t - theta).abs() < 1e-10),
-                    "branch {b}: {back:?} vs {theta}"
-                );
+                assert!(back.iter().any(|&t| (t - theta).abs() < 1e-10), "branch {b}: {back:?} vs {theta}");
                 for t1 in back {
                     assert!((spring_length(A, 0.8, 0.7, t1, t2) - l0).abs() < 1e-12);
                 }
@@ -217,20 +195,12 @@ mod tests {
         // A rest length far too long for the rotors to reach.
         let err = next_angles(7, A, R, R, 5.0, 0.2).unwrap_err();
         match err {
-            BranchError::NoRealRoot {
-                spring,
-                distance,
-                min,
-                ..
-            } => {
+            BranchError::NoRealRoot { spring, distance, min, .. } => {
                 assert_eq!(spring, 7);
                 assert!(distance < min);
             }
             other => panic!("unexpected {other:?}"),
         }
-        assert!(matches!(
-            next_angles(0, A, R, R, 1.7, f64::NAN),
-            Err(BranchError::NotFinite { .. })
-        ));
+        assert!(matches!(next_angles(0, A, R, R, 1.7, f64::NAN), Err(BranchError::NotFinite { .. })));
     }
 }

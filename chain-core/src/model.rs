@@ -5,8 +5,8 @@
 //! time). The trait works on slices so it needs no allocation; the structs' inherent methods add
 //! array-typed conveniences.
 //!
-//! Units: angles in radians, lengths in the units of `a`, energies in units of `k a^2` times the
-//! unit of `k`. Slices of rotor quantities have length `n`, slices of spring quantities `n - 1`.
+//! Units: angles in radians, lengths in the units of `a`, stiffnesses `k` in energy per length
+//! squared, so energies come out in the units of `k a^2`. Slices of rotor quantities have length `n`, slices of spring quantities `n - 1`.
 //!
 //! # Panics
 //! The `*_into` methods panic if a slice has the wrong length: that is a programming error, not
@@ -59,7 +59,8 @@ pub trait ChainModel {
     /// `n - 1`, entry `(p, p + 1)`).
     fn tangent_stiffness_into(&self, theta: &[f64], diag: &mut [f64], off: &mut [f64]);
 
-    /// The material part `sum_p g^_p a_p a_p^T` of the tangent stiffness (paper Appendix D).
+    /// The material part `sum_p g^_p a_p a_p^T` of the tangent stiffness (paper Appendix D), with
+    /// `a_p = dl_p/dtheta` (the paper's `a_p` is per tip displacement `r theta`: ours is `r` times it).
     fn material_stiffness_into(&self, theta: &[f64], diag: &mut [f64], off: &mut [f64]);
 
     /// The stress matrix `sum_p S_p` (paper Appendix D); material part + stress matrix = tangent stiffness.
@@ -107,10 +108,7 @@ pub trait ChainModel {
         if p < self.spring_count() {
             Ok(())
         } else {
-            Err(BranchError::NoSuchSpring {
-                spring: p,
-                springs: self.spring_count(),
-            })
+            Err(BranchError::NoSuchSpring { spring: p, springs: self.spring_count() })
         }
     }
 }

@@ -78,21 +78,11 @@ impl RuntimeChain {
     /// `[a, r_p, r_{p+1}, k_p, l0_p]` of spring `p`.
     #[inline(always)]
     fn params(&self, p: usize) -> [f64; 5] {
-        [
-            self.a,
-            self.rotor_lengths[p],
-            self.rotor_lengths[p + 1],
-            self.stiffness[p],
-            self.rest_lengths[p],
-        ]
+        [self.a, self.rotor_lengths[p], self.rotor_lengths[p + 1], self.stiffness[p], self.rest_lengths[p]]
     }
 
     fn check_len(&self, theta: &[f64]) {
-        assert_eq!(
-            theta.len(),
-            self.rotor_lengths.len(),
-            "theta must have one angle per rotor"
-        );
+        assert_eq!(theta.len(), self.rotor_lengths.len(), "theta must have one angle per rotor");
     }
 }
 
@@ -160,14 +150,7 @@ impl ChainModel for RuntimeChain {
     }
 
     fn compatibility_into(&self, theta: &[f64], left: &mut [f64], right: &mut [f64]) {
-        with_law!(
-            self,
-            theta,
-            kernel::per_spring_pairs,
-            compatibility,
-            left,
-            right
-        )
+        with_law!(self, theta, kernel::per_spring_pairs, compatibility, left, right)
     }
 }
 
@@ -237,14 +220,6 @@ impl ChainBuilder {
                 rest_lengths[p] = geo::check_positive(Key::RestLength, lp)?;
             }
         }
-        Ok(RuntimeChain {
-            a,
-            mass,
-            theta_bar,
-            law: self.law,
-            rotor_lengths,
-            stiffness,
-            rest_lengths,
-        })
+        Ok(RuntimeChain { a, mass, theta_bar, law: self.law, rotor_lengths, stiffness, rest_lengths })
     }
 }

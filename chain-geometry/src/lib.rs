@@ -23,38 +23,45 @@ pub enum ParameterError {
     #[error("`{key}` must be a finite number > 0, got {value}")]
     NotPositive { key: Key, value: f64 },
     /// `theta_bar` outside the flipper phase `0 < theta_bar < pi/2`, `2 r sin(theta_bar) < a`.
-    #[error(
-        "theta_bar = {theta_bar} is outside the flipper phase: need 0 < theta_bar < pi/2 and \
-         2 r sin(theta_bar) < a, here 2 r sin(theta_bar) = {two_r_sin} with a = {a}, r = {r} \
-         (the flipper phase ends at theta_bar = {limit:.6}, where the chain turns into a wobbler)"
-    )]
-    OutsideFlipperPhase {
-        theta_bar: f64,
-        a: f64,
-        r: f64,
-        two_r_sin: f64,
-        limit: f64,
-    },
+    #[error("{}", PhaseMessage { theta_bar: *theta_bar, a: *a, r: *r, two_r_sin: *two_r_sin, limit: *limit })]
+    OutsideFlipperPhase { theta_bar: f64, a: f64, r: f64, two_r_sin: f64, limit: f64 },
     /// A rest length that no uniform state `theta_i = theta_bar` can have.
     #[error(
         "rest_length = {rest_length} admits no uniform state: need a < rest_length < \
-         sqrt(a^2 + 4 r^2) = {max} (a = {a}, r = {r})"
+         sqrt(a^2 + 4 r^2) = {max:.6} (a = {a}, r = {r})"
     )]
-    RestLengthOutOfRange {
-        rest_length: f64,
-        a: f64,
-        r: f64,
-        max: f64,
-    },
+    RestLengthOutOfRange { rest_length: f64, a: f64, r: f64, max: f64 },
     /// A spring or rotor index past the end of the chain.
-    #[error(
-        "{kind} index {index} is out of range: the chain has {count} {kind}s (indices 0..{count})"
-    )]
-    IndexOutOfRange {
-        kind: IndexKind,
-        index: usize,
-        count: usize,
-    },
+    #[error("{kind} index {index} is out of range: the chain has {count} {kind}s, numbered 0 to {}", count.saturating_sub(1))]
+    IndexOutOfRange { kind: IndexKind, index: usize, count: usize },
+}
+
+/// The message of [`ParameterError::OutsideFlipperPhase`], naming the bound that is broken
+/// (written through `Display`, so the crate needs no allocation).
+struct PhaseMessage {
+    theta_bar: f64,
+    a: f64,
+    r: f64,
+    two_r_sin: f64,
+    limit: f64,
+}
+
+impl fmt::Display for PhaseMessage {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let Self { theta_bar, a, r, two_r_sin, limit } = *self;
+        write!(f, "theta_bar = {theta_bar} is outside the flipper phase: ")?;
+        if !(theta_bar > 0.0) {
+            write!(f, "it must be > 0 (the uniform states are theta_i = +theta_bar and -theta_bar)")
+        } else if two_r_sin >= a {
+            write!(
+                f,
+                "need 2 r sin(theta_bar) < a, here 2 r sin(theta_bar) = {two_r_sin:.6} with a = {a}, r = {r}; \
+                 the flipper phase ends at theta_bar = asin(a / 2r) = {limit:.6}, where the chain turns into a wobbler"
+            )
+        } else {
+            write!(f, "need theta_bar < pi/2 (the angle is measured from the vertical)")
+        }
+    }
 }
 
 /// Which parameter a [`ParameterError::NotPositive`] is about.
@@ -65,7 +72,6 @@ pub enum Key {
     Stiffness,
     Mass,
     RestLength,
-    ThetaBar,
 }
 
 impl fmt::Display for Key {
@@ -76,7 +82,6 @@ impl fmt::Display for Key {
             Key::Stiffness => "k",
             Key::Mass => "mass",
             Key::RestLength => "l0",
-            Key::ThetaBar => "theta_bar",
         })
     }
 }
@@ -99,38 +104,22 @@ impl fmt::Display for IndexKind {
 
 /// `value` must be finite and strictly positive.
 pub fn check_positive(key: Key, value: f64) -> Result<f64, ParameterError> {
-    if value.is_finite() && value > 0.0 {
-        Ok(value)
-    } else {
-        Err(ParameterError::NotPositive { key, value })
-    }
+    if value.is_finite() && value > 0.0 { Ok(value) } else { Err(ParameterError::NotPositive { key, value }) }
 }
 
 /// A chain needs at least two rotors.
 pub fn check_rotor_count(n: usize) -> Result<usize, ParameterError> {
-    if n >= 2 {
-        Ok(n)
-    } else {
-        Err(ParameterError::TooFewRotors { n })
-    }
+    if n >= 2 { Ok(n) } else { Err(ParameterError::TooFewRotors { n }) }
 }
 
 /// `index` must address one of `count` springs or rotors.
 pub fn check_index(kind: IndexKind, index: usize, count: usize) -> Result<usize, ParameterError> {
-    if index < count {
-        Ok(index)
-    } else {
-        Err(ParameterError::IndexOutOfRange { kind, index, count })
-    }
+    if index < count { Ok(index) } else { Err(ParameterError::IndexOutOfRange { kind, index, count }) }
 }
 
 /// The end of the flipper phase: `theta_bar = asin(a / 2r)` if `2r > a`, else `pi/2`.
 pub fn flipper_limit(a: f64, r: f64) -> f64 {
-    if 2.0 * r > a {
-        libm::asin(a / (2.0 * r))
-    } else {
-        core::f64::consts::FRAC_PI_2
-    }
+    if 2.0 * r > a { libm::asin(a / (2.0 * r)) } else { core::f64::consts::FRAC_PI_2 }
 }
 
 /// The flipper phase (paper Sec. II, footnote; Chen et al. 2014): `0 < theta_bar < pi/2` and
@@ -138,20 +127,12 @@ pub fn flipper_limit(a: f64, r: f64) -> f64 {
 /// of Sec. II does not apply.
 pub fn check_flipper_phase(a: f64, r: f64, theta_bar: f64) -> Result<f64, ParameterError> {
     let two_r_sin = 2.0 * r * libm::sin(theta_bar);
-    let inside = theta_bar.is_finite()
-        && theta_bar > 0.0
-        && theta_bar < core::f64::consts::FRAC_PI_2
-        && two_r_sin < a;
+    let inside =
+        theta_bar.is_finite() && theta_bar > 0.0 && theta_bar < core::f64::consts::FRAC_PI_2 && two_r_sin < a;
     if inside {
         Ok(theta_bar)
     } else {
-        Err(ParameterError::OutsideFlipperPhase {
-            theta_bar,
-            a,
-            r,
-            two_r_sin,
-            limit: flipper_limit(a, r),
-        })
+        Err(ParameterError::OutsideFlipperPhase { theta_bar, a, r, two_r_sin, limit: flipper_limit(a, r) })
     }
 }
 
@@ -167,12 +148,7 @@ pub fn rest_length(a: f64, r: f64, theta_bar: f64) -> f64 {
 pub fn theta_bar_from_rest_length(a: f64, r: f64, rest_length: f64) -> Result<f64, ParameterError> {
     let max = libm::sqrt(a * a + 4.0 * r * r);
     if !(rest_length.is_finite() && rest_length > a && rest_length < max) {
-        return Err(ParameterError::RestLengthOutOfRange {
-            rest_length,
-            a,
-            r,
-            max,
-        });
+        return Err(ParameterError::RestLengthOutOfRange { rest_length, a, r, max });
     }
     let cos = libm::sqrt(rest_length * rest_length - a * a) / (2.0 * r);
     Ok(libm::acos(cos.min(1.0)))

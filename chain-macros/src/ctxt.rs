@@ -13,9 +13,7 @@ pub struct Ctxt {
 
 impl Ctxt {
     pub fn new() -> Self {
-        Self {
-            errors: RefCell::new(Some(Vec::new())),
-        }
+        Self { errors: RefCell::new(Some(Vec::new())) }
     }
 
     /// An error spanning `tokens`.
@@ -29,20 +27,12 @@ impl Ctxt {
     }
 
     pub fn syn_error(&self, err: syn::Error) {
-        self.errors
-            .borrow_mut()
-            .as_mut()
-            .expect("Ctxt already checked")
-            .push(err);
+        self.errors.borrow_mut().as_mut().expect("Ctxt already checked").push(err);
     }
 
     /// Consumes the collector: all errors combined, if any.
     pub fn check(self) -> Result<(), syn::Error> {
-        let mut errors = self
-            .errors
-            .take()
-            .expect("Ctxt already checked")
-            .into_iter();
+        let mut errors = self.errors.take().expect("Ctxt already checked").into_iter();
         let Some(mut combined) = errors.next() else {
             return Ok(());
         };

@@ -26,10 +26,17 @@ pub fn expand(attr: TokenStream, item: TokenStream) -> TokenStream {
     let parsed: ItemStruct = match syn::parse2(item.clone()) {
         Ok(s) => s,
         Err(_) => {
-            let err = syn::Error::new(
-                Span::call_site(),
-                "#[rotor_chain] goes on a struct (with named `f64` fields, or none)",
-            );
+            // Point at the item's keyword (`enum`, `union`) when it is an item at all.
+            let err = match syn::parse2::<syn::Item>(item.clone()) {
+                Ok(syn::Item::Enum(e)) => {
+                    syn::Error::new_spanned(e.enum_token, "#[rotor_chain] goes on a struct, not an enum")
+                }
+                Ok(syn::Item::Union(u)) => {
+                    syn::Error::new_spanned(u.union_token, "#[rotor_chain] goes on a struct, not a union")
+                }
+                Ok(other) => syn::Error::new_spanned(other, "#[rotor_chain] goes on a struct"),
+                Err(_) => syn::Error::new(Span::call_site(), "#[rotor_chain] goes on a struct"),
+            };
             return fallback::emit(&item, err);
         }
     };
@@ -54,28 +61,34 @@ fn private() -> TokenStream {
 }
 
 fn parse_block(src: &str) -> TokenStream {
-    format!("{{\n{src}\n}}")
-        .parse()
-        .expect("generated source parses")
+    format!("{{\n{src}\n}}").parse().expect("generated source parses")
 }
 
 /// `match i { 3 => v3, _ => default }` (or just `default`).
+/// `{ assert!(i < count); match i { 3 => v3, _ => default } }`: an out-of-range index is a
+/// programming error and panics, as it does for `RuntimeChain`.
 fn indexed(
     index: &Ident,
+    count: usize,
+    what: &str,
     overrides: Vec<(usize, TokenStream)>,
     default: TokenStream,
 ) -> TokenStream {
+    let message = format!("{what} index {{}} is out of range: the chain has {count} {what}s");
+    let check = quote!(assert!(#index < #count, #message, #index););
     if overrides.is_empty() {
         return quote!({
-            let _ = #index;
+            #check
             #default
         });
     }
     let arms = overrides.into_iter().map(|(i, v)| quote!(#i => #v,));
-    quote!(match #index { #(#arms)* _ => #default })
+    quote!({
+        #check
+        match #index { #(#arms)* _ => #default }
+    })
 }
 
-/// What each function returns, built from its output expressions.
 enum Shape {
     Scalar,
     Array,
@@ -99,19 +112,11 @@ fn unrolled_body(g: &Graph, out: &ChainOutputs, ids: &[Id], shape: Shape) -> Tok
         Shape::Scalar => outs[0].clone(),
         Shape::Array => format!("[{}]", outs.join(", ")),
         Shape::Tridiagonal => {
-            format!(
-                "{p}::Tridiagonal::new([{}], [{}])",
-                outs[..n].join(", "),
-                outs[n..].join(", ")
-            )
+            format!("{p}::Tridiagonal::new([{}], [{}])", outs[..n].join(", "), outs[n..].join(", "))
         }
         Shape::Bidiagonal => {
             let m = n - 1;
-            format!(
-                "{p}::Bidiagonal::new([{}], [{}])",
-                outs[..m].join(", "),
-                outs[m..].join(", ")
-            )
+            format!("{p}::Bidiagonal::new([{}], [{}])", outs[..m].join(", "), outs[m..].join(", "))
         }
     };
     src.push_str(&value);
@@ -142,18 +147,8 @@ fn unrolled_bodies(model: &Model) -> Bodies {
             &cat(&out.hessian_diag, &out.hessian_off),
             Shape::Tridiagonal,
         ),
-        material: unrolled_body(
-            &g,
-            &out,
-            &cat(&out.material_diag, &out.material_off),
-            Shape::Tridiagonal,
-        ),
-        stress: unrolled_body(
-            &g,
-            &out,
-            &cat(&out.stress_diag, &out.stress_off),
-            Shape::Tridiagonal,
-        ),
+        material: unrolled_body(&g, &out, &cat(&out.material_diag, &out.material_off), Shape::Tridiagonal),
+        stress: unrolled_body(&g, &out, &cat(&out.stress_diag, &out.stress_off), Shape::Tridiagonal),
         lengths: unrolled_body(&g, &out, &out.lengths, Shape::Array),
         tensions: unrolled_body(&g, &out, &out.tensions, Shape::Array),
         compatibility: unrolled_body(
@@ -166,7 +161,10 @@ fn unrolled_bodies(model: &Model) -> Bodies {
     }
 }
 
-fn looped_bodies(model: &Model, ident: &Ident) -> Bodies {
+/// The looped strategy: the kernel module, and the trait's slice methods as kernel-driver calls
+/// that write straight into the caller's buffers (no `n`-sized arrays on the stack, so very long
+/// chains work through the trait with heap buffers). The inherent array methods wrap them.
+fn looped_bodies(model: &Model, ident: &Ident) -> (Bodies, TokenStream) {
     let p = private();
     let (n, m) = (model.n, model.springs());
     let kmod = format_ident!("__rotor_chain_kernel_{}", valid::snake_name(ident));
@@ -179,67 +177,118 @@ fn looped_bodies(model: &Model, ident: &Ident) -> Bodies {
             #kernel
         }
     };
-    let params = quote!(|p: usize| self.__rotor_chain_spring(p));
-    let k = |f: &str| -> TokenStream {
-        let f = format_ident!("{f}");
-        quote!(#kmod::#f)
+    let lbar = model.rest_length_tokens();
+    let theta = quote!(#p::as_array::<#n>(theta));
+    // The default rest length is computed once per call, not once per spring.
+    let params = quote!(|p: usize| self.__rotor_chain_spring(lbar, p));
+    let call = |driver: &str, kernel: &str, outs: TokenStream| -> TokenStream {
+        let (driver, kernel) = (format_ident!("{driver}"), format_ident!("{kernel}"));
+        quote!({
+            let lbar = #lbar;
+            #p::kernel::#driver(#theta, #params, #outs #kmod::#kernel)
+        })
     };
-    let (ke, kg, kh, km, ks, kl, kt, kc) = (
-        k("energy"),
-        k("gradient"),
-        k("hessian"),
-        k("material"),
-        k("stress"),
-        k("length"),
-        k("tension"),
-        k("compatibility"),
-    );
-    let blocks = |kern: TokenStream| {
+    let energy = call("sum", "energy", quote!());
+    let gradient = call("assemble_pairs", "gradient", quote!(out,));
+    let hessian = call("assemble_blocks", "hessian", quote!(diag, off,));
+    let material = call("assemble_blocks", "material", quote!(diag, off,));
+    let stress = call("assemble_blocks", "stress", quote!(diag, off,));
+    let length = call("per_spring", "length", quote!(out,));
+    let tension = call("per_spring", "tension", quote!(out,));
+    let compatibility = call("per_spring_pairs", "compatibility", quote!(left, right,));
+    let trait_bodies = quote! {
+        fn energy(&self, theta: &[f64]) -> f64 #energy
+        fn gradient_into(&self, theta: &[f64], out: &mut [f64]) #gradient
+        fn tangent_stiffness_into(&self, theta: &[f64], diag: &mut [f64], off: &mut [f64]) #hessian
+        fn material_stiffness_into(&self, theta: &[f64], diag: &mut [f64], off: &mut [f64]) #material
+        fn stress_matrix_into(&self, theta: &[f64], diag: &mut [f64], off: &mut [f64]) #stress
+        fn spring_lengths_into(&self, theta: &[f64], out: &mut [f64]) #length
+        fn tensions_into(&self, theta: &[f64], out: &mut [f64]) #tension
+        fn compatibility_into(&self, theta: &[f64], left: &mut [f64], right: &mut [f64]) #compatibility
+    };
+    let t = quote!(#p::ChainModel);
+    let blocks = |method: TokenStream| {
         quote!({
             let mut diag = [0.0f64; #n];
             let mut off = [0.0f64; #m];
-            #p::kernel::assemble_blocks(theta, #params, &mut diag, &mut off, #kern);
+            #t::#method(self, theta, &mut diag, &mut off);
             #p::Tridiagonal::new(diag, off)
         })
     };
-    let per_spring = |kern: TokenStream| {
+    let per_spring = |method: TokenStream| {
         quote!({
             let mut out = [0.0f64; #m];
-            #p::kernel::per_spring(theta, #params, &mut out, #kern);
+            #t::#method(self, theta, &mut out);
             out
         })
     };
-    Bodies {
-        energy: quote!({ #p::kernel::sum(theta, #params, #ke) }),
+    let bodies = Bodies {
+        energy: quote!({ #t::energy(self, theta) }),
         gradient: quote!({
             let mut out = [0.0f64; #n];
-            #p::kernel::assemble_pairs(theta, #params, &mut out, #kg);
+            #t::gradient_into(self, theta, &mut out);
             out
         }),
-        tangent_stiffness: blocks(kh),
-        material: blocks(km),
-        stress: blocks(ks),
-        lengths: per_spring(kl),
-        tensions: per_spring(kt),
+        tangent_stiffness: blocks(quote!(tangent_stiffness_into)),
+        material: blocks(quote!(material_stiffness_into)),
+        stress: blocks(quote!(stress_matrix_into)),
+        lengths: per_spring(quote!(spring_lengths_into)),
+        tensions: per_spring(quote!(tensions_into)),
         compatibility: quote!({
             let mut left = [0.0f64; #m];
             let mut right = [0.0f64; #m];
-            #p::kernel::per_spring_pairs(theta, #params, &mut left, &mut right, #kc);
+            #t::compatibility_into(self, theta, &mut left, &mut right);
             #p::Bidiagonal::new(left, right)
         }),
         support,
+    };
+    (bodies, trait_bodies)
+}
+
+/// The unrolled strategy's trait methods: copies of the inherent (array) results.
+fn unrolled_trait_bodies(ident: &Ident) -> TokenStream {
+    let p = private();
+    let theta = quote!(#p::as_array(theta));
+    quote! {
+        fn energy(&self, theta: &[f64]) -> f64 {
+            #ident::energy(self, #theta)
+        }
+        fn gradient_into(&self, theta: &[f64], out: &mut [f64]) {
+            out.copy_from_slice(&#ident::gradient(self, #theta));
+        }
+        fn tangent_stiffness_into(&self, theta: &[f64], diag: &mut [f64], off: &mut [f64]) {
+            let t = #ident::tangent_stiffness(self, #theta);
+            diag.copy_from_slice(&t.diag);
+            off.copy_from_slice(&t.off);
+        }
+        fn material_stiffness_into(&self, theta: &[f64], diag: &mut [f64], off: &mut [f64]) {
+            let t = #ident::material_stiffness(self, #theta);
+            diag.copy_from_slice(&t.diag);
+            off.copy_from_slice(&t.off);
+        }
+        fn stress_matrix_into(&self, theta: &[f64], diag: &mut [f64], off: &mut [f64]) {
+            let t = #ident::stress_matrix(self, #theta);
+            diag.copy_from_slice(&t.diag);
+            off.copy_from_slice(&t.off);
+        }
+        fn spring_lengths_into(&self, theta: &[f64], out: &mut [f64]) {
+            out.copy_from_slice(&#ident::spring_lengths(self, #theta));
+        }
+        fn tensions_into(&self, theta: &[f64], out: &mut [f64]) {
+            out.copy_from_slice(&#ident::tensions(self, #theta));
+        }
+        fn compatibility_into(&self, theta: &[f64], left: &mut [f64], right: &mut [f64]) {
+            let c = #ident::compatibility(self, #theta);
+            left.copy_from_slice(&c.left);
+            right.copy_from_slice(&c.right);
+        }
     }
 }
 
-/// `check()`: the chain's rules applied to the values at run time (fields can hold anything).
 fn check_body(model: &Model) -> TokenStream {
     let p = private();
-    let (a, r, k, mass) = (
-        value_tokens(&model.a),
-        value_tokens(&model.r),
-        value_tokens(&model.k),
-        value_tokens(&model.mass),
-    );
+    let (a, r, k, mass) =
+        (value_tokens(&model.a), value_tokens(&model.r), value_tokens(&model.k), value_tokens(&model.mass));
     let uniform = match &model.uniform {
         Uniform::ThetaBar(tb) => {
             let tb = value_tokens(tb);
@@ -282,8 +331,8 @@ fn emit(item: &ItemStruct, model: &Model) -> TokenStream {
     let p = private();
     let ident = &item.ident;
     let (n, m) = (model.n, model.springs());
-    let bodies = if model.unrolled() {
-        unrolled_bodies(model)
+    let (bodies, trait_bodies) = if model.unrolled() {
+        (unrolled_bodies(model), unrolled_trait_bodies(ident))
     } else {
         looped_bodies(model, ident)
     };
@@ -303,35 +352,15 @@ fn emit(item: &ItemStruct, model: &Model) -> TokenStream {
     let mass = value_tokens(&model.mass);
     let lbar = model.rest_length_tokens();
     let theta_bar = model.theta_bar_tokens();
-    let idx_i = format_ident!("i");
-    let idx_p = format_ident!("p");
-    let rotor_length = indexed(
-        &idx_i,
-        model
-            .rotors
-            .iter()
-            .map(|(i, v)| (*i, value_tokens(v)))
-            .collect(),
-        value_tokens(&model.r),
-    );
-    let stiffness = indexed(
-        &idx_p,
-        model
-            .springs
-            .iter()
-            .filter_map(|(i, (k, _))| k.as_ref().map(|v| (*i, value_tokens(v))))
-            .collect(),
-        value_tokens(&model.k),
-    );
-    let rest_length = indexed(
-        &idx_p,
-        model
-            .springs
-            .iter()
-            .filter_map(|(i, (_, l0))| l0.as_ref().map(|v| (*i, value_tokens(v))))
-            .collect(),
-        lbar.clone(),
-    );
+    let (idx_i, idx_p) = (format_ident!("i"), format_ident!("p"));
+    let rotor_overrides = model.rotors.iter().map(|(i, v)| (*i, value_tokens(v))).collect();
+    let rotor_length = indexed(&idx_i, n, "rotor", rotor_overrides, value_tokens(&model.r));
+    let k_overrides =
+        model.springs.iter().filter_map(|(i, (k, _))| k.as_ref().map(|v| (*i, value_tokens(v)))).collect();
+    let stiffness = indexed(&idx_p, m, "spring", k_overrides, value_tokens(&model.k));
+    let l0_overrides =
+        model.springs.iter().filter_map(|(i, (_, l0))| l0.as_ref().map(|v| (*i, value_tokens(v)))).collect();
+    let rest_length = indexed(&idx_p, m, "spring", l0_overrides, quote!(lbar));
     let check = check_body(model);
     let hessian = (n <= DENSE_LIMIT).then(|| {
         quote! {
@@ -341,11 +370,8 @@ fn emit(item: &ItemStruct, model: &Model) -> TokenStream {
             }
         }
     });
-    let strategy = if model.unrolled() {
-        "unrolled straight-line code"
-    } else {
-        "the per-spring kernel in a loop"
-    };
+    let strategy =
+        if model.unrolled() { "unrolled straight-line code" } else { "the per-spring kernel in a loop" };
     let doc_strategy = format!(" Generated by `#[rotor_chain]` as {strategy}.");
 
     quote! {
@@ -373,7 +399,8 @@ fn emit(item: &ItemStruct, model: &Model) -> TokenStream {
 
             #hessian
 
-            /// The material part `sum_p g^_p a_p a_p^T` of the tangent stiffness (paper Appendix D).
+            /// The material part `sum_p g^_p a_p a_p^T` of the tangent stiffness, `a_p = dl_p/dtheta`
+            /// (paper Appendix D).
             pub fn material_stiffness(&self, theta: &[f64; #n]) -> #p::Tridiagonal<#n, #m> #material
 
             /// The stress matrix `sum_p S_p` (paper Appendix D): material part + stress matrix = tangent stiffness.
@@ -394,30 +421,32 @@ fn emit(item: &ItemStruct, model: &Model) -> TokenStream {
 
             #[doc(hidden)]
             #[inline(always)]
-            fn __rotor_chain_rotor_length(&self, i: usize) -> f64 { #rotor_length }
+            fn __rotor_chain_rotor_length(&self, i: usize) -> f64 #rotor_length
 
             #[doc(hidden)]
             #[inline(always)]
-            fn __rotor_chain_stiffness(&self, p: usize) -> f64 { #stiffness }
+            fn __rotor_chain_stiffness(&self, p: usize) -> f64 #stiffness
 
             #[doc(hidden)]
             #[inline(always)]
-            fn __rotor_chain_rest_length(&self, p: usize) -> f64 { #rest_length }
+            fn __rotor_chain_rest_length(&self, lbar: f64, p: usize) -> f64 #rest_length
 
+            /// `[a, r_p, r_{p+1}, k_p, l0_p]` of spring `p`, given the default rest length `lbar`.
             #[doc(hidden)]
             #[inline(always)]
-            fn __rotor_chain_spring(&self, p: usize) -> [f64; 5] {
+            fn __rotor_chain_spring(&self, lbar: f64, p: usize) -> [f64; 5] {
                 [
                     #a,
                     self.__rotor_chain_rotor_length(p),
                     self.__rotor_chain_rotor_length(p + 1),
                     self.__rotor_chain_stiffness(p),
-                    self.__rotor_chain_rest_length(p),
+                    self.__rotor_chain_rest_length(lbar, p),
                 ]
             }
         }
 
         #[automatically_derived]
+        #[allow(clippy::all, clippy::pedantic)]
         impl #p::ChainModel for #ident {
             fn rotor_count(&self) -> usize { #n }
             fn lattice_spacing(&self) -> f64 { #a }
@@ -425,39 +454,8 @@ fn emit(item: &ItemStruct, model: &Model) -> TokenStream {
             fn mass(&self) -> f64 { #mass }
             fn theta_bar(&self) -> f64 { #theta_bar }
             fn stiffness(&self, p: usize) -> f64 { self.__rotor_chain_stiffness(p) }
-            fn rest_length(&self, p: usize) -> f64 { self.__rotor_chain_rest_length(p) }
-            fn energy(&self, theta: &[f64]) -> f64 {
-                #ident::energy(self, #p::as_array(theta))
-            }
-            fn gradient_into(&self, theta: &[f64], out: &mut [f64]) {
-                out.copy_from_slice(&#ident::gradient(self, #p::as_array(theta)));
-            }
-            fn tangent_stiffness_into(&self, theta: &[f64], diag: &mut [f64], off: &mut [f64]) {
-                let t = #ident::tangent_stiffness(self, #p::as_array(theta));
-                diag.copy_from_slice(&t.diag);
-                off.copy_from_slice(&t.off);
-            }
-            fn material_stiffness_into(&self, theta: &[f64], diag: &mut [f64], off: &mut [f64]) {
-                let t = #ident::material_stiffness(self, #p::as_array(theta));
-                diag.copy_from_slice(&t.diag);
-                off.copy_from_slice(&t.off);
-            }
-            fn stress_matrix_into(&self, theta: &[f64], diag: &mut [f64], off: &mut [f64]) {
-                let t = #ident::stress_matrix(self, #p::as_array(theta));
-                diag.copy_from_slice(&t.diag);
-                off.copy_from_slice(&t.off);
-            }
-            fn spring_lengths_into(&self, theta: &[f64], out: &mut [f64]) {
-                out.copy_from_slice(&#ident::spring_lengths(self, #p::as_array(theta)));
-            }
-            fn tensions_into(&self, theta: &[f64], out: &mut [f64]) {
-                out.copy_from_slice(&#ident::tensions(self, #p::as_array(theta)));
-            }
-            fn compatibility_into(&self, theta: &[f64], left: &mut [f64], right: &mut [f64]) {
-                let c = #ident::compatibility(self, #p::as_array(theta));
-                left.copy_from_slice(&c.left);
-                right.copy_from_slice(&c.right);
-            }
+            fn rest_length(&self, p: usize) -> f64 { self.__rotor_chain_rest_length(#lbar, p) }
+            #trait_bodies
         }
     }
 }
@@ -475,13 +473,7 @@ mod tests {
     #[test]
     fn expansion_of_a_three_rotor_chain() {
         let out = expand(
-            quote!(
-                n = 3,
-                r = 0.8,
-                theta_bar = 0.58,
-                k = 1.0e4,
-                spring(1, k = k_imp)
-            ),
+            quote!(n = 3, r = 0.8, theta_bar = 0.58, k = 1.0e4, spring(1, k = k_imp)),
             quote!(
                 pub struct Tiny {
                     pub k_imp: f64,

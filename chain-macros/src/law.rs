@@ -146,13 +146,7 @@ mod tests {
         let expr: Expr = syn::parse_quote!(k * (l - lbar).powi(2) + l.tanh());
         let cx = Ctxt::new();
         check(&cx, &expr);
-        let msg = cx
-            .check()
-            .unwrap_err()
-            .into_iter()
-            .map(|e| e.to_string())
-            .collect::<Vec<_>>()
-            .join("\n");
+        let msg = cx.check().unwrap_err().into_iter().map(|e| e.to_string()).collect::<Vec<_>>().join("\n");
         assert!(msg.contains("unknown symbol `lbar`"), "{msg}");
         assert!(msg.contains("unsupported method `tanh`"), "{msg}");
     }

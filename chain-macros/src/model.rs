@@ -66,11 +66,7 @@ impl Model {
                 if let (Some((a, r)), Some(t)) = (self.literal_geometry(), tb.literal()) {
                     return g.constant(geo::rest_length(a, r, t));
                 }
-                let (a, r, t) = (
-                    value_node(g, &self.a),
-                    value_node(g, &self.r),
-                    value_node(g, tb),
-                );
+                let (a, r, t) = (value_node(g, &self.a), value_node(g, &self.r), value_node(g, tb));
                 let a2 = g.powi(a, 2);
                 let c = g.cos(t);
                 let rc = g.mul(r, c);
@@ -91,11 +87,7 @@ impl Model {
             Uniform::ThetaBar(tb) => match (self.literal_geometry(), tb.literal()) {
                 (Some((a, r)), Some(t)) => f64_tokens(geo::rest_length(a, r, t)),
                 _ => {
-                    let (a, r, t) = (
-                        value_tokens(&self.a),
-                        value_tokens(&self.r),
-                        value_tokens(tb),
-                    );
+                    let (a, r, t) = (value_tokens(&self.a), value_tokens(&self.r), value_tokens(tb));
                     quote!(#p::geometry::rest_length(#a, #r, #t))
                 }
             },
@@ -113,11 +105,7 @@ impl Model {
                     f64_tokens(geo::theta_bar_from_rest_length(a, r, l).expect("validated"))
                 }
                 _ => {
-                    let (a, r, l) = (
-                        value_tokens(&self.a),
-                        value_tokens(&self.r),
-                        value_tokens(rl),
-                    );
+                    let (a, r, l) = (value_tokens(&self.a), value_tokens(&self.r), value_tokens(rl));
                     quote!(#p::geometry::theta_bar_from_rest_length(#a, #r, #l).unwrap_or(f64::NAN))
                 }
             },
@@ -148,12 +136,9 @@ impl Model {
         let mut g = Graph::new();
         let law = self.spring_law(&mut g);
         let lbar = self.rest_length_node(&mut g);
-        let springs: Vec<SpringParams> = (0..self.springs())
-            .map(|p| self.spring_params(&mut g, p, lbar))
-            .collect();
-        let out = ChainOutputs::unrolled(&mut g, &law, &springs, &|g, i| {
-            g.symbol(&format!("theta[{i}]"))
-        });
+        let springs: Vec<SpringParams> =
+            (0..self.springs()).map(|p| self.spring_params(&mut g, p, lbar)).collect();
+        let out = ChainOutputs::unrolled(&mut g, &law, &springs, &|g, i| g.symbol(&format!("theta[{i}]")));
         (g, out)
     }
 

@@ -7,7 +7,7 @@
 use std::collections::BTreeMap;
 
 use chain_geometry::{self as geo, IndexKind, Key, ParameterError};
-use proc_macro2::Span;
+use proc_macro2::{Span, TokenStream};
 use syn::{Expr, Fields, Ident, ItemStruct, Type};
 
 use crate::attr::{Keyed, Spec, Value, suggest};
@@ -52,6 +52,22 @@ impl Model {
     }
 }
 
+/// `f64`, `core::primitive::f64` or `std::primitive::f64` (a type alias cannot be resolved by a macro).
+fn is_f64_path(path: &syn::Path) -> bool {
+    let names: Vec<String> = path.segments.iter().map(|s| s.ident.to_string()).collect();
+    let names: Vec<&str> = names.iter().map(String::as_str).collect();
+    matches!(names.as_slice(), ["f64"] | ["core" | "std", "primitive", "f64"])
+}
+
+/// A type as written, without the token stream's spaces: `Option < f64 >` becomes `Option<f64>`.
+fn compact(ty: &str) -> String {
+    let mut out = ty.replace(" ,", ",");
+    for tight in ["<", ">", "::", "&", "(", ")", "[", "]", ";"] {
+        out = out.replace(&format!(" {tight}"), tight).replace(&format!("{tight} "), tight);
+    }
+    out.replace(',', ", ").replace(';', "; ")
+}
+
 /// The `f64` fields of the struct, and every named field with its type (for error messages).
 struct Fields64 {
     f64_fields: Vec<String>,
@@ -66,20 +82,15 @@ impl Fields64 {
         if let Fields::Named(named) = &item.fields {
             for f in &named.named {
                 let Some(ident) = &f.ident else { continue };
-                let is_f64 =
-                    matches!(&f.ty, Type::Path(p) if p.qself.is_none() && p.path.is_ident("f64"));
+                let is_f64 = matches!(&f.ty, Type::Path(p) if p.qself.is_none() && is_f64_path(&p.path));
                 if is_f64 {
                     f64_fields.push(ident.to_string());
                 }
                 let ty = &f.ty;
-                all.insert(ident.to_string(), quote::quote!(#ty).to_string());
+                all.insert(ident.to_string(), compact(&quote::quote!(#ty).to_string()));
             }
         }
-        Self {
-            f64_fields,
-            all,
-            struct_name: item.ident.to_string(),
-        }
+        Self { f64_fields, all, struct_name: item.ident.to_string() }
     }
 
     fn check(&self, cx: &Ctxt, v: &Value) {
@@ -92,7 +103,7 @@ impl Fields64 {
             cx.error_spanned_by(
                 ident,
                 format!(
-                    "field `{name}` has type `{ty}`, but a chain parameter must be an `f64` field"
+                    "field `{name}` has type `{ty}`, but a chain parameter must be a field declared `f64`"
                 ),
             );
             return;
@@ -103,11 +114,7 @@ impl Fields64 {
             None if known.is_empty() => format!("; `{}` has no `f64` fields", self.struct_name),
             None => format!(
                 "; its `f64` fields are {}",
-                known
-                    .iter()
-                    .map(|k| format!("`{k}`"))
-                    .collect::<Vec<_>>()
-                    .join(", ")
+                known.iter().map(|k| format!("`{k}`")).collect::<Vec<_>>().join(", ")
             ),
         };
         cx.error_spanned_by(
@@ -117,8 +124,8 @@ impl Fields64 {
     }
 }
 
-fn report(cx: &Ctxt, span: Span, err: ParameterError) {
-    cx.error_at(span, err);
+fn report(cx: &Ctxt, tokens: &TokenStream, err: ParameterError) {
+    cx.error_spanned_by(tokens, err);
 }
 
 /// Positivity of a literal value (fields are checked at run time).
@@ -126,7 +133,7 @@ fn check_positive(cx: &Ctxt, key: Key, v: &Keyed<Value>) {
     if let Some(x) = v.value.literal()
         && let Err(e) = geo::check_positive(key, x)
     {
-        report(cx, v.span, e);
+        report(cx, &v.tokens, e);
     }
 }
 
@@ -141,20 +148,10 @@ fn literal_or(v: &Option<Keyed<Value>>, default: f64) -> Option<f64> {
 /// (other errors are in `cx`).
 pub fn validate(cx: &Ctxt, spec: Spec, item: &ItemStruct) -> Option<Model> {
     if !item.generics.params.is_empty() {
-        cx.error_spanned_by(
-            &item.generics,
-            "#[rotor_chain] does not support generic structs",
-        );
+        cx.error_spanned_by(&item.generics, "#[rotor_chain] does not support generic structs");
     }
     let fields = Fields64::of(item);
-    let values = [
-        &spec.a,
-        &spec.r,
-        &spec.theta_bar,
-        &spec.rest_length,
-        &spec.k,
-        &spec.mass,
-    ];
+    let values = [&spec.a, &spec.r, &spec.theta_bar, &spec.rest_length, &spec.k, &spec.mass];
     for v in values.into_iter().flatten() {
         fields.check(cx, &v.value);
     }
@@ -167,8 +164,18 @@ pub fn validate(cx: &Ctxt, spec: Spec, item: &ItemStruct) -> Option<Model> {
         fields.check(cx, &r.value);
     }
 
+    // A key the user wrote (with a bad value) or evidently meant (a misspelling) already has its
+    // error; reporting it missing too would only repeat it.
     let missing = |key: &str, what: &str| {
-        cx.error_at(spec.span, format!("missing key `{key}` ({what})"));
+        if spec.seen.contains(key) {
+            return;
+        }
+        let message = format!("missing key `{key}` ({what})");
+        if spec.tokens.is_empty() {
+            cx.error_at(Span::call_site(), message);
+        } else {
+            cx.error_spanned_by(&spec.tokens, message);
+        }
     };
     let n = match &spec.n {
         None => {
@@ -178,7 +185,7 @@ pub fn validate(cx: &Ctxt, spec: Spec, item: &ItemStruct) -> Option<Model> {
         Some(n) => match geo::check_rotor_count(n.value) {
             Ok(v) => Some(v),
             Err(e) => {
-                report(cx, n.span, e);
+                report(cx, &n.tokens, e);
                 None
             }
         },
@@ -211,32 +218,29 @@ pub fn validate(cx: &Ctxt, spec: Spec, item: &ItemStruct) -> Option<Model> {
             None
         }
         (None, None) => {
-            missing(
-                "theta_bar",
-                "the equilibrium angle, e.g. `theta_bar = 0.58`; or give `rest_length`",
-            );
+            // A bad `rest_length` value already has its own error.
+            if !spec.seen.contains("rest_length") {
+                missing("theta_bar", "the equilibrium angle, e.g. `theta_bar = 0.58`; or give `rest_length`");
+            }
             None
         }
         (Some(tb), None) => Some((Uniform::ThetaBar(tb.value.clone()), tb)),
         (None, Some(rl)) => Some((Uniform::RestLength(rl.value.clone()), rl)),
     };
     if let Some((u, keyed)) = &uniform
-        && let (Some(a), Some(r)) = (
-            literal_or(&spec.a, 1.0),
-            spec.r.as_ref().and_then(|r| r.value.literal()),
-        )
+        && let (Some(a), Some(r)) =
+            (literal_or(&spec.a, 1.0), spec.r.as_ref().and_then(|r| r.value.literal()))
         && a > 0.0
         && r > 0.0
     {
         let result = match u {
             Uniform::ThetaBar(v) => v.literal().map(|t| geo::check_flipper_phase(a, r, t)),
             Uniform::RestLength(v) => v.literal().map(|l| {
-                geo::theta_bar_from_rest_length(a, r, l)
-                    .and_then(|t| geo::check_flipper_phase(a, r, t))
+                geo::theta_bar_from_rest_length(a, r, l).and_then(|t| geo::check_flipper_phase(a, r, t))
             }),
         };
         if let Some(Err(e)) = result {
-            report(cx, keyed.span, e);
+            report(cx, &keyed.tokens, e);
         }
     }
 
@@ -245,7 +249,7 @@ pub fn validate(cx: &Ctxt, spec: Spec, item: &ItemStruct) -> Option<Model> {
         if let Some(n) = n
             && let Err(e) = geo::check_index(IndexKind::Spring, s.index.value, n - 1)
         {
-            report(cx, s.index.span, e);
+            report(cx, &s.index.tokens, e);
             continue;
         }
         if let Some(k) = &s.k {
@@ -254,17 +258,11 @@ pub fn validate(cx: &Ctxt, spec: Spec, item: &ItemStruct) -> Option<Model> {
         if let Some(l0) = &s.l0 {
             check_positive(cx, Key::RestLength, l0);
         }
-        let entry = (
-            s.k.as_ref().map(|v| v.value.clone()),
-            s.l0.as_ref().map(|v| v.value.clone()),
-        );
+        let entry = (s.k.as_ref().map(|v| v.value.clone()), s.l0.as_ref().map(|v| v.value.clone()));
         if springs.insert(s.index.value, entry).is_some() {
-            cx.error_at(
-                s.index.span,
-                format!(
-                    "spring {} is overridden twice; merge the two `spring(..)` entries",
-                    s.index.value
-                ),
+            cx.error_spanned_by(
+                &s.index.tokens,
+                format!("spring {} is overridden twice; merge the two `spring(..)` entries", s.index.value),
             );
         }
     }
@@ -273,18 +271,15 @@ pub fn validate(cx: &Ctxt, spec: Spec, item: &ItemStruct) -> Option<Model> {
         if let Some(n) = n
             && let Err(e) = geo::check_index(IndexKind::Rotor, ro.index.value, n)
         {
-            report(cx, ro.index.span, e);
+            report(cx, &ro.index.tokens, e);
             continue;
         }
         let Some(r) = &ro.r else { continue };
         check_positive(cx, Key::RotorLength, r);
         if rotors.insert(ro.index.value, r.value.clone()).is_some() {
-            cx.error_at(
-                ro.index.span,
-                format!(
-                    "rotor {} is overridden twice; merge the two `rotor(..)` entries",
-                    ro.index.value
-                ),
+            cx.error_spanned_by(
+                &ro.index.tokens,
+                format!("rotor {} is overridden twice; merge the two `rotor(..)` entries", ro.index.value),
             );
         }
     }

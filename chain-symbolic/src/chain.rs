@@ -69,16 +69,8 @@ impl ChainOutputs {
         let assemble = |g: &mut Graph, pair: &dyn Fn(&SpringTerms) -> (Id, Id)| -> Vec<Id> {
             (0..n)
                 .map(|i| {
-                    let left = if i > 0 {
-                        pair(&terms[i - 1]).1
-                    } else {
-                        g.zero()
-                    };
-                    let right = if i + 1 < n {
-                        pair(&terms[i]).0
-                    } else {
-                        g.zero()
-                    };
+                    let left = if i > 0 { pair(&terms[i - 1]).1 } else { g.zero() };
+                    let right = if i + 1 < n { pair(&terms[i]).0 } else { g.zero() };
                     g.add(left, right)
                 })
                 .collect()
@@ -131,12 +123,8 @@ impl ChainOutputs {
         let mut seen = vec![false; g.len()];
         let mut stack = outputs.to_vec();
         let mut used = vec![false; self.n];
-        let trig_index: std::collections::HashMap<Id, usize> = self
-            .trig
-            .iter()
-            .enumerate()
-            .flat_map(|(i, &(s, c))| [(s, i), (c, i)])
-            .collect();
+        let trig_index: std::collections::HashMap<Id, usize> =
+            self.trig.iter().enumerate().flat_map(|(i, &(s, c))| [(s, i), (c, i)]).collect();
         while let Some(id) = stack.pop() {
             if std::mem::replace(&mut seen[id.index()], true) {
                 continue;
@@ -174,26 +162,10 @@ pub struct KernelFunction {
 
 /// The kernel functions, each returning `[f64; len]` (energy, length and tension return `f64`).
 pub const KERNEL_FUNCTIONS: [KernelFunction; 8] = [
-    KernelFunction {
-        name: "energy",
-        doc: "The spring's stored energy.",
-        outputs: |t| vec![t.energy],
-    },
-    KernelFunction {
-        name: "length",
-        doc: "The spring's length.",
-        outputs: |t| vec![t.length],
-    },
-    KernelFunction {
-        name: "tension",
-        doc: "The spring's tension `dlaw/dl`.",
-        outputs: |t| vec![t.tension],
-    },
-    KernelFunction {
-        name: "gradient",
-        doc: "`[dE/dtheta1, dE/dtheta2]`.",
-        outputs: |t| t.gradient.to_vec(),
-    },
+    KernelFunction { name: "energy", doc: "The spring's stored energy.", outputs: |t| vec![t.energy] },
+    KernelFunction { name: "length", doc: "The spring's length.", outputs: |t| vec![t.length] },
+    KernelFunction { name: "tension", doc: "The spring's tension `dlaw/dl`.", outputs: |t| vec![t.tension] },
+    KernelFunction { name: "gradient", doc: "`[dE/dtheta1, dE/dtheta2]`.", outputs: |t| t.gradient.to_vec() },
     KernelFunction {
         name: "hessian",
         doc: "The Hessian block `[11, 12, 22]` in the two angles.",
@@ -257,13 +229,8 @@ impl Kernel {
             let (ret, value) = if outputs.len() == 1 {
                 ("f64".to_owned(), program.render_output(0, "t"))
             } else {
-                let all: Vec<String> = (0..outputs.len())
-                    .map(|k| program.render_output(k, "t"))
-                    .collect();
-                (
-                    format!("[f64; {}]", outputs.len()),
-                    format!("[{}]", all.join(", ")),
-                )
+                let all: Vec<String> = (0..outputs.len()).map(|k| program.render_output(k, "t")).collect();
+                (format!("[f64; {}]", outputs.len()), format!("[{}]", all.join(", ")))
             };
             let _ = writeln!(out, "/// {}", f.doc);
             let _ = writeln!(out, "#[inline(always)]");
@@ -296,12 +263,8 @@ mod tests {
         let mut g = Graph::new();
         let law = SpringLaw::harmonic(&mut g);
         let springs: Vec<_> = (0..4).map(|_| params(&mut g, 2.0)).collect();
-        let out = ChainOutputs::unrolled(&mut g, &law, &springs, &|g, i| {
-            g.symbol(&format!("theta[{i}]"))
-        });
-        let sins = (0..g.len())
-            .filter(|&i| matches!(g.node(Id(i as u32)), Node::Sin(_)))
-            .count();
+        let out = ChainOutputs::unrolled(&mut g, &law, &springs, &|g, i| g.symbol(&format!("theta[{i}]")));
+        let sins = (0..g.len()).filter(|&i| matches!(g.node(Id(i as u32)), Node::Sin(_))).count();
         assert_eq!(sins, 5, "one sine per rotor, shared by both springs");
         assert_eq!(out.gradient.len(), 5);
         assert_eq!(out.hessian_off.len(), 4);
@@ -315,14 +278,7 @@ mod tests {
         for f in &KERNEL_FUNCTIONS {
             assert!(src.contains(&format!("pub fn {}(", f.name)));
         }
-        assert_eq!(
-            src.matches("m::sqrt(").count(),
-            KERNEL_FUNCTIONS.len(),
-            "one sqrt per function"
-        );
-        assert!(
-            !src.contains("sin("),
-            "angles enter only through the s1, c1, s2, c2 arguments"
-        );
+        assert_eq!(src.matches("m::sqrt(").count(), KERNEL_FUNCTIONS.len(), "one sqrt per function");
+        assert!(!src.contains("sin("), "angles enter only through the s1, c1, s2, c2 arguments");
     }
 }

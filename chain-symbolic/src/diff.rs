@@ -68,10 +68,7 @@ pub struct Differentiator {
 impl Differentiator {
     /// Differentiation with respect to the symbol node `wrt`.
     pub fn new(wrt: Id) -> Self {
-        Self {
-            wrt,
-            memo: HashMap::new(),
-        }
+        Self { wrt, memo: HashMap::new() }
     }
 
     /// `d e / d wrt`.
@@ -172,9 +169,7 @@ mod tests {
         let before = g.len();
         let _ = diff(&mut g, r, x);
         // 0.5 / sqrt(x) costs a constant and a division, never a second square root.
-        let sqrt_count = (0..g.len())
-            .filter(|&i| matches!(g.node(Id(i as u32)), Node::Sqrt(_)))
-            .count();
+        let sqrt_count = (0..g.len()).filter(|&i| matches!(g.node(Id(i as u32)), Node::Sqrt(_))).count();
         assert_eq!(sqrt_count, 1);
         // New nodes: the constants 0, 1, 0.5, the reciprocal 1 / sqrt(x) and its product with 0.5.
         assert!(g.len() <= before + 5, "{} new nodes", g.len() - before);

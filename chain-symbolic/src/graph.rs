@@ -7,8 +7,10 @@
 //!
 //! Simplification happens in the smart constructors ([`Graph::add`], [`Graph::mul`], ...): constant
 //! folding, neutral and absorbing elements, canonical operand order for commutative operations,
-//! and a few cancellations. These are the rules that keep generated code short; no rule changes a
-//! value by more than the rounding of the folded constants.
+//! and a few cancellations. These are the rules that keep generated code short. For finite
+//! operands no rule changes a value by more than the rounding of the folded constants; the
+//! cancellations (`x - x = 0`, `x / x = 1`, `0 x = 0`, `sqrt(x)^2 = x`) assume finite operands
+//! (and `x >= 0` under a square root), which holds for every expression of a chain in its domain.
 
 use std::collections::HashMap;
 
@@ -48,9 +50,7 @@ impl Node {
     pub fn children(&self) -> impl Iterator<Item = Id> {
         let (a, b) = match *self {
             Node::Const(_) | Node::Symbol(_) => (None, None),
-            Node::Add(x, y) | Node::Sub(x, y) | Node::Mul(x, y) | Node::Div(x, y) => {
-                (Some(x), Some(y))
-            }
+            Node::Add(x, y) | Node::Sub(x, y) | Node::Mul(x, y) | Node::Div(x, y) => (Some(x), Some(y)),
             Node::Neg(x)
             | Node::Powi(x, _)
             | Node::Sqrt(x)
@@ -252,11 +252,7 @@ impl Graph {
 
     pub fn mul(&mut self, a: Id, b: Id) -> Id {
         // Constants go first so that `c * x` is the canonical scaled form.
-        let (a, b) = if self.as_const(b).is_some() && self.as_const(a).is_none() {
-            (b, a)
-        } else {
-            (a, b)
-        };
+        let (a, b) = if self.as_const(b).is_some() && self.as_const(a).is_none() { (b, a) } else { (a, b) };
         if let (Some(x), Some(y)) = (self.as_const(a), self.as_const(b)) {
             return self.constant(x * y);
         }
@@ -500,7 +496,7 @@ impl Graph {
         out
     }
 
-    /// Whether any symbol named in `names` occurs in `e`.
+    /// Whether the symbol called `name` occurs in `e`.
     pub fn mentions(&self, e: Id, name: &str) -> bool {
         let mut stack = vec![e];
         let mut seen = vec![false; self.nodes.len()];

@@ -12,6 +12,7 @@
 //!   of outputs; it implements `Display` so generated code can be read and snapshotted.
 //! - [`spring`]: the physics in symbols: the length of spring `p` in the rotor angles (paper
 //!   Eq. `eq:instantlength`), a spring law, and everything derived from them (paper Appendix D).
+//! - [`chain`]: a whole chain unrolled spring by spring, and the per-spring kernel rendered once.
 
 pub mod diff;
 pub mod graph;

@@ -44,11 +44,7 @@ pub struct Program {
 
 /// Lowers `outputs` of `g`. `leaf` names the nodes that are inputs of the program; every symbol
 /// must be named by it (a symbol it does not name is returned as the error).
-pub fn lower(
-    g: &Graph,
-    outputs: &[Id],
-    leaf: &dyn Fn(Id) -> Option<String>,
-) -> Result<Program, String> {
+pub fn lower(g: &Graph, outputs: &[Id], leaf: &dyn Fn(Id) -> Option<String>) -> Result<Program, String> {
     // Mark what is reachable from the outputs, stopping at leaves.
     let mut reachable = vec![false; g.len()];
     let mut leaves: HashMap<Id, String> = HashMap::new();
@@ -119,11 +115,7 @@ pub fn render_const(c: f64) -> String {
     if c.is_nan() {
         "f64::NAN".to_owned()
     } else if c.is_infinite() {
-        if c > 0.0 {
-            "f64::INFINITY".to_owned()
-        } else {
-            "f64::NEG_INFINITY".to_owned()
-        }
+        if c > 0.0 { "f64::INFINITY".to_owned() } else { "f64::NEG_INFINITY".to_owned() }
     } else if c < 0.0 {
         format!("({c:?}f64)")
     } else {
@@ -262,9 +254,7 @@ fn render_powi(x: &str, n: i32, math: &str) -> String {
 impl fmt::Display for Program {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.write_str(&self.render("t", ""))?;
-        let outs: Vec<String> = (0..self.outputs.len())
-            .map(|k| self.render_output(k, "t"))
-            .collect();
+        let outs: Vec<String> = (0..self.outputs.len()).map(|k| self.render_output(k, "t")).collect();
         write!(f, "=> ({})", outs.join(", "))
     }
 }
@@ -290,11 +280,7 @@ mod tests {
         let p = lower(&g, &outs, &|id| (id == x).then(|| "x".to_owned())).unwrap();
         let (src, outputs) = p.render_registers("r", "");
         let registers = src.matches("let mut").count();
-        assert!(
-            registers <= outs.len() + 2,
-            "{registers} registers for {} steps",
-            p.steps.len()
-        );
+        assert!(registers <= outs.len() + 2, "{registers} registers for {} steps", p.steps.len());
         assert_eq!(outputs.len(), outs.len());
         // Interpret the register program and compare with the graph's own evaluation.
         let mut regs = std::collections::HashMap::<String, f64>::new();
@@ -336,10 +322,7 @@ mod tests {
             _ => None,
         })
         .unwrap();
-        assert_eq!(
-            p.to_string(),
-            "let t0 = x + y;\nlet t1 = sqrt(t0);\nlet t2 = t0 * t1;\n=> (t1, t2)"
-        );
+        assert_eq!(p.to_string(), "let t0 = x + y;\nlet t1 = sqrt(t0);\nlet t2 = t0 * t1;\n=> (t1, t2)");
     }
 
     #[test]

@@ -111,13 +111,7 @@ pub struct SpringTerms {
 impl SpringTerms {
     /// Derives every term of the spring joining the rotors whose angles are the symbols
     /// `theta1` and `theta2`.
-    pub fn derive(
-        g: &mut Graph,
-        law: &SpringLaw,
-        p: &SpringParams,
-        theta1: Id,
-        theta2: Id,
-    ) -> Self {
+    pub fn derive(g: &mut Graph, law: &SpringLaw, p: &SpringParams, theta1: Id, theta2: Id) -> Self {
         let (s1, c1) = (g.sin(theta1), g.cos(theta1));
         let (s2, c2) = (g.sin(theta2), g.cos(theta2));
         // l^2 = (a + r2 s2 - r1 s1)^2 + (r1 c1 + r2 c2)^2
@@ -249,10 +243,7 @@ mod tests {
                     let h = g.eval(t.hessian[b], &at(x1, x2));
                     let m = g.eval(t.material[b], &at(x1, x2));
                     let s = g.eval(t.stress[b], &at(x1, x2));
-                    assert!(
-                        (h - (m + s)).abs() <= 1e-12 * (1.0 + h.abs()),
-                        "block {b}: {h} vs {m} + {s}"
-                    );
+                    assert!((h - (m + s)).abs() <= 1e-12 * (1.0 + h.abs()), "block {b}: {h} vs {m} + {s}");
                 }
             }
         }

@@ -54,8 +54,11 @@ impl Reference {
     pub fn gradient(&self, theta: &[f64]) -> Vec<f64> {
         (0..theta.len())
             .map(|i| {
-                let x: Vec<Dual64> =
-                    theta.iter().enumerate().map(|(j, &t)| Dual64::new(t, if i == j { 1.0 } else { 0.0 })).collect();
+                let x: Vec<Dual64> = theta
+                    .iter()
+                    .enumerate()
+                    .map(|(j, &t)| Dual64::new(t, if i == j { 1.0 } else { 0.0 }))
+                    .collect();
                 self.energy(&x).eps
             })
             .collect()
@@ -66,7 +69,9 @@ impl Reference {
         let x: Vec<HyperDual64> = theta
             .iter()
             .enumerate()
-            .map(|(m, &t)| HyperDual64::new(t, if m == i { 1.0 } else { 0.0 }, if m == j { 1.0 } else { 0.0 }, 0.0))
+            .map(|(m, &t)| {
+                HyperDual64::new(t, if m == i { 1.0 } else { 0.0 }, if m == j { 1.0 } else { 0.0 }, 0.0)
+            })
             .collect();
         self.energy(&x).eps1eps2
     }
@@ -76,7 +81,11 @@ impl Reference {
 #[track_caller]
 pub fn assert_close(x: f64, y: f64, tol: f64, what: &str) {
     let scale = 1.0f64.max(x.abs()).max(y.abs());
-    assert!((x - y).abs() <= tol * scale, "{what}: {x} vs {y} (difference {:e}, tolerance {tol:e} x {scale})", (x - y).abs());
+    assert!(
+        (x - y).abs() <= tol * scale,
+        "{what}: {x} vs {y} (difference {:e}, tolerance {tol:e} x {scale})",
+        (x - y).abs()
+    );
 }
 
 /// A deterministic configuration near the uniform state with some structure, for `n` rotors.

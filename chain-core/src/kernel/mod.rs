@@ -46,11 +46,7 @@ pub fn for_each_spring(
 
 /// `sum_p kernel(p)`: the energy.
 #[inline(always)]
-pub fn sum(
-    theta: &[f64],
-    params: impl Fn(usize) -> [f64; 5],
-    kernel: impl Fn(KernelArgs) -> f64,
-) -> f64 {
+pub fn sum(theta: &[f64], params: impl Fn(usize) -> [f64; 5], kernel: impl Fn(KernelArgs) -> f64) -> f64 {
     let mut total = 0.0;
     for_each_spring(theta, params, |_, x| total += kernel(x));
     total
