@@ -50,7 +50,7 @@ impl fmt::Display for PhaseMessage {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let Self { theta_bar, a, r, two_r_sin, limit } = *self;
         write!(f, "theta_bar = {theta_bar} is outside the flipper phase: ")?;
-        if !(theta_bar > 0.0) {
+        if theta_bar.is_nan() || theta_bar <= 0.0 {
             write!(f, "it must be > 0 (the uniform states are theta_i = +theta_bar and -theta_bar)")
         } else if two_r_sin >= a {
             write!(

@@ -234,7 +234,7 @@ impl Kernel {
             };
             let _ = writeln!(out, "/// {}", f.doc);
             let _ = writeln!(out, "#[inline(always)]");
-            let _ = writeln!(out, "#[allow(unused_variables)]");
+            let _ = writeln!(out, "#[allow(unused_variables, clippy::let_and_return)]");
             let _ = writeln!(out, "pub fn {}(x: [f64; 9]) -> {ret} {{", f.name);
             let _ = writeln!(out, "{destructure}");
             out.push_str(&program.render("t", math));

@@ -21,13 +21,13 @@ pub struct State {
 pub fn step(chain: &Chain16, state: &mut State, dt: f64) {
     let inertia = 1.0 * 0.8 * 0.8;
     let g = chain.gradient(&state.theta);
-    for i in 0..16 {
-        state.omega[i] -= 0.5 * dt * g[i] / inertia;
-        state.theta[i] += dt * state.omega[i];
+    for ((w, t), g) in state.omega.iter_mut().zip(&mut state.theta).zip(g) {
+        *w -= 0.5 * dt * g / inertia;
+        *t += dt * *w;
     }
     let g = chain.gradient(&state.theta);
-    for i in 0..16 {
-        state.omega[i] -= 0.5 * dt * g[i] / inertia;
+    for (w, g) in state.omega.iter_mut().zip(g) {
+        *w -= 0.5 * dt * g / inertia;
     }
 }
 

@@ -31,7 +31,7 @@ impl Reference {
     }
 
     pub fn tip<D: DualNum<Primitive = f64> + Copy>(&self, i: usize, theta: D) -> (D, D) {
-        let sign = if i % 2 == 0 { 1.0 } else { -1.0 };
+        let sign = if i.is_multiple_of(2) { 1.0 } else { -1.0 };
         (theta.sin() * self.r[i] + self.a * i as f64, theta.cos() * (sign * self.r[i]))
     }
 

@@ -3,7 +3,7 @@ use crate::math as m;
 
 /// The spring's stored energy.
 #[inline(always)]
-#[allow(unused_variables)]
+#[allow(unused_variables, clippy::let_and_return)]
 pub fn energy(x: [f64; 9]) -> f64 {
 let [s1, c1, s2, c2, a, r1, r2, k, l0] = x;
 let t0 = r2 * s2;
@@ -26,7 +26,7 @@ t14
 
 /// The spring's length.
 #[inline(always)]
-#[allow(unused_variables)]
+#[allow(unused_variables, clippy::let_and_return)]
 pub fn length(x: [f64; 9]) -> f64 {
 let [s1, c1, s2, c2, a, r1, r2, k, l0] = x;
 let t0 = r2 * s2;
@@ -45,7 +45,7 @@ t10
 
 /// The spring's tension `dlaw/dl`.
 #[inline(always)]
-#[allow(unused_variables)]
+#[allow(unused_variables, clippy::let_and_return)]
 pub fn tension(x: [f64; 9]) -> f64 {
 let [s1, c1, s2, c2, a, r1, r2, k, l0] = x;
 let t0 = r2 * s2;
@@ -66,7 +66,7 @@ t12
 
 /// `[dE/dtheta1, dE/dtheta2]`.
 #[inline(always)]
-#[allow(unused_variables)]
+#[allow(unused_variables, clippy::let_and_return)]
 pub fn gradient(x: [f64; 9]) -> [f64; 2] {
 let [s1, c1, s2, c2, a, r1, r2, k, l0] = x;
 let t0 = r2 * s2;
@@ -100,7 +100,7 @@ let t25 = k * t24;
 
 /// The Hessian block `[11, 12, 22]` in the two angles.
 #[inline(always)]
-#[allow(unused_variables)]
+#[allow(unused_variables, clippy::let_and_return)]
 pub fn hessian(x: [f64; 9]) -> [f64; 3] {
 let [s1, c1, s2, c2, a, r1, r2, k, l0] = x;
 let t0 = r2 * s2;
@@ -173,7 +173,7 @@ let t64 = k * t63;
 
 /// The material part `g^ (dl/dtheta)(dl/dtheta)^T` of the block (paper Eq. `eq:prestress6`).
 #[inline(always)]
-#[allow(unused_variables)]
+#[allow(unused_variables, clippy::let_and_return)]
 pub fn material(x: [f64; 9]) -> [f64; 3] {
 let [s1, c1, s2, c2, a, r1, r2, k, l0] = x;
 let t0 = r2 * s2;
@@ -212,7 +212,7 @@ let t30 = t24 * t26;
 
 /// The stress-matrix part `t^ d2(l^2/2)/dtheta dtheta` of the block (paper Eq. `eq:prestress7`).
 #[inline(always)]
-#[allow(unused_variables)]
+#[allow(unused_variables, clippy::let_and_return)]
 pub fn stress(x: [f64; 9]) -> [f64; 3] {
 let [s1, c1, s2, c2, a, r1, r2, k, l0] = x;
 let t0 = r2 * s2;
@@ -256,7 +256,7 @@ let t35 = t29 * t30;
 
 /// The compatibility-matrix row `[dl/d(r1 theta1), dl/d(r2 theta2)]`.
 #[inline(always)]
-#[allow(unused_variables)]
+#[allow(unused_variables, clippy::let_and_return)]
 pub fn compatibility(x: [f64; 9]) -> [f64; 2] {
 let [s1, c1, s2, c2, a, r1, r2, k, l0] = x;
 let t0 = r2 * s2;

@@ -3,7 +3,7 @@ use crate::math as m;
 
 /// The spring's stored energy.
 #[inline(always)]
-#[allow(unused_variables)]
+#[allow(unused_variables, clippy::let_and_return)]
 pub fn energy(x: [f64; 9]) -> f64 {
 let [s1, c1, s2, c2, a, r1, r2, k, l0] = x;
 let t0 = r2 * s2;
@@ -27,7 +27,7 @@ t15
 
 /// The spring's length.
 #[inline(always)]
-#[allow(unused_variables)]
+#[allow(unused_variables, clippy::let_and_return)]
 pub fn length(x: [f64; 9]) -> f64 {
 let [s1, c1, s2, c2, a, r1, r2, k, l0] = x;
 let t0 = r2 * s2;
@@ -46,7 +46,7 @@ t10
 
 /// The spring's tension `dlaw/dl`.
 #[inline(always)]
-#[allow(unused_variables)]
+#[allow(unused_variables, clippy::let_and_return)]
 pub fn tension(x: [f64; 9]) -> f64 {
 let [s1, c1, s2, c2, a, r1, r2, k, l0] = x;
 let t0 = r2 * s2;
@@ -72,7 +72,7 @@ t17
 
 /// `[dE/dtheta1, dE/dtheta2]`.
 #[inline(always)]
-#[allow(unused_variables)]
+#[allow(unused_variables, clippy::let_and_return)]
 pub fn gradient(x: [f64; 9]) -> [f64; 2] {
 let [s1, c1, s2, c2, a, r1, r2, k, l0] = x;
 let t0 = r2 * s2;
@@ -106,7 +106,7 @@ let t25 = 4.0f64 * t24;
 
 /// The Hessian block `[11, 12, 22]` in the two angles.
 #[inline(always)]
-#[allow(unused_variables)]
+#[allow(unused_variables, clippy::let_and_return)]
 pub fn hessian(x: [f64; 9]) -> [f64; 3] {
 let [s1, c1, s2, c2, a, r1, r2, k, l0] = x;
 let t0 = r2 * s2;
@@ -170,7 +170,7 @@ let t55 = 4.0f64 * t54;
 
 /// The material part `g^ (dl/dtheta)(dl/dtheta)^T` of the block (paper Eq. `eq:prestress6`).
 #[inline(always)]
-#[allow(unused_variables)]
+#[allow(unused_variables, clippy::let_and_return)]
 pub fn material(x: [f64; 9]) -> [f64; 3] {
 let [s1, c1, s2, c2, a, r1, r2, k, l0] = x;
 let t0 = r2 * s2;
@@ -218,7 +218,7 @@ let t39 = 4.0f64 * t38;
 
 /// The stress-matrix part `t^ d2(l^2/2)/dtheta dtheta` of the block (paper Eq. `eq:prestress7`).
 #[inline(always)]
-#[allow(unused_variables)]
+#[allow(unused_variables, clippy::let_and_return)]
 pub fn stress(x: [f64; 9]) -> [f64; 3] {
 let [s1, c1, s2, c2, a, r1, r2, k, l0] = x;
 let t0 = r2 * s2;
@@ -268,7 +268,7 @@ let t41 = 4.0f64 * t40;
 
 /// The compatibility-matrix row `[dl/d(r1 theta1), dl/d(r2 theta2)]`.
 #[inline(always)]
-#[allow(unused_variables)]
+#[allow(unused_variables, clippy::let_and_return)]
 pub fn compatibility(x: [f64; 9]) -> [f64; 2] {
 let [s1, c1, s2, c2, a, r1, r2, k, l0] = x;
 let t0 = r2 * s2;
