@@ -121,17 +121,7 @@ fn plain_tangent_stiffness(theta: &[f64; N], l0: f64) -> Tridiagonal<N, M> {
     let mut diag = [0.0; N];
     let mut off = [0.0; M];
     for p in 0..M {
-        let Spring {
-            s1,
-            c1,
-            s2,
-            c2,
-            dx,
-            dy,
-            l,
-            dl1,
-            dl2,
-        } = spring(theta[p], theta[p + 1]);
+        let Spring { s1, c1, s2, c2, dx, dy, l, dl1, dl2 } = spring(theta[p], theta[p + 1]);
         let stretch_over_l = (l - l0) / l;
         let d2l11 = R * R + R * (dx * s1 - dy * c1) - dl1 * dl1;
         let d2l22 = R * R - R * (dx * s2 + dy * c2) - dl2 * dl2;
@@ -197,9 +187,12 @@ fn runtime_chain() -> RuntimeChain {
     RuntimeChain::builder(N, R, K, THETA_BAR).build().unwrap()
 }
 
+/// Every benchmark takes 200 samples of 400 calls each (so a sample lasts 0.3 to 0.8 ms and no
+/// benchmark's numbers depend on divan's calibration of its sample size); `--sample-count` and
+/// `--sample-size` on the command line override these.
 fn main() {
     check_agreement();
-    divan::main();
+    divan::Divan::default().sample_count(200).sample_size(400).config_with_args().main();
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -234,6 +227,14 @@ fn generated_tangent_stiffness(bencher: Bencher) {
 fn generated_hessian(bencher: Bencher) {
     let (chain, theta) = (Chain, configuration());
     bencher.bench_local(|| black_box(&chain).hessian(black_box(&theta)));
+}
+
+/// The dense-matrix part of `generated_hessian` alone: `Tridiagonal::to_dense` of a ready
+/// tangent stiffness (zero a 60 x 60 matrix, write the three bands, return it).
+#[divan::bench]
+fn generated_hessian_to_dense_part(bencher: Bencher) {
+    let t = Chain.tangent_stiffness(&configuration());
+    bencher.bench_local(|| black_box(&t).to_dense());
 }
 
 #[divan::bench]
