@@ -1,7 +1,7 @@
 //! Speed of the code `#[rotor_chain]` generates, against the transcendental floor, a careful
 //! hand-written loop, and the runtime-sized chain, all in one run so the ratios sit side by side.
 //!
-//! Run: `CARGO_TARGET_DIR=/work/target-bench cargo bench --bench generated`
+//! Run: `cargo bench --bench generated`
 //! (results and their reading: `docs/benchmarks.md`).
 //!
 //! Every benchmark works on the same fixed, non-trivial configuration (`configuration()`); before
