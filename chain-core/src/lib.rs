@@ -13,10 +13,14 @@ pub mod banded;
 pub mod branch;
 pub mod error;
 pub mod kernel;
+#[cfg(feature = "alloc")]
+pub mod linalg;
 pub mod math;
 pub mod model;
 #[cfg(feature = "alloc")]
 pub mod runtime;
+#[cfg(feature = "alloc")]
+pub mod statics;
 
 pub use banded::{Bidiagonal, Tridiagonal};
 pub use chain_geometry as geometry;

@@ -1,0 +1,1 @@
+//! Static linkage analysis (paper Sections II-V, VII and Appendices A, C, D).
