@@ -1,0 +1,56 @@
+//! Errors of the tridiagonal linear algebra. Each carries the numbers that explain it.
+
+use core::fmt;
+
+/// Which input of a linear-algebra call held a bad number.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum Input {
+    /// The diagonal `diag`.
+    Diag,
+    /// The off-diagonal `off` (`off[i]` is entry `(i, i + 1)`).
+    Off,
+    /// The right-hand side of a solve.
+    Rhs,
+    /// A scalar: the shift of a solve, the point of a Sturm count, or the target of
+    /// [`eigenpairs_near`](super::eigenpairs_near).
+    Shift,
+}
+
+impl fmt::Display for Input {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            Input::Diag => "diag",
+            Input::Off => "off",
+            Input::Rhs => "rhs",
+            Input::Shift => "shift",
+        })
+    }
+}
+
+/// A tridiagonal computation that could not be carried out.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum LinalgError {
+    /// `off` must have one entry fewer than `diag` (none when `diag` has at most one).
+    #[error("off has {off} entries, but a matrix with {diag} diagonal entries needs {expected}", expected = .diag.saturating_sub(1))]
+    DimensionMismatch { diag: usize, off: usize },
+    /// The right-hand side of a solve must have one entry per row.
+    #[error("the right-hand side has {rhs} entries, but the matrix has {n} rows")]
+    RhsMismatch { n: usize, rhs: usize },
+    /// A NaN or an infinity in the input.
+    #[error("{input}[{index}] = {value} is not finite")]
+    NotFinite { input: Input, index: usize, value: f64 },
+    /// Eigenvalues `lo..hi` (0-based, ascending) were asked for, but the matrix has `n`.
+    #[error("eigenvalues {lo}..{hi} were asked for, but the matrix has {n}")]
+    IndexOutOfRange { lo: usize, hi: usize, n: usize },
+    /// Gaussian elimination met a zero pivot (0-based `row` of `U`), or the solution overflows:
+    /// the matrix is singular to working precision. `pivot` is the smallest pivot of `U`.
+    #[error("the matrix is singular to working precision: pivot {pivot:e} in row {row}")]
+    Singular { row: usize, pivot: f64 },
+    /// An iteration stopped before converging: the QL iteration on eigenvalue `index` (with
+    /// `residual` the off-diagonal entry left), or inverse iteration on the eigenvalue of
+    /// ascending `index` (with `residual` = `||T v - lambda v||`).
+    #[error("no convergence for eigenvalue {index} after {iterations} iterations: residual {residual:e}")]
+    NoConvergence { iterations: usize, index: usize, residual: f64 },
+}

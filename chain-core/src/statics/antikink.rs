@@ -1,0 +1,241 @@
+//! The antikink and its Peierls-Nabarro barrier (paper Sec. II, III, V; Figs. `fig:akcobweb`,
+//! `fig:aktheta`, `fig:akenergy`, `fig:akconfigpn`, `fig:logvpn-theta`, `fig:logvpn-size`).
+//!
+//! **Construction.** The paper reflects the kink's spring points across the diagonal of the
+//! cobweb plot ([`super::kink::reflected_kink`]) and relaxes the result with dissipative Newtonian
+//! dynamics; we then polish with Newton's method on the gradient ([`super::equilibrium`]).
+//!
+//! **Minimum and saddle.** A discrete antikink is in equilibrium only where its profile is locally
+//! symmetric: centred on a rotor or centred on a spring. One centring is a minimum of the energy,
+//! the other a saddle of index 1, and the Peierls-Nabarro barrier is their energy difference
+//! (Sec. V). Both are found by Newton's method from the reflected kink built *symmetrically*
+//! about the wanted centre: the symmetric guess has no component along the antisymmetric
+//! translation mode, so Newton stays on that centring whether it is the minimum or the saddle,
+//! and the Sturm count of the tangent stiffness says which it is.
+//!
+//! **Robustness.** Wide antikinks (small `theta_bar`) have exponentially small barriers and the
+//! free ends carry exponentially soft edge modes, so plain minimisation drifts (toward a kink
+//! entering from an end, which can annihilate the antikink). Newton from a symmetric guess never
+//! follows those flat directions, and the domain walls of the result are counted: an answer
+//! without exactly one antikink is an error, not a result.
+//!
+//! **Boundary treatment.** With free ends an antikink can be in exact equilibrium only if the end
+//! rotors are collinear with their springs: force balance on an end rotor makes its spring's
+//! tension vanish unless the spring points at its pivot, and a vanishing tension propagates
+//! inward. So wherever the antikink's tails reach the ends, exact free-end equilibrium swings the
+//! end rotors round (the paper's "overshooting", Sec. II, Fig. `fig:aktheta`), a large motion
+//! along directions far softer than the antikink itself (at `theta_bar = 0.1`, n = 60 they even
+//! have negative curvature at the uniform ends). The paper "fixed the boundary conditions to ensure
+//! that the antikink is in mechanical equilibrium". We do the same, explicitly ([`Ends::Held`],
+//! the default): the end rotors are held at `-theta_bar` and `+theta_bar`, every other rotor is in
+//! exact force balance, and the ends' reaction torques are reported ([`Antikink::edge_force`]).
+//! Where the tails are below rounding at the ends (`theta_bar = 0.58`, n = 60: `F'^-30 ~ 1e-35`)
+//! this is the free-end equilibrium to the last digit. [`Ends::Free`] is available; it holds only
+//! the near-null directions (see [`super::equilibrium`]).
+
+use alloc::vec::Vec;
+
+use super::classify::{Classification, EquilibriumKind, classify};
+use super::equilibrium::{NewtonOptions, RelaxOptions, newton, relax, stiffness};
+use super::error::StaticsError;
+use super::kink::reflected_kink;
+use super::walls::{Charge, domain_walls};
+use crate::model::ChainModel;
+
+/// How the chain's ends are treated (see the module doc).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum Ends {
+    /// The end rotors are held at `-theta_bar` and `+theta_bar`; every other rotor is in exact
+    /// force balance. The default.
+    #[default]
+    Held,
+    /// Free ends; near-null edge modes are held by the constrained Newton step instead.
+    Free,
+}
+
+/// Settings of the antikink analyses.
+#[derive(Clone, Copy, Debug, PartialEq, Default)]
+pub struct AntikinkOptions {
+    pub newton: NewtonOptions,
+    pub relax: RelaxOptions,
+    /// Relative tolerance for counting eigenvalues as zero ([`classify`]); default below.
+    pub zero_tolerance: Option<f64>,
+    pub ends: Ends,
+}
+
+impl AntikinkOptions {
+    fn hold(&self) -> bool {
+        self.ends == Ends::Held
+    }
+}
+
+/// The reflected kink centred at `centre`, with the end rotors at `-theta_bar` and `+theta_bar`
+/// when the ends are held.
+fn initial_guess<M: ChainModel + ?Sized>(
+    model: &M,
+    centre: f64,
+    options: &AntikinkOptions,
+) -> Result<Vec<f64>, StaticsError> {
+    let mut guess = reflected_kink(model, centre)?;
+    if options.hold() {
+        let n = guess.len();
+        let tb = model.theta_bar();
+        guess[0] = -tb;
+        guess[n - 1] = tb;
+    }
+    Ok(guess)
+}
+
+const DEFAULT_ZERO_TOLERANCE: f64 = 1e-10;
+
+/// An antikink equilibrium.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Antikink {
+    pub theta: Vec<f64>,
+    /// Potential energy `V`.
+    pub energy: f64,
+    /// The antikink's position (Appendix C wall coordinate).
+    pub centre: f64,
+    /// Minimum or saddle, from the tangent stiffness.
+    pub classification: Classification,
+    /// Newton steps of the polish.
+    pub newton_iterations: usize,
+    /// Dissipative-dynamics time steps (0 when not relaxed).
+    pub relax_steps: usize,
+    /// `max |dV/dtheta| / ||K||` at the end, near-null directions held ([`super::equilibrium`]).
+    pub residual: f64,
+    /// The force left on the held near-null directions (the tails reaching the free ends).
+    pub edge_force: f64,
+}
+
+impl Antikink {
+    fn from_solution<M: ChainModel + ?Sized>(
+        model: &M,
+        solution: super::equilibrium::Solution,
+        relax_steps: usize,
+        options: &AntikinkOptions,
+    ) -> Result<Self, StaticsError> {
+        let super::equilibrium::Solution {
+            theta, iterations: newton_iterations, residual, edge_force, ..
+        } = solution;
+        let walls = domain_walls(&theta);
+        let antikinks: Vec<f64> =
+            walls.iter().filter(|w| w.charge == Charge::Antikink).map(|w| w.position).collect();
+        if antikinks.len() != 1 || walls.len() != 1 {
+            return Err(StaticsError::DefectLost {
+                expected: "antikink",
+                kinks: walls.len() - antikinks.len(),
+                antikinks: antikinks.len(),
+            });
+        }
+        // With held ends the stability is that of the moving rotors.
+        let (diag, off) = stiffness(model, &theta);
+        let (diag, off) = super::equilibrium::restricted(&diag, &off, options.hold());
+        let classification = classify(&diag, &off, options.zero_tolerance.unwrap_or(DEFAULT_ZERO_TOLERANCE));
+        Ok(Self {
+            energy: model.energy(&theta),
+            centre: antikinks[0],
+            theta,
+            classification,
+            newton_iterations,
+            relax_steps,
+            residual,
+            edge_force,
+        })
+    }
+
+    /// Whether the tangent stiffness shows a saddle.
+    pub fn is_saddle(&self) -> bool {
+        matches!(self.classification.kind, EquilibriumKind::Saddle { .. })
+    }
+}
+
+/// The antikink equilibrium centred at `centre` (an integer: on a rotor; a half-integer: on a
+/// spring), by Newton's method from the symmetric reflected kink. Minimum or saddle, as the
+/// classification says.
+pub fn antikink_at<M: ChainModel + ?Sized>(
+    model: &M,
+    centre: f64,
+    options: &AntikinkOptions,
+) -> Result<Antikink, StaticsError> {
+    let guess = initial_guess(model, centre, options)?;
+    let newton_options = NewtonOptions { hold_ends: options.hold(), ..options.newton };
+    let solution = newton(model, &guess, &newton_options)?;
+    Antikink::from_solution(model, solution, 0, options)
+}
+
+/// The paper's construction: the reflected kink centred at `centre`, relaxed by dissipative
+/// Newtonian dynamics (which slides it into the nearest Peierls-Nabarro minimum), then polished
+/// by Newton's method.
+pub fn antikink_relaxed<M: ChainModel + ?Sized>(
+    model: &M,
+    centre: f64,
+    options: &AntikinkOptions,
+) -> Result<Antikink, StaticsError> {
+    let guess = initial_guess(model, centre, options)?;
+    let (relaxed, steps) =
+        relax(model, &guess, &RelaxOptions { hold_ends: options.hold(), ..options.relax })?;
+    let solution = newton(model, &relaxed, &NewtonOptions { hold_ends: options.hold(), ..options.newton })?;
+    Antikink::from_solution(model, solution, steps, options)
+}
+
+/// Both antikink equilibria in the middle of the chain and the barrier between them.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PeierlsNabarro {
+    /// The antikink centred on the middle rotor (`(n - 1) / 2` rounded down).
+    pub rotor_centred: Antikink,
+    /// The antikink centred on the neighbouring spring.
+    pub spring_centred: Antikink,
+    /// The Peierls-Nabarro barrier `V_saddle - V_minimum` (`|V_rotor - V_spring|`).
+    pub barrier: f64,
+    /// Whether the spectra identified exactly one minimum (index 0) and one saddle (index 1).
+    /// For very wide antikinks the barrier is below what double precision resolves and both may
+    /// look alike; the barrier is then an upper estimate.
+    pub resolved: bool,
+}
+
+impl PeierlsNabarro {
+    /// The lower-energy (minimum) configuration.
+    pub fn minimum(&self) -> &Antikink {
+        if self.rotor_centred.energy <= self.spring_centred.energy {
+            &self.rotor_centred
+        } else {
+            &self.spring_centred
+        }
+    }
+
+    /// The higher-energy (saddle) configuration.
+    pub fn saddle(&self) -> &Antikink {
+        if self.rotor_centred.energy <= self.spring_centred.energy {
+            &self.spring_centred
+        } else {
+            &self.rotor_centred
+        }
+    }
+}
+
+/// The Peierls-Nabarro barrier of `model` (paper Sec. V): the antikink centred on the middle
+/// rotor and on the neighbouring spring, and their energy difference.
+pub fn peierls_nabarro<M: ChainModel + ?Sized>(
+    model: &M,
+    options: &AntikinkOptions,
+) -> Result<PeierlsNabarro, StaticsError> {
+    let n = model.rotor_count();
+    let middle = ((n - 1) / 2) as f64;
+    let rotor_centred = antikink_at(model, middle, options)?;
+    let spring_centred = antikink_at(model, middle + 0.5, options)?;
+    let barrier = (rotor_centred.energy - spring_centred.energy).abs();
+    let (a, b) = (rotor_centred.classification.index, spring_centred.classification.index);
+    let resolved = (a == 0 && b == 1) || (a == 1 && b == 0);
+    Ok(PeierlsNabarro { rotor_centred, spring_centred, barrier, resolved })
+}
+
+/// The finite-size study of the barrier (Fig. `fig:logvpn-size`): the barrier of the chain that
+/// `build(n)` returns, for every `n` in `sizes`.
+pub fn barrier_vs_size<M: ChainModel>(
+    sizes: &[usize],
+    build: impl Fn(usize) -> M,
+    options: &AntikinkOptions,
+) -> Result<Vec<(usize, f64)>, StaticsError> {
+    sizes.iter().map(|&n| peierls_nabarro(&build(n), options).map(|pn| (n, pn.barrier))).collect()
+}

@@ -1,0 +1,46 @@
+//! Classifying an equilibrium by the spectrum of its tangent stiffness (paper Sec. IV, V).
+//!
+//! The Morse index (number of negative eigenvalues) and the number of eigenvalues within a
+//! tolerance of zero come from Sturm counts of the tridiagonal matrix, O(n) each: a minimum has
+//! index 0; a saddle of index 1 is the top of a Peierls-Nabarro barrier; near-zero eigenvalues are
+//! mechanisms (the kink's translation) or exponentially soft edge modes.
+
+use crate::linalg;
+
+/// What kind of equilibrium the spectrum shows.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum EquilibriumKind {
+    /// Every eigenvalue above the tolerance.
+    Minimum,
+    /// No negative eigenvalue, but `nullity` within the tolerance of zero (flat directions).
+    DegenerateMinimum { nullity: usize },
+    /// `index` eigenvalues below `-tolerance`.
+    Saddle { index: usize },
+}
+
+/// The inertia of the tangent stiffness at an equilibrium.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Classification {
+    /// Eigenvalues below `-tolerance`.
+    pub index: usize,
+    /// Eigenvalues in `[-tolerance, tolerance]`.
+    pub nullity: usize,
+    /// The absolute tolerance used, `relative * ||K||`.
+    pub tolerance: f64,
+    pub kind: EquilibriumKind,
+}
+
+/// Classifies the symmetric tridiagonal tangent stiffness `(diag, off)`; eigenvalues within
+/// `relative * ||K||` of zero count as zero. A relative tolerance of `1e-10` separates rounding
+/// (`~1e-16`) and exponentially soft edge modes from physical soft modes.
+pub fn classify(diag: &[f64], off: &[f64], relative: f64) -> Classification {
+    let tolerance = relative * super::equilibrium::norm(diag, off);
+    let index = linalg::count_below(diag, off, -tolerance);
+    let nullity = linalg::count_below(diag, off, tolerance) - index;
+    let kind = match (index, nullity) {
+        (0, 0) => EquilibriumKind::Minimum,
+        (0, nullity) => EquilibriumKind::DegenerateMinimum { nullity },
+        (index, _) => EquilibriumKind::Saddle { index },
+    };
+    Classification { index, nullity, tolerance, kind }
+}

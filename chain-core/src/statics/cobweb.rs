@@ -1,0 +1,147 @@
+//! Cobweb analysis of the branch map (paper Sec. II, Fig. `fig:kcobweb`).
+//!
+//! Spring `p` at rest defines a curve in the `(theta_p, theta_{p+1})` plane; its flipper branch is
+//! a map `theta_{p+1} = F(theta_p)` whose fixed points on the diagonal are the uniform states
+//! `+-theta_bar`. Linearising at a fixed point, `theta_{i+1} - theta_bar = F'(theta_bar)(theta_i - theta_bar)`:
+//! the fixed point repels if `|F'| > 1` and attracts if `|F'| < 1`, and deformations decay over
+//! `|1 / ln F'|` sites. For equal rotors, implicit differentiation of Eq. (`eq:instantlength`)
+//! gives `F'(theta_bar) = (a + 2 r sin theta_bar)/(a - 2 r sin theta_bar)`; numerically the slope
+//! is `-(dl/dtheta_p)/(dl/dtheta_{p+1})`, read off the generated compatibility matrix.
+
+use alloc::vec;
+use alloc::vec::Vec;
+
+use super::error::StaticsError;
+use crate::model::ChainModel;
+
+/// Whether a fixed point attracts or repels forward iteration.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Stability {
+    Attracting,
+    Repelling,
+    Marginal,
+}
+
+/// A fixed point of spring `p`'s branch map.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FixedPoint {
+    pub theta: f64,
+    /// `F'` at the fixed point.
+    pub slope: f64,
+    pub stability: Stability,
+    /// `|1 / ln F'|`, in sites.
+    pub decay_length: f64,
+}
+
+/// `F'(theta_bar)` of a chain with equal rotors, in closed form.
+pub fn slope_closed_form(a: f64, r: f64, theta_bar: f64) -> f64 {
+    let s = 2.0 * r * libm::sin(theta_bar);
+    (a + s) / (a - s)
+}
+
+/// The slope `F'` of spring `p`'s map at `(theta_p, theta_{p+1})` from the generated code:
+/// on the constraint `l_p = l0_p`, `dtheta_{p+1}/dtheta_p = -(dl/dtheta_p)/(dl/dtheta_{p+1})`.
+pub fn branch_slope<M: ChainModel + ?Sized>(model: &M, p: usize, theta_p: f64, theta_next: f64) -> f64 {
+    let n = model.rotor_count();
+    let mut theta = vec![0.0; n];
+    theta[p] = theta_p;
+    theta[p + 1] = theta_next;
+    let (mut left, mut right) = (vec![0.0; n - 1], vec![0.0; n - 1]);
+    model.compatibility_into(&theta, &mut left, &mut right);
+    // C = dl / d(r theta): undo the rotor lengths to get dl/dtheta.
+    -(left[p] * model.rotor_length(p)) / (right[p] * model.rotor_length(p + 1))
+}
+
+/// Classifies a slope.
+pub fn stability(slope: f64) -> Stability {
+    let m = slope.abs();
+    if (m - 1.0).abs() < 1e-12 {
+        Stability::Marginal
+    } else if m > 1.0 {
+        Stability::Repelling
+    } else {
+        Stability::Attracting
+    }
+}
+
+/// The two fixed points `-theta_bar`, `+theta_bar` of spring `p`'s flipper branch (refined by
+/// Newton's method on `F(theta) - theta`, so springs with their own rest length are handled).
+pub fn fixed_points<M: ChainModel + ?Sized>(model: &M, p: usize) -> Result<[FixedPoint; 2], StaticsError> {
+    let tb = model.theta_bar();
+    let mut out =
+        [FixedPoint { theta: 0.0, slope: 0.0, stability: Stability::Marginal, decay_length: 0.0 }; 2];
+    for (slot, start) in out.iter_mut().zip([-tb, tb]) {
+        let mut t = start;
+        for _ in 0..50 {
+            let f = model.next_angles(p, t)?[0];
+            let slope = branch_slope(model, p, t, f);
+            let step = (f - t) / (slope - 1.0);
+            t -= step;
+            if step.abs() <= 1e-15 * (1.0 + t.abs()) {
+                break;
+            }
+        }
+        let f = model.next_angles(p, t)?[0];
+        let slope = branch_slope(model, p, t, f);
+        *slot = FixedPoint {
+            theta: t,
+            slope,
+            stability: stability(slope),
+            decay_length: (1.0 / libm::log(slope.abs())).abs(),
+        };
+    }
+    Ok(out)
+}
+
+/// Everything needed to draw a cobweb plot of a profile (Fig. `fig:kcobweb`).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Cobweb {
+    /// The flipper branch `(theta_p, F(theta_p))` of the constraint curve, sampled.
+    pub flipper_branch: Vec<[f64; 2]>,
+    /// The other branch of the constraint curve.
+    pub other_branch: Vec<[f64; 2]>,
+    /// The diagonal `theta_{p+1} = theta_p`, as its two end points.
+    pub diagonal: [[f64; 2]; 2],
+    /// Rotor points `(theta_i, theta_i)`.
+    pub rotors: Vec<[f64; 2]>,
+    /// Spring points `(theta_i, theta_{i+1})`.
+    pub springs: Vec<[f64; 2]>,
+    /// The staircase `(theta_1, theta_1) -> (theta_1, theta_2) -> (theta_2, theta_2) -> ...`.
+    pub staircase: Vec<[f64; 2]>,
+}
+
+/// The cobweb of `theta` drawn on spring `p`'s constraint curve, sampled at `samples` angles
+/// over `[-range, range]`.
+pub fn cobweb<M: ChainModel + ?Sized>(
+    model: &M,
+    p: usize,
+    theta: &[f64],
+    range: f64,
+    samples: usize,
+) -> Cobweb {
+    let mut flipper_branch = Vec::new();
+    let mut other_branch = Vec::new();
+    for s in 0..samples {
+        let t = -range + 2.0 * range * s as f64 / (samples.max(2) - 1) as f64;
+        if let Ok([f, g]) = model.next_angles(p, t) {
+            flipper_branch.push([t, f]);
+            other_branch.push([t, g]);
+        }
+    }
+    let mut staircase = Vec::with_capacity(2 * theta.len());
+    for w in theta.windows(2) {
+        staircase.push([w[0], w[0]]);
+        staircase.push([w[0], w[1]]);
+    }
+    if let Some(&last) = theta.last() {
+        staircase.push([last, last]);
+    }
+    Cobweb {
+        flipper_branch,
+        other_branch,
+        diagonal: [[-range, -range], [range, range]],
+        rotors: theta.iter().map(|&t| [t, t]).collect(),
+        springs: theta.windows(2).map(|w| [w[0], w[1]]).collect(),
+        staircase,
+    }
+}

@@ -1,0 +1,323 @@
+//! Finding equilibria `dV/dtheta = 0`: dissipative Newtonian dynamics (the paper's relaxation,
+//! Sec. II) and a Newton polish on the gradient.
+//!
+//! **Newton's method** converges to the equilibrium nearest its starting point whatever its
+//! index, so it finds saddles (the Peierls-Nabarro maximum) as well as minima. Each step solves
+//! `(K + mu I) delta = -g` with the tridiagonal tangent stiffness `K` by Gaussian elimination with
+//! partial pivoting (`K` is indefinite at a saddle), in O(n).
+//!
+//! **Near-null modes (constrained Newton).** A free chain always has a mechanism
+//! (Maxwell-Calladine: n rotors, n - 1 springs), and around an antikink the two uniform domains
+//! carry exponentially soft edge modes. When the antikink's tails still reach the free ends (wide
+//! antikinks, small `theta_bar`), exact force balance would swing the end rotors round until they
+//! are collinear with their springs (the paper's "overshooting", Sec. II), a finite motion along
+//! a direction whose stiffness is below rounding. We do not follow those directions: each step
+//! works in the complement of the eigenvectors whose eigenvalues lie within
+//! `null_tolerance * ||K||` of zero (found in O(n) by bisection and inverse iteration), and
+//! convergence is judged on the force in that complement. The force left along the near-null
+//! modes is reported separately ([`Solution::edge_force`]); it is the tail tension reaching the
+//! ends, `~ e^{-d / decay length}` for an antikink at distance `d` from them. This is our
+//! boundary treatment: the ends are held along their soft modes, the rest of the chain is in
+//! exact force balance. A symmetric starting guess has no component along the (antisymmetric)
+//! translation mode, so projecting it out when it too is near-null changes nothing.
+//!
+//! **Constrained equilibria.** Where an off-centre defect feels a pull from the ends larger than
+//! its own restoring force (a wide antikink in a short chain), no exact equilibrium exists at that
+//! centring; the iteration then stagnates, and the softest free direction (the translation) is
+//! held as well. The result is the equilibrium at fixed centring, a point on the adiabatic
+//! trajectory of paper Sec. V, and [`Solution::held`] and [`Solution::edge_force`] say so.
+//!
+//! The tiny shift `mu = 1e-13 ||K||` keeps the linear solve regular, and a backtracking line
+//! search on the projected force makes the iteration globally convergent from a reasonable guess.
+//!
+//! **Dissipative dynamics** integrates `I theta'' = -dV/dtheta - gamma I theta'` (velocity Verlet,
+//! `I = M r_i^2`) until the forces are small: it slides a configuration to a nearby *minimum*,
+//! which is what the paper does to the reflected kink to get a stable antikink.
+
+use alloc::vec;
+use alloc::vec::Vec;
+
+use super::error::StaticsError;
+use crate::linalg;
+use crate::model::ChainModel;
+
+/// Settings of [`newton`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct NewtonOptions {
+    /// Stop when `max_i |dV/dtheta_i| <= tolerance * ||K||`, i.e. when the next step would move
+    /// the angles by about `tolerance` radians. Default `1e-11`.
+    pub tolerance: f64,
+    /// Give up after this many steps. Default 60 (quadratic convergence needs a handful).
+    pub max_iterations: usize,
+    /// Relative shift `mu / ||K||` of the Newton matrix. Default `1e-13` (see the module doc).
+    pub shift: f64,
+    /// Eigenvalues within `null_tolerance * ||K||` of zero span the near-null directions that the
+    /// steps leave alone (see the module doc). Default `1e-9`.
+    pub null_tolerance: f64,
+    /// Hold the two end rotors where they are (Dirichlet ends): only the interior is brought into
+    /// force balance, and the ends' reaction torques are reported as [`Solution::edge_force`].
+    /// Default `false` (free ends).
+    pub hold_ends: bool,
+    /// At most this many directions are held when the iteration stagnates (see the module doc).
+    /// Default 3: the two edge modes and a translation.
+    pub max_held: usize,
+}
+
+impl Default for NewtonOptions {
+    fn default() -> Self {
+        Self {
+            tolerance: 1e-11,
+            max_iterations: 60,
+            shift: 1e-13,
+            null_tolerance: 1e-9,
+            hold_ends: false,
+            max_held: 3,
+        }
+    }
+}
+
+/// Settings of [`relax`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RelaxOptions {
+    /// Stop when `max_i |dV/dtheta_i| <= tolerance * ||K||`. Default `1e-4`: close enough for
+    /// Newton to take over.
+    pub tolerance: f64,
+    /// Give up after this many time steps. Default 20000.
+    pub max_steps: usize,
+    /// Time step as a fraction of `1 / omega_max`. Default 0.3 (velocity Verlet is stable below 2).
+    pub time_step: f64,
+    /// Damping rate `gamma` as a fraction of `omega_max`. Default 0.02, light enough for the soft
+    /// translation mode to move, heavy enough to kill phonons in a few hundred steps.
+    pub damping: f64,
+    /// Hold the two end rotors still (as [`NewtonOptions::hold_ends`]). Default `false`.
+    pub hold_ends: bool,
+}
+
+impl Default for RelaxOptions {
+    fn default() -> Self {
+        Self { tolerance: 1e-4, max_steps: 20_000, time_step: 0.3, damping: 0.02, hold_ends: false }
+    }
+}
+
+/// An equilibrium found by [`newton`].
+#[derive(Clone, Debug, PartialEq)]
+pub struct Solution {
+    pub theta: Vec<f64>,
+    pub iterations: usize,
+    /// `max_i |(P dV/dtheta)_i| / ||K||` at the end, `P` projecting out the near-null modes.
+    pub residual: f64,
+    /// `max_i |dV/dtheta_i| / ||K||` including the held directions and end rotors: the force
+    /// they carry (rounding level when nothing had to be held).
+    pub edge_force: f64,
+    /// How many soft directions were held (near-null edge modes, a stagnating translation).
+    pub held: usize,
+}
+
+/// The rotors that move: all of them, or all but the two ends.
+fn moving(n: usize, hold_ends: bool) -> core::ops::Range<usize> {
+    if hold_ends && n > 2 { 1..n - 1 } else { 0..n }
+}
+
+/// The tangent stiffness restricted to the moving rotors.
+pub fn restricted(diag: &[f64], off: &[f64], hold_ends: bool) -> (Vec<f64>, Vec<f64>) {
+    let r = moving(diag.len(), hold_ends);
+    (diag[r.clone()].to_vec(), off[r.start..r.end - 1].to_vec())
+}
+
+/// The tangent stiffness of `model` at `theta` as `(diag, off)`.
+pub fn stiffness<M: ChainModel + ?Sized>(model: &M, theta: &[f64]) -> (Vec<f64>, Vec<f64>) {
+    let n = model.rotor_count();
+    let (mut diag, mut off) = (vec![0.0; n], vec![0.0; n - 1]);
+    model.tangent_stiffness_into(theta, &mut diag, &mut off);
+    (diag, off)
+}
+
+/// `max_i sum_j |K_ij|`, the infinity norm of a symmetric tridiagonal matrix.
+pub fn norm(diag: &[f64], off: &[f64]) -> f64 {
+    (0..diag.len())
+        .map(|i| {
+            diag[i].abs() + if i > 0 { off[i - 1].abs() } else { 0.0 } + off.get(i).map_or(0.0, |o| o.abs())
+        })
+        .fold(0.0, f64::max)
+}
+
+fn max_abs(v: &[f64]) -> f64 {
+    v.iter().fold(0.0, |m, x| m.max(x.abs()))
+}
+
+fn check_input<M: ChainModel + ?Sized>(model: &M, theta: &[f64]) -> Result<(), StaticsError> {
+    let n = model.rotor_count();
+    if theta.len() != n {
+        return Err(StaticsError::WrongLength { what: "theta", len: theta.len(), expected: n });
+    }
+    if let Some((index, &value)) = theta.iter().enumerate().find(|(_, t)| !t.is_finite()) {
+        return Err(StaticsError::NotFinite { what: "theta", index, value });
+    }
+    Ok(())
+}
+
+/// How many eigenvalues of `K` lie within `tolerance` of zero.
+fn near_null_count(diag: &[f64], off: &[f64], tolerance: f64) -> usize {
+    linalg::count_below(diag, off, tolerance) - linalg::count_below(diag, off, -tolerance)
+}
+
+/// The eigenvectors of the `count` eigenvalues of `K` nearest zero (orthonormal).
+fn nearest_to_zero(diag: &[f64], off: &[f64], count: usize) -> Result<Vec<Vec<f64>>, StaticsError> {
+    if count == 0 {
+        return Ok(Vec::new());
+    }
+    Ok(linalg::eigenpairs_near(diag, off, 0.0, count)?.into_iter().map(|p| p.vector).collect())
+}
+
+/// The eigenvectors of `K` with eigenvalues within `tolerance` of zero (orthonormal).
+fn near_null(diag: &[f64], off: &[f64], tolerance: f64) -> Result<Vec<Vec<f64>>, StaticsError> {
+    nearest_to_zero(diag, off, near_null_count(diag, off, tolerance))
+}
+
+/// `v - sum_k (b_k . v) b_k` for an orthonormal basis `b`.
+fn project_out(v: &mut [f64], basis: &[Vec<f64>]) {
+    for b in basis {
+        let dot: f64 = v.iter().zip(b).map(|(x, y)| x * y).sum();
+        for (x, y) in v.iter_mut().zip(b) {
+            *x -= dot * y;
+        }
+    }
+}
+
+fn projected_residual(g: &[f64], basis: &[Vec<f64>], scale: f64) -> f64 {
+    let mut p = g.to_vec();
+    project_out(&mut p, basis);
+    max_abs(&p) / scale
+}
+
+/// Newton's method on the gradient from `theta`: the nearest equilibrium, of any index, with the
+/// near-null directions (and, if asked, the end rotors) held (see the module doc).
+pub fn newton<M: ChainModel + ?Sized>(
+    model: &M,
+    theta: &[f64],
+    options: &NewtonOptions,
+) -> Result<Solution, StaticsError> {
+    check_input(model, theta)?;
+    let n = model.rotor_count();
+    let range = moving(n, options.hold_ends);
+    let mut theta = theta.to_vec();
+    let mut g = vec![0.0; n];
+    let mut trial = vec![0.0; n];
+    let mut g_trial = vec![0.0; n];
+    model.gradient_into(&theta, &mut g);
+    let (diag, off) = stiffness(model, &theta);
+    let scale = norm(&diag, &off).max(f64::MIN_POSITIVE);
+    let (rd, ro) = restricted(&diag, &off, options.hold_ends);
+    let mut held = near_null(&rd, &ro, options.null_tolerance * scale)?;
+    let mut residual = projected_residual(&g[range.clone()], &held, scale);
+    let mut previous = f64::INFINITY;
+    let mut iterations = 0;
+    while residual > options.tolerance {
+        if iterations == options.max_iterations {
+            return Err(StaticsError::NoConvergence {
+                method: "Newton's method on the gradient",
+                iterations,
+                residual,
+                tolerance: options.tolerance,
+            });
+        }
+        iterations += 1;
+        let (diag, off) = stiffness(model, &theta);
+        let (rd, ro) = restricted(&diag, &off, options.hold_ends);
+        // The held set only grows (a borderline eigenvalue must not flip in and out), and the
+        // residual is re-measured in the new basis so the line search compares like with like.
+        // When a step barely helps, the softest free direction is held too: there is no exact
+        // equilibrium along it (a soft translation pulled by the ends), and the constrained one
+        // is the point of the adiabatic trajectory at this centring.
+        let stagnating = iterations > 1 && residual > 0.5 * previous;
+        let grow = usize::from(stagnating && held.len() < options.max_held);
+        let count = (held.len() + grow).max(near_null_count(&rd, &ro, options.null_tolerance * scale));
+        previous = residual;
+        held = nearest_to_zero(&rd, &ro, count)?;
+        residual = projected_residual(&g[range.clone()], &held, scale);
+        if residual <= options.tolerance {
+            break;
+        }
+        let mut rhs: Vec<f64> = g[range.clone()].iter().map(|x| -x).collect();
+        project_out(&mut rhs, &held);
+        let mut delta = linalg::solve_shifted(&rd, &ro, -options.shift * scale, &rhs)?;
+        project_out(&mut delta, &held);
+        // Backtracking on the projected force: the full step, halved until it decreases.
+        let mut alpha = 1.0;
+        loop {
+            trial.copy_from_slice(&theta);
+            for (t, d) in trial[range.clone()].iter_mut().zip(&delta) {
+                *t += alpha * d;
+            }
+            model.gradient_into(&trial, &mut g_trial);
+            let r = projected_residual(&g_trial[range.clone()], &held, scale);
+            if r < residual || alpha < 1e-6 {
+                core::mem::swap(&mut theta, &mut trial);
+                core::mem::swap(&mut g, &mut g_trial);
+                residual = r;
+                break;
+            }
+            alpha *= 0.5;
+        }
+    }
+    let edge_force = max_abs(&g) / scale;
+    Ok(Solution { theta, iterations, residual, edge_force, held: held.len() })
+}
+
+/// Dissipative Newtonian dynamics from rest at `theta` (paper Sec. II), until the forces fall
+/// below the tolerance. Returns the relaxed angles and the number of time steps taken.
+pub fn relax<M: ChainModel + ?Sized>(
+    model: &M,
+    theta: &[f64],
+    options: &RelaxOptions,
+) -> Result<(Vec<f64>, usize), StaticsError> {
+    check_input(model, theta)?;
+    let n = model.rotor_count();
+    let inertia: Vec<f64> = (0..n).map(|i| model.inertia(i)).collect();
+    let (diag, off) = stiffness(model, theta);
+    let scale = norm(&diag, &off).max(f64::MIN_POSITIVE);
+    let min_inertia = inertia.iter().fold(f64::INFINITY, |m, &x| m.min(x));
+    // Gershgorin: every eigenvalue of K is at most ||K||, so omega_max <= sqrt(||K|| / I_min).
+    let omega_max = crate::math::sqrt(scale / min_inertia);
+    let dt = options.time_step / omega_max;
+    let gamma = options.damping * omega_max;
+    let mut theta = theta.to_vec();
+    let mut velocity = vec![0.0; n];
+    let mut g = vec![0.0; n];
+    let range = moving(n, options.hold_ends);
+    model.gradient_into(&theta, &mut g);
+    let mut residual = max_abs(&g[range.clone()]) / scale;
+    for step in 0..options.max_steps {
+        if residual <= options.tolerance {
+            return Ok((theta, step));
+        }
+        // Velocity Verlet with the damping applied as an exact decay of the velocity.
+        let decay = libm::exp(-0.5 * gamma * dt);
+        for i in range.clone() {
+            velocity[i] = velocity[i] * decay - 0.5 * dt * g[i] / inertia[i];
+            theta[i] += dt * velocity[i];
+        }
+        model.gradient_into(&theta, &mut g);
+        for i in range.clone() {
+            velocity[i] = (velocity[i] - 0.5 * dt * g[i] / inertia[i]) * decay;
+        }
+        residual = max_abs(&g[range.clone()]) / scale;
+        if !residual.is_finite() {
+            return Err(StaticsError::NoConvergence {
+                method: "dissipative dynamics",
+                iterations: step,
+                residual,
+                tolerance: options.tolerance,
+            });
+        }
+    }
+    if residual <= options.tolerance {
+        return Ok((theta, options.max_steps));
+    }
+    Err(StaticsError::NoConvergence {
+        method: "dissipative dynamics",
+        iterations: options.max_steps,
+        residual,
+        tolerance: options.tolerance,
+    })
+}

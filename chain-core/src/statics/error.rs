@@ -1,0 +1,43 @@
+//! Errors of the static analyses. Each carries the numbers that explain it.
+
+use crate::error::BranchError;
+use crate::linalg::LinalgError;
+
+/// A static analysis that could not be carried out.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum StaticsError {
+    /// The branch solve failed while building a profile (no real root, bad index).
+    #[error("branch solve: {0}")]
+    Branch(#[from] BranchError),
+    /// A spectral computation failed.
+    #[error("linear algebra: {0}")]
+    Linalg(#[from] LinalgError),
+    /// A requested defect centre outside the chain.
+    #[error("centre {centre} is outside the chain: it must lie in [0, {max}] for {n} rotors")]
+    CentreOutOfRange { centre: f64, n: usize, max: f64 },
+    /// An iterative method stopped before reaching its tolerance.
+    #[error(
+        "{method} did not converge: after {iterations} iterations the residual is {residual:e} \
+         (tolerance {tolerance:e})"
+    )]
+    NoConvergence { method: &'static str, iterations: usize, residual: f64, tolerance: f64 },
+    /// The relaxed configuration no longer holds the defect it started with (for example an
+    /// antikink annihilated by a kink entering from a free end).
+    #[error(
+        "the relaxed configuration lost its {expected}: it has {kinks} kink(s) and {antikinks} antikink(s)"
+    )]
+    DefectLost { expected: &'static str, kinks: usize, antikinks: usize },
+    /// A spring-length impurity with no zero-energy state (paper Sec. VII-A: beyond `l_critical`).
+    #[error(
+        "spring {spring} with rest length {rest_length} has no zero-energy two-kink state: its rotors \
+         reach lengths from {min} to {max} (= l_critical)"
+    )]
+    NoZeroEnergyState { spring: usize, rest_length: f64, min: f64, max: f64 },
+    /// A slice with the wrong length for the chain.
+    #[error("{what} has {len} entries, the chain needs {expected}")]
+    WrongLength { what: &'static str, len: usize, expected: usize },
+    /// A non-finite number where a finite one is needed.
+    #[error("{what} is not finite ({value}) at index {index}")]
+    NotFinite { what: &'static str, index: usize, value: f64 },
+}

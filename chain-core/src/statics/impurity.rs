@@ -1,0 +1,114 @@
+//! A spring-length impurity (paper Sec. VII-A, Fig. `fig:longbar`).
+//!
+//! Give spring `p` a rest length `l0` longer than `lbar`. The chain still has zero-energy states,
+//! now with two kinks, one on each side of the impurity: the impurity's rotors lean apart,
+//! `theta_p = -phi`, `theta_{p+1} = +phi`, with `phi` set by `l_p(-phi, phi) = l0`, and each
+//! sub-chain is built outward by the branch maps. As `l0` grows to
+//! `l_critical = l_p(-theta_bar, +theta_bar) = sqrt((2 r sin theta_bar + a)^2 + (2 r cos theta_bar)^2)`,
+//! `phi -> theta_bar`, both kinks leave through the free ends, a soft vibrational mode (the two
+//! kinks moving in opposite directions) and its dual soft tensional mode (localised on the
+//! impurity) go to zero, and at `l0 = l_critical` the tensional mode becomes a state of self-stress.
+//! Beyond `l_critical` no zero-energy state exists.
+
+use alloc::vec;
+use alloc::vec::Vec;
+
+use super::counting::{Counting, TensionalMode, maxwell_calladine, tensional_modes};
+use super::error::StaticsError;
+use super::modes::{Mode, ModeOptions, modes};
+use crate::model::ChainModel;
+
+/// The length of spring `p` with its rotors at `theta_p`, `theta_{p+1}` (other rotors irrelevant),
+/// from the model's generated code.
+fn spring_length<M: ChainModel + ?Sized>(model: &M, p: usize, theta_p: f64, theta_next: f64) -> f64 {
+    let n = model.rotor_count();
+    let mut theta = vec![0.0; n];
+    theta[p] = theta_p;
+    theta[p + 1] = theta_next;
+    let mut lengths = vec![0.0; n - 1];
+    model.spring_lengths_into(&theta, &mut lengths);
+    lengths[p]
+}
+
+/// `l_critical` of spring `p`, computed: the spring's length with its left rotor at `-theta_bar`
+/// and its right rotor at `+theta_bar` (both sub-chains uniform, the kinks gone through the ends).
+pub fn critical_length<M: ChainModel + ?Sized>(model: &M, p: usize) -> f64 {
+    let tb = model.theta_bar();
+    spring_length(model, p, -tb, tb)
+}
+
+/// The zero-energy two-kink configuration around the impurity spring `p`, symmetric about it.
+pub fn two_kink_configuration<M: ChainModel + ?Sized>(model: &M, p: usize) -> Result<Vec<f64>, StaticsError> {
+    let n = model.rotor_count();
+    let l0 = model.rest_length(p);
+    let tb = model.theta_bar();
+    let reach = |phi: f64| spring_length(model, p, -phi, phi);
+    let critical = reach(tb);
+    if l0 > critical * (1.0 + 1e-14) || l0 < reach(0.0) {
+        return Err(StaticsError::NoZeroEnergyState {
+            spring: p,
+            rest_length: l0,
+            min: reach(0.0),
+            max: critical,
+        });
+    }
+    // l_p(-phi, phi) grows with phi on [0, theta_bar]: bisection.
+    let (mut lo, mut hi) = (0.0, tb);
+    for _ in 0..200 {
+        let mid = 0.5 * (lo + hi);
+        if mid == lo || mid == hi {
+            break;
+        }
+        if reach(mid) < l0 {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    let phi = 0.5 * (lo + hi);
+    let mut theta = vec![0.0; n];
+    theta[p] = -phi;
+    theta[p + 1] = phi;
+    for q in p + 1..n - 1 {
+        theta[q + 1] = model.next_angles(q, theta[q])?[0];
+    }
+    for q in (0..p).rev() {
+        theta[q] = model.previous_angles(q, theta[q + 1])?[0];
+    }
+    Ok(theta)
+}
+
+/// The linear analysis of the two-kink state around impurity spring `p`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ImpurityAnalysis {
+    /// The impurity's rest length and the critical length.
+    pub rest_length: f64,
+    pub critical_length: f64,
+    /// The zero-energy two-kink configuration.
+    pub theta: Vec<f64>,
+    /// The lowest modes: the zero mode (kinks moving together), then the soft mode (apart).
+    pub modes: Vec<Mode>,
+    /// The softest tensional mode (eigenvector of `C C^T`), localised on the impurity.
+    pub tensional: TensionalMode,
+    /// Maxwell-Calladine counting at the configuration.
+    pub counting: Counting,
+}
+
+/// Zero-energy state, lowest modes and softest tensional mode around impurity spring `p`.
+pub fn impurity_analysis<M: ChainModel + ?Sized>(
+    model: &M,
+    p: usize,
+) -> Result<ImpurityAnalysis, StaticsError> {
+    let theta = two_kink_configuration(model, p)?;
+    let lowest = modes(model, &theta, &ModeOptions { count: Some(3), ..ModeOptions::default() })?;
+    let tensional = tensional_modes(model, &theta, 1)?.remove(0);
+    let counting = maxwell_calladine(model, &theta, None)?;
+    Ok(ImpurityAnalysis {
+        rest_length: model.rest_length(p),
+        critical_length: critical_length(model, p),
+        theta,
+        modes: lowest,
+        tensional,
+        counting,
+    })
+}

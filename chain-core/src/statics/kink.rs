@@ -1,0 +1,117 @@
+//! The zero-energy kink at any centre (paper Sec. II), and the mechanism it moves along.
+//!
+//! Forward iteration of the branch map from the left end cannot centre a kink deep in a long
+//! chain: near `+theta_bar` the map's slope is `F' = (a + 2 r sin theta_bar)/(a - 2 r sin theta_bar)`
+//! (15.2 at `theta_bar = 0.58`), so a kink 30 sites in needs a starting offset of `F'^-30`, far
+//! below double precision. Instead the kink is built **outward from its centre**: the forward map
+//! to the right and the inverse map to the left. Each runs into the *attracting* fixed point of its
+//! direction (`-theta_bar` to the right, `+theta_bar` to the left), so rounding errors shrink at
+//! every step, whatever the length of the chain.
+//!
+//! The centre is the wall position of Appendix C: for an integer centre `c` rotor `c` stands
+//! vertical; for `c = i + f` the angles of rotors `i` and `i + 1` are chosen on the spring-`i`
+//! constraint so that the interpolated sign change sits at `i + f`.
+
+use alloc::vec;
+use alloc::vec::Vec;
+
+use super::error::StaticsError;
+use crate::model::ChainModel;
+
+/// The zero-energy kink of `model` centred at `centre` (in rotor indices, `0 <= centre <= n - 1`).
+pub fn kink<M: ChainModel + ?Sized>(model: &M, centre: f64) -> Result<Vec<f64>, StaticsError> {
+    wall_profile(model, centre, Wall::Kink)
+}
+
+/// The paper's first approximation of the antikink (Sec. II, Fig. `fig:akcobweb`): the kink's
+/// spring points reflected across the diagonal of the cobweb plot. Every spring `p` is at rest,
+/// but with its two angles swapped: `(theta_{p+1}, theta_p)` lies on spring `p`'s flipper branch.
+/// It runs from `-theta_bar` to `+theta_bar`, centred at `centre`, and is not an equilibrium: the
+/// antikink analysis relaxes it.
+pub fn reflected_kink<M: ChainModel + ?Sized>(model: &M, centre: f64) -> Result<Vec<f64>, StaticsError> {
+    wall_profile(model, centre, Wall::Reflected)
+}
+
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Wall {
+    Kink,
+    Reflected,
+}
+
+/// Builds a wall outward from its centre. For the kink, the forward map runs to the right and the
+/// inverse map to the left; the reflected wall swaps the two maps.
+fn wall_profile<M: ChainModel + ?Sized>(
+    model: &M,
+    centre: f64,
+    wall: Wall,
+) -> Result<Vec<f64>, StaticsError> {
+    let n = model.rotor_count();
+    let max = (n - 1) as f64;
+    if !(centre.is_finite() && (0.0..=max).contains(&centre)) {
+        return Err(StaticsError::CentreOutOfRange { centre, n, max });
+    }
+    // Spring p's map to the right (theta_p -> theta_{p+1}) and to the left.
+    let right = |p: usize, t: f64| -> Result<f64, StaticsError> {
+        Ok(match wall {
+            Wall::Kink => model.next_angles(p, t)?[0],
+            Wall::Reflected => model.previous_angles(p, t)?[0],
+        })
+    };
+    let left = |p: usize, t: f64| -> Result<f64, StaticsError> {
+        Ok(match wall {
+            Wall::Kink => model.previous_angles(p, t)?[0],
+            Wall::Reflected => model.next_angles(p, t)?[0],
+        })
+    };
+    let (i, f) = split(centre, n);
+    let mut theta = vec![0.0; n];
+    if f > 0.0 {
+        // theta_i between 0 and the angle whose right neighbour is 0, chosen by bisection so that
+        // the interpolated sign change theta_i / (theta_i - theta_{i+1}) sits at i + f.
+        let end = left(i, 0.0)?;
+        let position = |t: f64| -> Result<f64, StaticsError> { Ok(t / (t - right(i, t)?)) };
+        let (mut near, mut far) = (0.0, end);
+        for _ in 0..200 {
+            let mid = 0.5 * (near + far);
+            if mid == near || mid == far {
+                break;
+            }
+            if position(mid)? < f {
+                near = mid;
+            } else {
+                far = mid;
+            }
+        }
+        theta[i] = 0.5 * (near + far);
+    }
+    for p in i..n - 1 {
+        theta[p + 1] = right(p, theta[p])?;
+    }
+    for p in (0..i).rev() {
+        theta[p] = left(p, theta[p + 1])?;
+    }
+    Ok(theta)
+}
+
+/// `(i, f)` with `centre = i + f`, `0 <= f < 1`, `i + 1 < n` (a centre on the last rotor is
+/// `(n - 2, 1)` read as "rotor n - 1 vertical").
+fn split(centre: f64, n: usize) -> (usize, f64) {
+    let i = libm::floor(centre) as usize;
+    if i >= n - 1 { (n - 1, 0.0) } else { (i, centre - i as f64) }
+}
+
+/// The mechanism: kinks at `steps + 1` evenly spaced centres from `from` to `to`, each a
+/// zero-energy configuration (paper Sec. II: the kink can sit anywhere along the chain).
+pub fn mechanism_path<M: ChainModel + ?Sized>(
+    model: &M,
+    from: f64,
+    to: f64,
+    steps: usize,
+) -> Result<Vec<(f64, Vec<f64>)>, StaticsError> {
+    (0..=steps)
+        .map(|s| {
+            let c = if steps == 0 { from } else { from + (to - from) * s as f64 / steps as f64 };
+            kink(model, c).map(|theta| (c, theta))
+        })
+        .collect()
+}

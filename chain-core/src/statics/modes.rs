@@ -1,0 +1,228 @@
+//! Vibrational modes about an equilibrium (paper Sec. IV, Figs. `fig:mode-config`, `fig:w-th`).
+//!
+//! Small oscillations obey `K v = omega^2 I v` with `K` the tangent stiffness and `I = diag(M r_i^2)`.
+//! Scaling by `I^{-1/2}` keeps the problem symmetric tridiagonal, so the lowest modes of a long
+//! chain come from bisection and inverse iteration in O(n) each, and the whole spectrum from the
+//! implicit QL iteration in O(n^2) (`crate::linalg`).
+//!
+//! **Kinds of mode**, by where the mode lives: a mode concentrated near a domain wall is its
+//! *translation* mode (the one most parallel to the wall's displacement `dtheta/dx`) or a *shape*
+//! mode; a mode concentrated within a few sites of a free end is an *edge* mode; anything spread
+//! over the chain is *extended* (a phonon). Near-zero eigenvalues come in near-degenerate clusters
+//! (the antikink's translation and the two edge modes of its domains, for wide antikinks), inside
+//! which the eigensolver's vectors are arbitrary mixtures; such a cluster is first rotated to the
+//! basis that diagonalises the position operator, which separates modes living in different
+//! places.
+
+use alloc::vec;
+use alloc::vec::Vec;
+
+use nalgebra::DMatrix;
+
+use super::error::StaticsError;
+use super::walls::domain_walls;
+use crate::linalg;
+use crate::math;
+use crate::model::ChainModel;
+
+/// Where a mode lives.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ModeKind {
+    /// At a domain wall, along the wall's own displacement.
+    Translation,
+    /// At a domain wall, deforming it.
+    Shape,
+    /// At the left (`0`) or right (`n - 1`) end of the chain.
+    Edge { left: bool },
+    /// Spread over the chain.
+    Extended,
+}
+
+/// One vibrational mode.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Mode {
+    /// Eigenvalue `omega^2` of `I^{-1/2} K I^{-1/2}` (for equal rotors, `lambda(K) / (M r^2)`).
+    pub omega_squared: f64,
+    /// `omega = sqrt(omega^2)` (0 for a negative `omega^2`, i.e. an unstable direction).
+    pub frequency: f64,
+    /// The angular displacement pattern `v` (`K v = omega^2 I v`), normalised so `sum_i I_i v_i^2 = 1`.
+    pub shape: Vec<f64>,
+    /// Mean position `sum_i i w_i` of the weights `w_i = I_i v_i^2`.
+    pub position: f64,
+    /// Participation number `1 / sum_i w_i^2`: how many rotors take part.
+    pub participation: f64,
+    pub kind: ModeKind,
+}
+
+/// Settings of [`modes`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ModeOptions {
+    /// How many of the lowest modes to compute (`None`: all of them, O(n^2) for the values).
+    pub count: Option<usize>,
+    /// Eigenvalues closer than `cluster * ||K||` are treated as one degenerate cluster.
+    pub cluster: f64,
+    /// A mode is localised when fewer than `localised_fraction * n` rotors take part, and fewer
+    /// than `localised_widths` wall widths.
+    pub localised_fraction: f64,
+    pub localised_widths: f64,
+    /// A localised mode within `reach` wall widths (at least 4 rotors) of an end or of a wall
+    /// belongs to it. The width is the continuum `w = a^2 / (2 r sin theta_bar)` (App. E).
+    pub reach: f64,
+    /// Analyse with the end rotors held (the boundary condition of
+    /// [`super::antikink::Ends::Held`]): the held rotors' shape entries are zero. Default `false`.
+    pub hold_ends: bool,
+}
+
+impl Default for ModeOptions {
+    fn default() -> Self {
+        Self {
+            count: None,
+            cluster: 1e-9,
+            localised_fraction: 0.5,
+            localised_widths: 6.0,
+            reach: 3.0,
+            hold_ends: false,
+        }
+    }
+}
+
+/// The lowest modes of `model` about `theta` (all of them by default), ascending in `omega^2`.
+pub fn modes<M: ChainModel + ?Sized>(
+    model: &M,
+    theta: &[f64],
+    options: &ModeOptions,
+) -> Result<Vec<Mode>, StaticsError> {
+    let n = model.rotor_count();
+    let (diag, off) = super::equilibrium::stiffness(model, theta);
+    let inertia: Vec<f64> = (0..n).map(|i| model.inertia(i)).collect();
+    let root: Vec<f64> = inertia.iter().map(|&x| math::sqrt(x)).collect();
+    // The moving rotors: all, or all but the held ends.
+    let first = usize::from(options.hold_ends && n > 2);
+    let end = if options.hold_ends && n > 2 { n - 1 } else { n };
+    let sdiag: Vec<f64> = (first..end).map(|i| diag[i] / inertia[i]).collect();
+    let soff: Vec<f64> = (first..end - 1).map(|i| off[i] / (root[i] * root[i + 1])).collect();
+    let k = options.count.unwrap_or(n).min(sdiag.len());
+    let pairs = linalg::lowest_eigenpairs(&sdiag, &soff, k)?;
+    let mut values: Vec<f64> = pairs.iter().map(|p| p.value).collect();
+    let mut vectors: Vec<Vec<f64>> = pairs
+        .into_iter()
+        .map(|p| {
+            let mut full = vec![0.0; n];
+            full[first..end].copy_from_slice(&p.vector);
+            full
+        })
+        .collect();
+    let scaled_norm = super::equilibrium::norm(&sdiag, &soff).max(f64::MIN_POSITIVE);
+    localise_clusters(&mut values, &mut vectors, options.cluster * scaled_norm);
+
+    let walls = domain_walls(theta);
+    // The displacement of each wall, dtheta/dx, by central differences of the profile.
+    let slope: Vec<f64> = (0..n)
+        .map(|i| {
+            let (l, r) = (theta[i.saturating_sub(1)], theta[(i + 1).min(n - 1)]);
+            (r - l) / ((i + 1).min(n - 1) - i.saturating_sub(1)) as f64
+        })
+        .collect();
+    let mut result: Vec<Mode> = values
+        .iter()
+        .zip(vectors)
+        .map(|(&value, u)| {
+            // u is orthonormal in the scaled problem; v = I^{-1/2} u has sum I v^2 = 1.
+            let weights: Vec<f64> = u.iter().map(|x| x * x).collect();
+            let position = weights.iter().enumerate().map(|(i, w)| i as f64 * w).sum::<f64>();
+            let participation = 1.0 / weights.iter().map(|w| w * w).sum::<f64>();
+            let shape: Vec<f64> = u.iter().zip(&root).map(|(x, r)| x / r).collect();
+            Mode {
+                omega_squared: value,
+                frequency: math::sqrt(value.max(0.0)),
+                shape,
+                position,
+                participation,
+                kind: ModeKind::Extended,
+            }
+        })
+        .collect();
+    // Kinds: edges first, then walls; at each wall the mode most parallel to dtheta/dx translates it.
+    let width = {
+        let (a, r) = (model.lattice_spacing(), model.rotor_length(n / 2));
+        a * a / (2.0 * r * libm::sin(model.theta_bar()))
+    };
+    let reach = (options.reach * width).max(4.0);
+    let max_participation =
+        (options.localised_fraction * n as f64).min(options.localised_widths * width + 4.0);
+    // Where the weight is: within `reach` of the left end, the right end, or a wall. (A mean
+    // position would put a mode living at both ends in the middle.)
+    let weight_in = |m: &Mode, near: &dyn Fn(f64) -> bool| -> f64 {
+        m.shape
+            .iter()
+            .zip(&inertia)
+            .enumerate()
+            .filter(|(i, _)| near(*i as f64))
+            .map(|(_, (v, i))| i * v * v)
+            .sum()
+    };
+    let last = (n - 1) as f64;
+    for m in result.iter_mut().filter(|m| m.participation < max_participation) {
+        let left = weight_in(m, &|x| x < reach);
+        let right = weight_in(m, &|x| x > last - reach);
+        let at_wall = weight_in(m, &|x| walls.iter().any(|w| (w.position - x).abs() < reach));
+        if left + right > 0.5 && left + right >= at_wall {
+            m.kind = ModeKind::Edge { left: left >= right };
+        } else if at_wall > 0.5 {
+            m.kind = ModeKind::Shape;
+        }
+    }
+    for wall in &walls {
+        let overlap = |m: &Mode| {
+            let dot: f64 = m.shape.iter().zip(&slope).zip(&inertia).map(|((v, s), i)| v * s * i).sum();
+            dot.abs()
+        };
+        let best = result
+            .iter_mut()
+            .filter(|m| m.kind == ModeKind::Shape && (m.position - wall.position).abs() < reach)
+            .max_by(|a, b| overlap(a).total_cmp(&overlap(b)));
+        if let Some(m) = best {
+            m.kind = ModeKind::Translation;
+        }
+    }
+    Ok(result)
+}
+
+/// Rotates every cluster of eigenvalues closer than `tolerance` to the basis in which the
+/// position operator `diag(i)` is diagonal: within a degenerate subspace any basis is an
+/// eigenbasis, and this one puts each vector where it lives.
+fn localise_clusters(values: &mut [f64], vectors: &mut [Vec<f64>], tolerance: f64) {
+    let mut start = 0;
+    while start < values.len() {
+        let mut end = start + 1;
+        while end < values.len() && values[end] - values[end - 1] <= tolerance {
+            end += 1;
+        }
+        let size = end - start;
+        if size > 1 {
+            let block = &vectors[start..end];
+            let x = DMatrix::<f64>::from_fn(size, size, |a, b| {
+                block[a].iter().zip(&block[b]).enumerate().map(|(i, (u, v))| i as f64 * u * v).sum::<f64>()
+            });
+            let eig = x.symmetric_eigen();
+            let n = block[0].len();
+            let rotated: Vec<Vec<f64>> = (0..size)
+                .map(|c| {
+                    let mut v = vec![0.0; n];
+                    for (a, basis) in block.iter().enumerate() {
+                        let w = eig.eigenvectors[(a, c)];
+                        for (vi, bi) in v.iter_mut().zip(basis) {
+                            *vi += w * bi;
+                        }
+                    }
+                    v
+                })
+                .collect();
+            // Rayleigh quotients are all equal within the tolerance; keep the values sorted.
+            for (slot, v) in vectors[start..end].iter_mut().zip(rotated) {
+                *slot = v;
+            }
+        }
+        start = end;
+    }
+}

@@ -1,0 +1,216 @@
+//! Statics acceptance (paper Secs. III-V, VII-A; r/a = 0.8, k = 1e4, M = 1, n = 60 unless said):
+//! antikink energies and the Peierls-Nabarro barrier, modes, Maxwell-Calladine counting.
+//!
+//! References are the paper's numbers and the continuum closed forms (docs/statics.md), never
+//! values computed by the code under test.
+
+use rotor_chain::RuntimeChain;
+use rotor_chain::prelude::*;
+use rotor_chain::statics::antikink::{AntikinkOptions, antikink_relaxed, peierls_nabarro};
+use rotor_chain::statics::classify::EquilibriumKind;
+use rotor_chain::statics::counting::maxwell_calladine;
+use rotor_chain::statics::impurity::{critical_length, impurity_analysis};
+use rotor_chain::statics::kink::kink;
+use rotor_chain::statics::modes::{ModeKind, ModeOptions, modes};
+
+const K: f64 = 1.0e4;
+
+fn chain(n: usize, theta_bar: f64) -> RuntimeChain {
+    RuntimeChain::builder(n, 0.8, K, theta_bar).build().unwrap()
+}
+
+/// Paper Eq. (eq:akenergy), in units of k a^2.
+fn continuum_antikink_energy(theta_bar: f64) -> f64 {
+    let (s, c) = theta_bar.sin_cos();
+    16.0 / 3.0 * 0.8f64.powi(3) * s.powi(3) / (1.0 + 4.0 * 0.64 * c * c)
+}
+
+/// Paper Eq. (eq:continuumtheoryfrequency2).
+fn continuum_shape_frequency(theta_bar: f64) -> f64 {
+    let (s, c) = theta_bar.sin_cos();
+    0.8 * (12.0 * K).sqrt() * s / (1.0 + 4.0 * 0.64 * c * c).sqrt()
+}
+
+#[test]
+fn antikink_energy_and_barrier_at_the_papers_point() {
+    let pn = peierls_nabarro(&chain(60, 0.58), &AntikinkOptions::default()).unwrap();
+    assert!(
+        pn.resolved,
+        "one minimum and one saddle: {:?} / {:?}",
+        pn.rotor_centred.classification, pn.spring_centred.classification
+    );
+    let (min, saddle) = (pn.minimum(), pn.saddle());
+    assert_eq!(min.classification.kind.clone(), min.classification.kind);
+    assert!(matches!(saddle.classification.kind, EquilibriumKind::Saddle { index: 1 }));
+    // Paper Sec. V: 1359.15 (minimum) and 1359.75 (saddle), barrier 0.60.
+    assert!((1300.0..=1450.0).contains(&min.energy), "antikink energy {}", min.energy);
+    assert!((0.45..=0.8).contains(&pn.barrier), "PN barrier {}", pn.barrier);
+    eprintln!(
+        "theta_bar = 0.58: V_min = {:.4}, V_saddle = {:.4}, barrier = {:.4}",
+        min.energy, saddle.energy, pn.barrier
+    );
+}
+
+#[test]
+fn the_papers_relaxation_lands_in_the_minimum() {
+    let model = chain(60, 0.58);
+    let relaxed = antikink_relaxed(&model, 29.0, &AntikinkOptions::default()).unwrap();
+    let pn = peierls_nabarro(&model, &AntikinkOptions::default()).unwrap();
+    assert!(
+        (relaxed.energy - pn.minimum().energy).abs() < 1e-6 * relaxed.energy,
+        "{} vs {}",
+        relaxed.energy,
+        pn.minimum().energy
+    );
+    assert_eq!(relaxed.classification.index, 0);
+}
+
+#[test]
+fn antikink_energy_approaches_the_continuum_at_small_theta_bar() {
+    let mut previous = f64::INFINITY;
+    for theta_bar in [0.1, 0.2, 0.3, 0.4, 0.5, 0.58, 0.65] {
+        let pn = peierls_nabarro(&chain(60, theta_bar), &AntikinkOptions::default()).unwrap();
+        let ratio = pn.minimum().energy / (K * continuum_antikink_energy(theta_bar));
+        eprintln!("theta_bar = {theta_bar}: V / V_continuum = {ratio:.5}");
+        if theta_bar == 0.1 {
+            assert!((0.98..=1.0).contains(&ratio), "ratio {ratio} at 0.1");
+        }
+        assert!(ratio < previous, "the ratio falls as theta_bar grows: {ratio} after {previous}");
+        previous = ratio;
+    }
+}
+
+#[test]
+fn peierls_nabarro_barrier_falls_exponentially_with_the_width() {
+    // ln(V_PNB / k a^2) against w / a, w = a^2 / (2 r sin theta_bar) (paper Fig. fig:logvpn-theta).
+    let mut points = Vec::new();
+    for theta_bar in [0.35, 0.4, 0.45, 0.5, 0.55, 0.6, 0.65] {
+        let pn = peierls_nabarro(&chain(60, theta_bar), &AntikinkOptions::default()).unwrap();
+        assert!(pn.resolved, "theta_bar = {theta_bar}");
+        let w = 1.0 / (2.0 * 0.8 * f64::sin(theta_bar));
+        points.push((w, (pn.barrier / K).ln()));
+    }
+    let n = points.len() as f64;
+    let (mx, my) = (points.iter().map(|p| p.0).sum::<f64>() / n, points.iter().map(|p| p.1).sum::<f64>() / n);
+    let slope = points.iter().map(|p| (p.0 - mx) * (p.1 - my)).sum::<f64>()
+        / points.iter().map(|p| (p.0 - mx).powi(2)).sum::<f64>();
+    eprintln!("slope of ln V_PNB vs w/a: {slope:.3} (paper fit -10.6, continuum -pi^2)");
+    assert!((-12.5..=-9.5).contains(&slope), "slope {slope}");
+}
+
+#[test]
+fn shape_modes_match_the_continuum_at_small_theta_bar() {
+    let model = chain(60, 0.1);
+    let expected = continuum_shape_frequency(0.1);
+    let opts = ModeOptions { count: Some(8), ..ModeOptions::default() };
+    let kink_theta = kink(&model, 29.5).unwrap();
+    let kink_modes = modes(&model, &kink_theta, &opts).unwrap();
+    let shape = kink_modes.iter().find(|m| m.kind == ModeKind::Shape).expect("a kink shape mode");
+    assert!((shape.frequency / expected - 1.0).abs() < 0.02, "kink shape {} vs {expected}", shape.frequency);
+    let pn = peierls_nabarro(&model, &AntikinkOptions::default()).unwrap();
+    let ak_modes = modes(&model, &pn.minimum().theta, &opts).unwrap();
+    let shape = ak_modes.iter().find(|m| m.kind == ModeKind::Shape).expect("an antikink shape mode");
+    assert!(
+        (shape.frequency / expected - 1.0).abs() < 0.02,
+        "antikink shape {} vs {expected}",
+        shape.frequency
+    );
+}
+
+#[test]
+fn antikink_translation_is_soft_but_not_zero_and_separate_from_edge_modes() {
+    let model = chain(60, 0.58);
+    let pn = peierls_nabarro(&model, &AntikinkOptions::default()).unwrap();
+    let all = modes(&model, &pn.minimum().theta, &ModeOptions { count: Some(8), ..ModeOptions::default() })
+        .unwrap();
+    let t = all.iter().find(|m| m.kind == ModeKind::Translation).expect("a translation mode");
+    let s = all.iter().find(|m| m.kind == ModeKind::Shape).expect("a shape mode");
+    assert!(
+        t.frequency > 0.0 && t.frequency < s.frequency,
+        "translation {} vs shape {}",
+        t.frequency,
+        s.frequency
+    );
+    assert!(
+        (t.position - pn.minimum().centre).abs() < 3.0,
+        "translation mode at {} vs antikink at {}",
+        t.position,
+        pn.minimum().centre
+    );
+    let edges = all.iter().filter(|m| matches!(m.kind, ModeKind::Edge { .. })).count();
+    assert!(edges >= 1, "edge modes found: {all:#?}");
+}
+
+#[test]
+fn kink_translation_is_a_zero_mode_at_every_position() {
+    let model = chain(60, 0.58);
+    for centre in [10.0, 20.5, 29.5, 33.25, 45.0] {
+        let theta = kink(&model, centre).unwrap();
+        let all = modes(&model, &theta, &ModeOptions { count: Some(6), ..ModeOptions::default() }).unwrap();
+        let t = all.iter().find(|m| m.kind == ModeKind::Translation).expect("translation");
+        let s = all.iter().find(|m| m.kind == ModeKind::Shape).expect("shape");
+        assert!(
+            t.omega_squared.abs() <= 1e-8 * s.omega_squared,
+            "centre {centre}: {} vs {}",
+            t.omega_squared,
+            s.omega_squared
+        );
+    }
+}
+
+#[test]
+fn maxwell_calladine_index_is_one_everywhere_and_l_critical_has_a_self_stress() {
+    let model = chain(60, 0.58);
+    let pn = peierls_nabarro(&model, &AntikinkOptions::default()).unwrap();
+    for theta in
+        [kink(&model, 20.3).unwrap(), pn.minimum().theta.clone(), pn.saddle().theta.clone(), vec![0.58; 60]]
+    {
+        let c = maxwell_calladine(&model, &theta, None).unwrap();
+        assert_eq!(
+            c.index(),
+            1,
+            "zero modes {} - self-stresses {}",
+            c.zero_modes.len(),
+            c.self_stresses.len()
+        );
+    }
+    // Spring-length impurity at l_critical (paper Sec. VII-A): closed form sqrt((2 r sin + a)^2 + (2 r cos)^2).
+    let (s, c) = 0.58f64.sin_cos();
+    let l_critical = ((2.0 * 0.8 * s + 1.0).powi(2) + (2.0 * 0.8 * c).powi(2)).sqrt();
+    assert!((critical_length(&model, 29) - l_critical).abs() < 1e-12);
+    assert!((l_critical - 2.31).abs() < 0.01, "paper: l_critical / a = 2.31");
+    let at_critical =
+        RuntimeChain::builder(60, 0.8, K, 0.58).spring(29, None, Some(l_critical)).build().unwrap();
+    let analysis = impurity_analysis(&at_critical, 29).unwrap();
+    assert_eq!(analysis.counting.self_stresses.len(), 1, "one state of self-stress at l_critical");
+    assert_eq!(analysis.counting.zero_modes.len(), 2);
+}
+
+#[test]
+fn soft_mode_and_tensional_mode_soften_towards_l_critical() {
+    let (s, c) = 0.58f64.sin_cos();
+    let l_critical = ((2.0 * 0.8 * s + 1.0).powi(2) + (2.0 * 0.8 * c).powi(2)).sqrt();
+    let mut previous = (f64::INFINITY, f64::INFINITY);
+    for l0 in [1.9, 2.1, 2.25, 2.30] {
+        let model = RuntimeChain::builder(60, 0.8, K, 0.58).spring(29, None, Some(l0)).build().unwrap();
+        let a = impurity_analysis(&model, 29).unwrap();
+        let soft = a.modes[1].frequency;
+        let tension = a.tensional.eigenvalue;
+        eprintln!("l0 = {l0}: soft mode omega = {soft:.3e}, softest tensional eigenvalue = {tension:.3e}");
+        assert!(soft < previous.0 && tension < previous.1, "both soften as l0 -> l_critical = {l_critical}");
+        previous = (soft, tension);
+        // The tensional mode lives on the impurity spring.
+        let peak =
+            a.tensional.tensions.iter().enumerate().max_by(|x, y| x.1.abs().total_cmp(&y.1.abs())).unwrap().0;
+        assert!((peak as isize - 29).abs() <= 1, "tensional mode peaks at spring {peak}");
+    }
+}
+
+#[test]
+fn failures_are_typed_errors() {
+    let model = chain(60, 0.58);
+    assert!(kink(&model, 60.5).is_err());
+    assert!(kink(&model, f64::NAN).is_err());
+    let too_long = RuntimeChain::builder(60, 0.8, K, 0.58).spring(29, None, Some(2.5)).build().unwrap();
+    assert!(impurity_analysis(&too_long, 29).is_err(), "no zero-energy state beyond l_critical");
+}
