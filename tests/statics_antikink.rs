@@ -5,7 +5,6 @@
 //! values computed by the code under test.
 
 use rotor_chain::RuntimeChain;
-use rotor_chain::prelude::*;
 use rotor_chain::statics::antikink::{AntikinkOptions, antikink_relaxed, peierls_nabarro};
 use rotor_chain::statics::classify::EquilibriumKind;
 use rotor_chain::statics::counting::maxwell_calladine;
@@ -213,4 +212,38 @@ fn failures_are_typed_errors() {
     assert!(kink(&model, f64::NAN).is_err());
     let too_long = RuntimeChain::builder(60, 0.8, K, 0.58).spring(29, None, Some(2.5)).build().unwrap();
     assert!(impurity_analysis(&too_long, 29).is_err(), "no zero-energy state beyond l_critical");
+}
+
+#[test]
+fn phonon_band_edges_of_the_uniform_chain_match_the_exact_dispersion() {
+    use rotor_chain::linalg::eigenvalues;
+    use rotor_chain::statics::continuum::ContinuumChain;
+    use rotor_chain::statics::equilibrium::stiffness;
+    for (n, theta_bar) in [(60, 0.58), (200, 0.3)] {
+        let model = chain(n, theta_bar);
+        let (diag, off) = stiffness(&model, &vec![theta_bar; n]);
+        let ours = eigenvalues(&diag, &off).unwrap();
+        let exact =
+            ContinuumChain::new(1.0, 0.8, theta_bar, K, 1.0).unwrap().finite_chain_spectrum(n).unwrap();
+        let top = exact[n - 1];
+        for (j, (a, b)) in ours.iter().zip(&exact).enumerate() {
+            assert!((a - b).abs() <= 1e-8 * top, "n = {n}, eigenvalue {j}: {a} vs exact {b}");
+        }
+        // The band edges (the lowest and highest phonons) in particular.
+        assert!((ours[1] / exact[1] - 1.0).abs() < 1e-8 && (ours[n - 1] / exact[n - 1] - 1.0).abs() < 1e-8);
+    }
+}
+
+#[test]
+fn finite_size_effects_on_the_barrier_decay_with_the_chain_length() {
+    use rotor_chain::statics::antikink::barrier_vs_size;
+    // Paper Fig. fig:logvpn-size: theta_bar = 0.40, Delta V_PNB = V_PNB(L) - V_PNB(60).
+    let sizes = [16, 20, 24, 28, 60];
+    let barriers = barrier_vs_size(&sizes, |n| chain(n, 0.40), &AntikinkOptions::default()).unwrap();
+    let reference = barriers.last().unwrap().1;
+    let deltas: Vec<f64> = barriers[..4].iter().map(|(_, b)| (b - reference).abs()).collect();
+    eprintln!("Delta V_PNB for n = 16, 20, 24, 28: {deltas:?}");
+    for w in deltas.windows(2) {
+        assert!(w[1] < w[0], "finite-size corrections shrink with n: {deltas:?}");
+    }
 }

@@ -421,9 +421,8 @@ fn solves_indefinite_and_definite_systems() {
 
 #[test]
 fn singular_systems_are_errors_not_nans() {
-    assert!(
-        matches!(solve(&[1.0, 1.0], &[1.0], &[1.0, 2.0]), Err(LinalgError::Singular { row: 1, pivot }) if pivot == 0.0)
-    );
+    let singular = solve(&[1.0, 1.0], &[1.0], &[1.0, 2.0]);
+    assert!(matches!(singular, Err(LinalgError::Singular { row: 1, pivot }) if pivot == 0.0), "{singular:?}");
     assert!(matches!(solve(&[0.0], &[], &[1.0]), Err(LinalgError::Singular { row: 0, .. })));
     // At an exact eigenvalue of the Toeplitz matrix 2, -1 of order 3 (2 - sqrt 2, 2, 2 + sqrt 2).
     assert!(matches!(
@@ -432,7 +431,7 @@ fn singular_systems_are_errors_not_nans() {
     ));
     // The chain's mechanism.
     let (diag, off) = chain_blocks(1, 10, -1.0, 0.066, 0.0);
-    match solve(&diag, &off, &vec![1.0; 10]) {
+    match solve(&diag, &off, &[1.0; 10]) {
         Err(LinalgError::Singular { .. }) => {}
         Ok(x) => assert!(x.iter().all(|v| v.is_finite()), "a solution must be finite"),
         Err(e) => panic!("unexpected {e}"),
@@ -441,6 +440,11 @@ fn singular_systems_are_errors_not_nans() {
 
 // ---------------------------------------------------------------------------------------------
 // Bad input
+
+/// Whether an error is `NotFinite` at `input[index]`.
+fn not_finite(input: Input, index: usize) -> impl Fn(LinalgError) -> bool {
+    move |e| matches!(e, LinalgError::NotFinite { input: i, index: j, .. } if (i, j) == (input, index))
+}
 
 #[test]
 fn bad_input_gives_typed_errors() {
@@ -457,15 +461,18 @@ fn bad_input_gives_typed_errors() {
     assert_eq!(eigenvalues(&[], &[1.0]).err(), Some(LinalgError::DimensionMismatch { diag: 0, off: 1 }));
     assert_eq!(solve(&[1.0, 2.0], &[1.0], &[1.0]).err(), Some(LinalgError::RhsMismatch { n: 2, rhs: 1 }));
 
-    let nan = |input, index| move |e: LinalgError| matches!(e, LinalgError::NotFinite { input: i, index: j, .. } if i == input && j == index);
-    assert!(eigenvalues(&[1.0, f64::NAN], &[1.0]).is_err_and(nan(Input::Diag, 1)));
-    assert!(eigenpairs(&[1.0, 2.0], &[f64::INFINITY]).is_err_and(nan(Input::Off, 0)));
-    assert!(lowest_eigenpairs(&[1.0, f64::NAN], &[1.0], 1).is_err_and(nan(Input::Diag, 1)));
-    assert!(eigenvalues_in_index_range(&[f64::NAN], &[], 0, 1).is_err_and(nan(Input::Diag, 0)));
-    assert!(solve(&[1.0, 2.0], &[1.0], &[1.0, f64::NAN]).is_err_and(nan(Input::Rhs, 1)));
-    assert!(solve_shifted(&[1.0, 2.0], &[1.0], f64::NAN, &[1.0, 1.0]).is_err_and(nan(Input::Shift, 0)));
-    assert!(eigenpairs_near(&[1.0, 2.0], &[1.0], f64::NEG_INFINITY, 1).is_err_and(nan(Input::Shift, 0)));
-    assert!(try_count_below(&[1.0, 2.0], &[1.0], f64::NAN).is_err_and(nan(Input::Shift, 0)));
+    assert!(eigenvalues(&[1.0, f64::NAN], &[1.0]).is_err_and(not_finite(Input::Diag, 1)));
+    assert!(eigenpairs(&[1.0, 2.0], &[f64::INFINITY]).is_err_and(not_finite(Input::Off, 0)));
+    assert!(lowest_eigenpairs(&[1.0, f64::NAN], &[1.0], 1).is_err_and(not_finite(Input::Diag, 1)));
+    assert!(eigenvalues_in_index_range(&[f64::NAN], &[], 0, 1).is_err_and(not_finite(Input::Diag, 0)));
+    assert!(solve(&[1.0, 2.0], &[1.0], &[1.0, f64::NAN]).is_err_and(not_finite(Input::Rhs, 1)));
+    assert!(
+        solve_shifted(&[1.0, 2.0], &[1.0], f64::NAN, &[1.0, 1.0]).is_err_and(not_finite(Input::Shift, 0))
+    );
+    assert!(
+        eigenpairs_near(&[1.0, 2.0], &[1.0], f64::NEG_INFINITY, 1).is_err_and(not_finite(Input::Shift, 0))
+    );
+    assert!(try_count_below(&[1.0, 2.0], &[1.0], f64::NAN).is_err_and(not_finite(Input::Shift, 0)));
     // The unchecked count does not panic on bad input.
     let _ = count_below(&[1.0, f64::NAN, 3.0], &[1.0], f64::NAN);
     let _ = count_below(&[1.0], &[1.0, 2.0], 0.0);

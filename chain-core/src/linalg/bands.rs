@@ -151,3 +151,41 @@ pub(crate) fn orient(v: &mut [f64]) {
 pub(crate) fn dot(a: &[f64], b: &[f64]) -> f64 {
     a.iter().zip(b).map(|(x, y)| x * y).sum()
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn scaling_is_by_an_exact_power_of_two() {
+        for largest in [1.0, 1.5, 3.0, 1e-300, 1e300, f64::MAX, 5e-324, 1e-310] {
+            let s = power_of_two_scale(largest);
+            assert_eq!(s.to_bits() & ((1 << 52) - 1), 0, "{largest}: {s} is a power of two");
+            if (1e-300..1e300).contains(&largest) {
+                assert!((1.0..2.0).contains(&(largest * s)), "{largest} * {s}");
+            }
+            assert!((largest * s).is_finite() && largest * s > 0.0);
+        }
+        assert_eq!(power_of_two_scale(0.0), 1.0);
+        assert_eq!(power_of_two_scale(1.0), 1.0);
+        assert_eq!(power_of_two_scale(0.75), 2.0);
+    }
+
+    #[test]
+    fn hypot_neither_overflows_nor_underflows() {
+        assert_eq!(hypot(3.0, -4.0), 5.0);
+        assert_eq!(hypot(0.0, 0.0), 0.0);
+        assert!((hypot(3e300, 4e300) / 5e300 - 1.0).abs() < 1e-15);
+        assert!((hypot(3e-300, 4e-300) / 5e-300 - 1.0).abs() < 1e-15);
+        assert!((norm2(&[3e200, 4e200]) / 5e200 - 1.0).abs() < 1e-15);
+    }
+
+    #[test]
+    fn orientation_makes_the_largest_entry_positive() {
+        let mut v = [0.1, -0.9, 0.3];
+        orient(&mut v);
+        assert_eq!(v, [-0.1, 0.9, -0.3]);
+        orient(&mut v);
+        assert_eq!(v, [-0.1, 0.9, -0.3]);
+    }
+}

@@ -33,7 +33,10 @@ impl fmt::Display for Input {
 #[non_exhaustive]
 pub enum LinalgError {
     /// `off` must have one entry fewer than `diag` (none when `diag` has at most one).
-    #[error("off has {off} entries, but a matrix with {diag} diagonal entries needs {expected}", expected = .diag.saturating_sub(1))]
+    #[error(
+        "off has {off} entries, but a matrix with {diag} diagonal entries needs {expected}",
+        expected = .diag.saturating_sub(1)
+    )]
     DimensionMismatch { diag: usize, off: usize },
     /// The right-hand side of a solve must have one entry per row.
     #[error("the right-hand side has {rhs} entries, but the matrix has {n} rows")]

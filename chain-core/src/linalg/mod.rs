@@ -5,13 +5,37 @@
 //! (length `n - 1`, `off[i] = T[i][i+1] = T[i+1][i]`), as in [`Tridiagonal`](crate::Tridiagonal).
 //! One algorithm per file:
 //!
-//! | file | algorithm | cost |
-//! |---|---|---|
-//! | [`sturm`] | [`count_below`]: Sturm count, the inertia of `T - x I` (the Morse index at `x = 0`) | O(n) |
-//! | [`bisection`] | [`eigenvalues_in_index_range`]: bisection on Sturm counts | O(n) per eigenvalue |
-//! | [`ql`] | [`eigenvalues`], [`eigenpairs`]: implicit QL with Wilkinson shifts | O(n^2), O(n^3) with vectors |
-//! | [`inverse_iteration`] | [`lowest_eigenpairs`], [`eigenpairs_near`]: bisection, then inverse iteration with re-orthogonalised clusters | O(n) per eigenpair |
-//! | [`solve`](mod@solve) | [`solve`](fn@solve), [`solve_shifted`]: Gaussian elimination with partial pivoting | O(n) |
+//! - [`sturm`]: [`count_below`], the Sturm count, from the inertia of `T - x I` (at `x = 0` the
+//!   Morse index). O(n).
+//! - [`bisection`]: [`eigenvalues_in_index_range`], bisection on Sturm counts. O(n) per
+//!   eigenvalue.
+//! - [`ql`]: [`eigenvalues`], [`eigenpairs`], the implicit QL iteration with Wilkinson shifts.
+//!   O(n^2), and O(n^3) with the eigenvectors.
+//! - [`inverse_iteration`]: [`lowest_eigenpairs`], [`eigenpairs_near`],
+//!   [`eigenpairs_in_index_range`], bisection and then inverse iteration, re-orthogonalised
+//!   within clusters. O(n) per eigenpair outside large clusters.
+//! - [`solve`](mod@solve): [`solve`](fn@solve), [`solve_shifted`], Gaussian elimination with
+//!   partial pivoting. O(n).
+//!
+//! What they share (input checks, exact scaling, norms) is in the private `bands.rs`.
+//!
+//! ```
+//! use chain_core::linalg;
+//!
+//! // The stiffness of a free chain of five unit springs: one zero mode, the uniform rotation.
+//! let diag = [1.0, 2.0, 2.0, 2.0, 1.0];
+//! let off = [-1.0; 4];
+//! assert_eq!(linalg::count_below(&diag, &off, -1e-12), 0); // no negative eigenvalue: stable
+//! assert_eq!(linalg::count_below(&diag, &off, 1e-12), 1); // one zero mode
+//! let modes = linalg::lowest_eigenpairs(&diag, &off, 2)?;
+//! assert!(modes[0].value.abs() < 1e-14);
+//! assert!(modes[0].vector.iter().all(|&x| (x - 1.0 / 5f64.sqrt()).abs() < 1e-14));
+//! // The others are 2 - 2 cos(j pi / 5).
+//! assert!((modes[1].value - (2.0 - 2.0 * (std::f64::consts::PI / 5.0).cos())).abs() < 1e-14);
+//! let x = linalg::solve_shifted(&diag, &off, -1.0, &[1.0, 0.0, 0.0, 0.0, -1.0])?;
+//! assert!((x[0] + x[4]).abs() < 1e-15);
+//! # Ok::<(), linalg::LinalgError>(())
+//! ```
 //!
 //! Every function checks its input (except the hot [`count_below`], which has the checked
 //! [`try_count_below`]) and reports a [`LinalgError`] carrying the numbers instead of panicking

@@ -1,7 +1,8 @@
 //! All eigenvalues, and if wanted all eigenvectors, by the implicit QL iteration with
-//! Wilkinson shifts (Golub & Van Loan, *Matrix Computations*, 4th ed., Sec. 8.3.5, Algorithm
-//! 8.3.2 in its QL form; Parlett, *The Symmetric Eigenvalue Problem*, Ch. 8; the EISPACK/LAPACK
-//! `tql2`/`dsteqr` lineage as written in *Numerical Recipes*' `tqli`).
+//! Wilkinson shifts (Golub & Van Loan, *Matrix Computations*, 4th ed., Sec. 8.3, Algorithm
+//! 8.3.2 in its QL form; Parlett, *The Symmetric Eigenvalue Problem*, Ch. 8; Bowdler, Martin,
+//! Reinsch & Wilkinson, *Numer. Math.* 11, 1968, EISPACK's `tql2`, LAPACK's `dsteqr`, and
+//! *Numerical Recipes*' `tqli`, whose loop this follows).
 //!
 //! Each sweep applies `T <- Q^T T Q` for the QL factorisation `T - mu I = Q L`, chasing the bulge
 //! from the bottom of an unreduced block up to its top by Givens rotations, without forming
@@ -13,7 +14,8 @@
 //!
 //! Cost: about 2 sweeps per eigenvalue, each O(n): O(n^2) for the eigenvalues alone (`n` square
 //! roots per sweep), plus `6n` flops per rotation, so O(n^3) (about `3 n^3`), to accumulate the
-//! eigenvectors. An iteration budget of `30 n` sweeps (LAPACK's) guards against the unforeseen.
+//! eigenvectors (applied in cache-sized batches, see `Rotations`). An iteration budget of `30 n`
+//! sweeps (LAPACK's) guards against the unforeseen.
 
 use alloc::vec::Vec;
 

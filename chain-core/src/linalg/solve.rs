@@ -1,8 +1,8 @@
 //! Solving `(T - sigma I) x = b` for a symmetric tridiagonal `T`, positive definite or not, by
 //! Gaussian elimination with partial pivoting: LAPACK's `dgtsv`, split into its factorisation
 //! `dgttrf` and solve `dgttrs` so that inverse iteration can reuse the factors (Golub & Van Loan,
-//! *Matrix Computations*, 4th ed., Sec. 4.3.3 and 4.5; Higham, *Accuracy and Stability of
-//! Numerical Algorithms*, 2nd ed., Sec. 9.6).
+//! *Matrix Computations*, 4th ed., Sec. 4.3, banded Gaussian elimination with partial pivoting;
+//! Higham, *Accuracy and Stability of Numerical Algorithms*, 2nd ed., Ch. 9).
 //!
 //! `P (T - sigma I) = L U` with `L` unit lower bidiagonal (multipliers at most 1 in magnitude)
 //! and `U` upper triangular with two superdiagonals (the second one filled in by row
@@ -94,7 +94,7 @@ impl TridiagonalLu {
                 u0[i + 1] = above - fact * u0[i + 1];
                 if i + 2 < n {
                     u2[i] = u1[i + 1];
-                    u1[i + 1] = -fact * u1[i + 1];
+                    u1[i + 1] *= -fact;
                 }
                 swapped[i] = true;
             }

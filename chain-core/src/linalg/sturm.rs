@@ -2,15 +2,17 @@
 //! inertia of `T - x I = L D L^T` (Sylvester's law of inertia).
 //!
 //! The pivots obey `q_0 = d_0 - x`, `q_j = d_j - e_{j-1}^2 / q_{j-1} - x`, and the count is the
-//! number of negative `q_j` (Golub & Van Loan, *Matrix Computations*, 4th ed., Sec. 8.4.1;
-//! Parlett, *The Symmetric Eigenvalue Problem*, Sec. 3.3). A pivot smaller in magnitude than
+//! number of negative `q_j` (Golub & Van Loan, *Matrix Computations*, 4th ed., Sec. 8.4;
+//! Parlett, *The Symmetric Eigenvalue Problem*, Ch. 3). A pivot smaller in magnitude than
 //! `pivmin = safe_min * max(1, max e_j^2)` is replaced by `+-pivmin`, as in LAPACK's `dstebz`,
 //! so no division overflows and no NaN appears; an exactly zero pivot becomes `+pivmin` (as if
 //! `x` were a hair smaller), so an eigenvalue equal to `x` is not counted. In floating point the
-//! count is exact for a matrix whose entries differ from `T`'s by a few ulps, and it is monotone
-//! in `x` (Demmel, Dhillon & Ren, *ETNA* 3, 1995), which is what bisection needs.
+//! count is exact for a matrix whose entries differ from `T`'s by a few ulps (Kahan), and in
+//! this form, in IEEE arithmetic, it is monotone in `x` (Demmel, Dhillon & Ren, *ETNA* 3, 1995),
+//! which is what bisection needs.
 //!
-//! Cost: O(n), one division per row.
+//! Cost: O(n), one division per row. The division's latency sets the speed, so bisection counts
+//! at several points in one pass (`Sturm::counts`), their recurrences overlapping.
 
 use alloc::vec::Vec;
 use core::iter;

@@ -57,7 +57,9 @@ pub struct Mode {
 /// Settings of [`modes`].
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ModeOptions {
-    /// How many of the lowest modes to compute (`None`: all of them, O(n^2) for the values).
+    /// How many of the lowest modes to compute. Default `Some(12)`: O(n) each by bisection and
+    /// inverse iteration. `None` asks for all `n` modes, which takes the dense QL route
+    /// (O(n^2) memory and O(n^3) time for the vectors): fine for hundreds of rotors, not for 1e5.
     pub count: Option<usize>,
     /// Eigenvalues closer than `cluster * ||K||` are treated as one degenerate cluster.
     pub cluster: f64,
@@ -76,7 +78,7 @@ pub struct ModeOptions {
 impl Default for ModeOptions {
     fn default() -> Self {
         Self {
-            count: None,
+            count: Some(12),
             cluster: 1e-9,
             localised_fraction: 0.5,
             localised_widths: 6.0,
@@ -86,7 +88,7 @@ impl Default for ModeOptions {
     }
 }
 
-/// The lowest modes of `model` about `theta` (all of them by default), ascending in `omega^2`.
+/// The lowest modes of `model` about `theta` ([`ModeOptions::count`] of them), ascending in `omega^2`.
 pub fn modes<M: ChainModel + ?Sized>(
     model: &M,
     theta: &[f64],
