@@ -65,6 +65,26 @@ fn the_papers_relaxation_lands_in_the_minimum() {
 }
 
 #[test]
+fn the_relaxed_construction_returns_the_minimum_from_any_start() {
+    // At theta_bar = 0.40 the Peierls-Nabarro force is too weak for the relaxation to slide an
+    // off-centre antikink; the construction must still return the minimum, never a saddle or a
+    // fixed-centring point.
+    for (theta_bar, start) in [(0.40, 29.25), (0.40, 29.5), (0.58, 29.5), (0.58, 28.8)] {
+        let model = chain(60, theta_bar);
+        let relaxed = antikink_relaxed(&model, start, &AntikinkOptions::default()).unwrap();
+        let pn = peierls_nabarro(&model, &AntikinkOptions::default()).unwrap();
+        assert_eq!(relaxed.classification.index, 0, "theta_bar {theta_bar}, start {start}");
+        assert_eq!(relaxed.held, 0);
+        assert!(
+            (relaxed.energy - pn.minimum().energy).abs() < 1e-9 * relaxed.energy,
+            "{} vs {}",
+            relaxed.energy,
+            pn.minimum().energy
+        );
+    }
+}
+
+#[test]
 fn antikink_energy_approaches_the_continuum_at_small_theta_bar() {
     let mut previous = f64::INFINITY;
     for theta_bar in [0.1, 0.2, 0.3, 0.4, 0.5, 0.58, 0.65] {
@@ -239,7 +259,12 @@ fn finite_size_effects_on_the_barrier_decay_with_the_chain_length() {
     use rotor_chain::statics::antikink::barrier_vs_size;
     // Paper Fig. fig:logvpn-size: theta_bar = 0.40, Delta V_PNB = V_PNB(L) - V_PNB(60).
     let sizes = [16, 20, 24, 28, 60];
-    let barriers = barrier_vs_size(&sizes, |n| chain(n, 0.40), &AntikinkOptions::default()).unwrap();
+    let barriers = barrier_vs_size(
+        &sizes,
+        |n| RuntimeChain::builder(n, 0.8, K, 0.40).build(),
+        &AntikinkOptions::default(),
+    )
+    .unwrap();
     let reference = barriers.last().unwrap().1;
     let deltas: Vec<f64> = barriers[..4].iter().map(|(_, b)| (b - reference).abs()).collect();
     eprintln!("Delta V_PNB for n = 16, 20, 24, 28: {deltas:?}");

@@ -106,6 +106,10 @@ pub struct Antikink {
     pub residual: f64,
     /// The force left on the held near-null directions (the tails reaching the free ends).
     pub edge_force: f64,
+    /// How many soft directions Newton's method held ([`super::equilibrium::Solution::held`]).
+    /// With a held translation the result is the equilibrium at fixed centring, a point of the
+    /// adiabatic trajectory, not a free equilibrium.
+    pub held: usize,
 }
 
 impl Antikink {
@@ -115,9 +119,8 @@ impl Antikink {
         relax_steps: usize,
         options: &AntikinkOptions,
     ) -> Result<Self, StaticsError> {
-        let super::equilibrium::Solution {
-            theta, iterations: newton_iterations, residual, edge_force, ..
-        } = solution;
+        let super::equilibrium::Solution { theta, iterations: newton_iterations, residual, edge_force, held } =
+            solution;
         let walls = domain_walls(&theta);
         let antikinks: Vec<f64> =
             walls.iter().filter(|w| w.charge == Charge::Antikink).map(|w| w.position).collect();
@@ -141,6 +144,7 @@ impl Antikink {
             relax_steps,
             residual,
             edge_force,
+            held,
         })
     }
 
@@ -165,8 +169,14 @@ pub fn antikink_at<M: ChainModel + ?Sized>(
 }
 
 /// The paper's construction: the reflected kink centred at `centre`, relaxed by dissipative
-/// Newtonian dynamics (which slides it into the nearest Peierls-Nabarro minimum), then polished
-/// by Newton's method.
+/// Newtonian dynamics, then polished by Newton's method; the result is a Peierls-Nabarro
+/// **minimum**.
+///
+/// The relaxation slides the antikink into a minimum only where the Peierls-Nabarro force beats
+/// the relaxation's tolerance (measured: `theta_bar >= 0.45` at n = 60); a wider antikink, or one
+/// started on a saddle, stops where it is, and the polish then returns the saddle or a
+/// fixed-centring point. In those cases both centrings next to where the relaxation stopped are
+/// solved ([`antikink_at`]) and the lower one is returned, so the answer is always the minimum.
 pub fn antikink_relaxed<M: ChainModel + ?Sized>(
     model: &M,
     centre: f64,
@@ -176,7 +186,17 @@ pub fn antikink_relaxed<M: ChainModel + ?Sized>(
     let (relaxed, steps) =
         relax(model, &guess, &RelaxOptions { hold_ends: options.hold(), ..options.relax })?;
     let solution = newton(model, &relaxed, &NewtonOptions { hold_ends: options.hold(), ..options.newton })?;
-    Antikink::from_solution(model, solution, steps, options)
+    let polished = Antikink::from_solution(model, solution, steps, options)?;
+    if polished.classification.index == 0 && polished.held == 0 {
+        return Ok(polished);
+    }
+    let n = model.rotor_count() as f64;
+    let rotor = libm::round(polished.centre).clamp(1.0, n - 2.0);
+    let spring = if polished.centre >= rotor { rotor + 0.5 } else { rotor - 0.5 };
+    let (a, b) = (antikink_at(model, rotor, options)?, antikink_at(model, spring, options)?);
+    let mut best = if a.energy <= b.energy { a } else { b };
+    best.relax_steps = steps;
+    Ok(best)
 }
 
 /// Both antikink equilibria in the middle of the chain and the barrier between them.
@@ -234,8 +254,8 @@ pub fn peierls_nabarro<M: ChainModel + ?Sized>(
 /// `build(n)` returns, for every `n` in `sizes`.
 pub fn barrier_vs_size<M: ChainModel>(
     sizes: &[usize],
-    build: impl Fn(usize) -> M,
+    build: impl Fn(usize) -> Result<M, crate::error::ParameterError>,
     options: &AntikinkOptions,
 ) -> Result<Vec<(usize, f64)>, StaticsError> {
-    sizes.iter().map(|&n| peierls_nabarro(&build(n), options).map(|pn| (n, pn.barrier))).collect()
+    sizes.iter().map(|&n| peierls_nabarro(&build(n)?, options).map(|pn| (n, pn.barrier))).collect()
 }

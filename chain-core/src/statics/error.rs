@@ -10,6 +10,9 @@ pub enum StaticsError {
     /// The branch solve failed while building a profile (no real root, bad index).
     #[error("branch solve: {0}")]
     Branch(#[from] BranchError),
+    /// A chain parameter outside the rules (for analyses that build chains).
+    #[error("{0}")]
+    Parameter(#[from] crate::error::ParameterError),
     /// A spectral computation failed.
     #[error("linear algebra: {0}")]
     Linalg(#[from] LinalgError),
@@ -28,10 +31,11 @@ pub enum StaticsError {
         "the relaxed configuration lost its {expected}: it has {kinks} kink(s) and {antikinks} antikink(s)"
     )]
     DefectLost { expected: &'static str, kinks: usize, antikinks: usize },
-    /// A spring-length impurity with no zero-energy state (paper Sec. VII-A: beyond `l_critical`).
+    /// A spring-length impurity with no symmetric zero-energy state: beyond `l_critical` (paper
+    /// Sec. VII-A), or shorter than the spring between rotors leaning at `+theta_bar`, `-theta_bar`.
     #[error(
-        "spring {spring} with rest length {rest_length} has no zero-energy two-kink state: its rotors \
-         reach lengths from {min} to {max} (= l_critical)"
+        "spring {spring} with rest length {rest_length} has no symmetric zero-energy state: with its \
+         rotors at -phi, +phi (|phi| <= theta_bar) it spans lengths from {min} to {max} (= l_critical)"
     )]
     NoZeroEnergyState { spring: usize, rest_length: f64, min: f64, max: f64 },
     /// A slice with the wrong length for the chain.

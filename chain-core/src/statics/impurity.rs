@@ -37,23 +37,25 @@ pub fn critical_length<M: ChainModel + ?Sized>(model: &M, p: usize) -> f64 {
     spring_length(model, p, -tb, tb)
 }
 
-/// The zero-energy two-kink configuration around the impurity spring `p`, symmetric about it.
+/// The zero-energy configuration around the impurity spring `p`, symmetric about it. For
+/// `l0 >= sqrt(a^2 + 4 r^2)` (`phi >= 0`) it holds two kinks, one on each side of the impurity; for
+/// shorter rest lengths (`phi < 0`) a single kink straddles the impurity.
 pub fn two_kink_configuration<M: ChainModel + ?Sized>(model: &M, p: usize) -> Result<Vec<f64>, StaticsError> {
     let n = model.rotor_count();
     let l0 = model.rest_length(p);
     let tb = model.theta_bar();
     let reach = |phi: f64| spring_length(model, p, -phi, phi);
-    let critical = reach(tb);
-    if l0 > critical * (1.0 + 1e-14) || l0 < reach(0.0) {
+    let (shortest, critical) = (reach(-tb), reach(tb));
+    if l0 > critical * (1.0 + 1e-14) || l0 < shortest * (1.0 - 1e-14) {
         return Err(StaticsError::NoZeroEnergyState {
             spring: p,
             rest_length: l0,
-            min: reach(0.0),
+            min: shortest,
             max: critical,
         });
     }
-    // l_p(-phi, phi) grows with phi on [0, theta_bar]: bisection.
-    let (mut lo, mut hi) = (0.0, tb);
+    // l_p(-phi, phi) grows with phi on [-theta_bar, theta_bar]: bisection.
+    let (mut lo, mut hi) = (-tb, tb);
     for _ in 0..200 {
         let mid = 0.5 * (lo + hi);
         if mid == lo || mid == hi {

@@ -2,8 +2,8 @@
 //!
 //! Small oscillations obey `K v = omega^2 I v` with `K` the tangent stiffness and `I = diag(M r_i^2)`.
 //! Scaling by `I^{-1/2}` keeps the problem symmetric tridiagonal, so the lowest modes of a long
-//! chain come from bisection and inverse iteration in O(n) each, and the whole spectrum from the
-//! implicit QL iteration in O(n^2) (`crate::linalg`).
+//! chain come from bisection and inverse iteration in O(n) each; the whole spectrum comes from the
+//! implicit QL iteration, O(n^2) for the values and O(n^3) with the vectors (`crate::linalg`).
 //!
 //! **Kinds of mode**, by where the mode lives: a mode concentrated near a domain wall is its
 //! *translation* mode (the one most parallel to the wall's displacement `dtheta/dx`) or a *shape*
