@@ -18,13 +18,31 @@ struct Quartic;
 #[rotor_chain(n = 60, r = 0.8, theta_bar = 0.58, k = 1.0e4)]
 struct Paper;
 
+/// A central difference with step `h` of an energy of size `|V|` is off by its truncation error
+/// (`~h^2`, tiny here) plus rounding, `~eps |V| / h`: the tolerance has to scale with the energy,
+/// not with the derivative being checked.
+#[track_caller]
+fn assert_fd(exact: f64, fd: f64, energy: f64, h: f64, what: &str) {
+    let tolerance = 1e-8 * exact.abs().max(1.0) + 8.0 * f64::EPSILON * energy.abs().max(1.0) / h;
+    assert!(
+        (exact - fd).abs() <= tolerance,
+        "{what}: {exact} vs {fd} (tolerance {tolerance:e}, energy {energy})"
+    );
+}
+
 fn angles() -> impl Strategy<Value = [f64; 12]> {
     // |theta| <= 1.2 keeps every spring longer than 0.5 a (no coincident tips).
     proptest::array::uniform12(-1.2f64..1.2)
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig { cases: 64, ..ProptestConfig::default() })]
+    // A fixed seed keeps CI deterministic; no regression files are written into the tree.
+    #![proptest_config(ProptestConfig {
+        cases: 64,
+        rng_seed: proptest::test_runner::RngSeed::Fixed(0x5eed_0f_c4a1),
+        failure_persistence: None,
+        ..ProptestConfig::default()
+    })]
 
     #[test]
     fn energy_matches_the_cartesian_reference(theta in angles()) {
@@ -44,7 +62,7 @@ proptest! {
             up[i] += h;
             down[i] -= h;
             let fd = (Small.energy(&up) - Small.energy(&down)) / (2.0 * h);
-            assert_close(g[i], fd, 1e-6, &format!("dV/dtheta_{i} vs central difference"));
+            assert_fd(g[i], fd, Small.energy(&theta), h, &format!("dV/dtheta_{i} vs central difference"));
         }
     }
 
@@ -104,7 +122,7 @@ proptest! {
             up[i] += h;
             down[i] -= h;
             let fd = (Quartic.energy(&up) - Quartic.energy(&down)) / (2.0 * h);
-            assert_close(g[i], fd, 1e-6, &format!("quartic dV/dtheta_{i}"));
+            assert_fd(g[i], fd, Quartic.energy(&theta), h, &format!("quartic dV/dtheta_{i}"));
         }
     }
 }
