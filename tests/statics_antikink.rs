@@ -272,3 +272,17 @@ fn finite_size_effects_on_the_barrier_decay_with_the_chain_length() {
         assert!(w[1] < w[0], "finite-size corrections shrink with n: {deltas:?}");
     }
 }
+
+#[test]
+fn antikinks_are_found_across_the_required_range() {
+    // The range: theta_bar in [0.1, 0.65], n in [16, 2000]; both centrings converge and hold
+    // exactly one antikink (walls are counted inside the analysis).
+    for n in [16, 2000] {
+        for theta_bar in [0.1, 0.3, 0.65] {
+            let pn = peierls_nabarro(&chain(n, theta_bar), &AntikinkOptions::default())
+                .unwrap_or_else(|e| panic!("n = {n}, theta_bar = {theta_bar}: {e}"));
+            assert!(pn.minimum().residual <= 1e-11 && pn.saddle().residual <= 1e-11);
+            assert!(pn.minimum().energy > 0.0 && pn.barrier >= 0.0);
+        }
+    }
+}
