@@ -36,7 +36,7 @@ pub use chain_core::{
     kernel, math, model,
 };
 #[cfg(feature = "alloc")]
-pub use chain_core::{ChainBuilder, Law, RuntimeChain, linalg, runtime, statics};
+pub use chain_core::{ChainBuilder, Law, RuntimeChain, dynamics, linalg, runtime, statics};
 pub use chain_macros::rotor_chain;
 /// The linear-algebra crate of the matrices this crate returns, re-exported so versions match.
 pub use nalgebra;

@@ -11,6 +11,8 @@ extern crate alloc;
 
 pub mod banded;
 pub mod branch;
+#[cfg(feature = "alloc")]
+pub mod dynamics;
 pub mod error;
 pub mod kernel;
 #[cfg(feature = "alloc")]
