@@ -1,0 +1,62 @@
+//! The errors of a sweep and of reading a results file. Each names the file and carries what was
+//! expected and what was found.
+
+use std::io;
+use std::path::PathBuf;
+
+use crate::grid::GridError;
+
+/// Why a sweep could not run, or a results file could not be read. Errors of a single point's
+/// computation are not here: they are recorded in the file (the `error` column) and counted in
+/// [`crate::Summary::failed`].
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum SweepError {
+    #[error("cannot {action} {}: {source}", path.display())]
+    Io {
+        action: &'static str,
+        path: PathBuf,
+        #[source]
+        source: io::Error,
+    },
+    #[error(
+        "{} is not a chain-sweep results file: its first line should start with `{}`, found `{found}`",
+        path.display(), crate::file::FORMAT_TAG
+    )]
+    NotAResultsFile { path: PathBuf, found: String },
+    #[error("{} has the columns `{found}`, this sweep writes `{expected}`", path.display())]
+    HeaderMismatch { path: PathBuf, expected: String, found: String },
+    #[error(
+        "{} belongs to another grid: it was written for `{found}`, this sweep is over `{expected}`; \
+         use another output file or the same ranges",
+        path.display()
+    )]
+    GridMismatch { path: PathBuf, expected: String, found: String },
+    #[error(
+        "{} belongs to another run: it was written for `{found}`, this sweep computes `{expected}`; \
+         use another output file or the same parameters",
+        path.display()
+    )]
+    RunMismatch { path: PathBuf, expected: String, found: String },
+    #[error("{} line {line}: {reason}", path.display())]
+    Parse { path: PathBuf, line: usize, reason: String },
+    #[error("{} is in use by another sweep (it holds the file's lock)", path.display())]
+    Locked { path: PathBuf },
+    #[error("the record type's columns are unusable: {reason}")]
+    InvalidRecord { reason: String },
+    #[error("cannot start {threads} worker threads: {source}")]
+    ThreadPool {
+        threads: usize,
+        #[source]
+        source: rayon::ThreadPoolBuildError,
+    },
+    #[error(transparent)]
+    Grid(#[from] GridError),
+}
+
+impl SweepError {
+    pub(crate) fn io(action: &'static str, path: impl Into<PathBuf>) -> impl FnOnce(io::Error) -> Self {
+        let path = path.into();
+        move |source| Self::Io { action, path, source }
+    }
+}

@@ -1,0 +1,57 @@
+//! # chain-sweep
+//!
+//! Resumable, parallel sweeps over a 2-D parameter grid, for the scattering phase diagrams of the
+//! paper (Fig. `fig:phasediagram`: impurity stiffness `k_i/k` against launch speed `v0`), and the
+//! `phase-diagram` tool that runs them.
+//!
+//! Each grid point runs one computation that yields a [`Record`] (or an error). [`run_sweep`]
+//! computes the points in parallel and appends each to a CSV results file the moment it is done,
+//! so a sweep that is killed loses only the points in flight; run again with the same arguments,
+//! it computes only the points the file lacks. [`read_results`] reads the file back for plotting.
+//!
+//! ```
+//! use chain_sweep::{Axis, Grid, SweepOptions, read_results, run_sweep};
+//! use chain_sweep::scattering::{Outcome, PointRecord};
+//!
+//! # fn main() -> Result<(), Box<dyn std::error::Error>> {
+//! # let dir = tempfile::tempdir()?;
+//! let grid = Grid::new(Axis::linspace(0.1, 1.0, 4)?, "0.5:12:5".parse()?)?;
+//! let path = dir.path().join("kink.csv");
+//! let options = SweepOptions::new("kink", "toy model");
+//! let compute = |ki: f64, v0: f64| -> Result<PointRecord, String> {
+//!     let outcome = if v0 > 5.0 * ki { Outcome::Split } else { Outcome::Transmitted };
+//!     Ok(PointRecord { outcome, t_decided: 1.0, kinks_final: 1, antikinks_final: 0, energy_error: 0.0 })
+//! };
+//! let summary = run_sweep(&grid, &path, compute, &options)?;
+//! assert_eq!((summary.computed, summary.skipped, summary.failed), (20, 0, 0));
+//!
+//! // A second run finds every point done.
+//! let again = run_sweep(&grid, &path, compute, &options)?;
+//! assert_eq!((again.computed, again.skipped), (0, 20));
+//!
+//! let points = read_results::<PointRecord>(&path)?;
+//! assert_eq!(points.len(), 20);
+//! # Ok(())
+//! # }
+//! ```
+//!
+//! | module | what |
+//! | --- | --- |
+//! | [`grid`] | [`Axis`] (`FROM:TO:COUNT`), [`Grid`] and its signature |
+//! | [`record`] | the [`Record`] trait and field helpers |
+//! | [`file`](mod@file) | the results file format, [`read_points`], [`read_results`] |
+//! | [`sweep`] | [`run_sweep`], [`SweepOptions`], [`Summary`]; the crash-safety rules |
+//! | [`scattering`] | [`scattering::PointRecord`], the phase diagram's record |
+
+pub mod error;
+pub mod file;
+pub mod grid;
+pub mod record;
+pub mod scattering;
+pub mod sweep;
+
+pub use error::SweepError;
+pub use file::{Point, ResultRow, read_points, read_results};
+pub use grid::{Axis, Grid, GridError};
+pub use record::{ParseError, Record};
+pub use sweep::{Summary, SweepOptions, run_sweep};

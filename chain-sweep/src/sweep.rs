@@ -1,0 +1,352 @@
+//! [`run_sweep`]: compute every missing point of a grid in parallel, appending each to the
+//! results file the moment it is done.
+//!
+//! Crash safety rests on three rules. (1) A point is written as one complete line by one
+//! `write_all` under a lock, so the file only ever grows by whole points, except that a kill in
+//! the middle of that call can leave one unfinished last line. (2) A restart cuts that line off
+//! and computes exactly the points the file lacks, so no point is ever written twice. (3) The
+//! file is locked while a sweep runs, so two sweeps cannot append to it at once.
+
+use std::collections::HashMap;
+use std::collections::hash_map::Entry;
+use std::fmt::Display;
+use std::fs::{File, OpenOptions, TryLockError};
+use std::io::{IsTerminal, Read, Write};
+use std::panic::{AssertUnwindSafe, catch_unwind};
+use std::path::{Path, PathBuf};
+use std::sync::Mutex;
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::time::{Duration, Instant};
+
+use indicatif::{ProgressBar, ProgressDrawTarget, ProgressState, ProgressStyle};
+use rayon::prelude::*;
+
+use crate::error::SweepError;
+use crate::file::{self, check_record_header, complete_lines, format_point, parse_point, read_preamble};
+use crate::grid::Grid;
+use crate::record::Record;
+
+/// How a sweep runs. Build with [`SweepOptions::new`] and change fields as needed.
+#[derive(Clone, Debug)]
+#[non_exhaustive]
+pub struct SweepOptions {
+    /// Names the sweep in the progress bar.
+    pub name: String,
+    /// What is computed at each point, in one line (for example the chain's parameters). Stored
+    /// in the file's first line; resuming refuses a file written with another label.
+    pub run: String,
+    /// Worker threads; `None` uses every core (rayon's default, which honours
+    /// `RAYON_NUM_THREADS`).
+    pub threads: Option<usize>,
+    /// Compute again the points the file records as failed (their lines are removed first).
+    /// Off by default: a failure is a result, and most failures repeat.
+    pub retry_failed: bool,
+    /// The longest time between `sync_data` calls. A kill loses nothing that was written (the
+    /// kernel holds it); only a crash of the machine can lose the points of the last interval.
+    /// 0.5 s keeps the cost of syncing negligible whatever the rate of points.
+    pub sync_interval: Duration,
+    /// Draw a progress bar on stderr if stderr is a terminal (it never is in CI).
+    pub progress: bool,
+}
+
+impl SweepOptions {
+    pub fn new(name: impl Into<String>, run: impl Into<String>) -> Self {
+        Self {
+            name: name.into(),
+            run: run.into(),
+            threads: None,
+            retry_failed: false,
+            sync_interval: Duration::from_millis(500),
+            progress: true,
+        }
+    }
+}
+
+/// What a sweep did.
+#[derive(Clone, Debug, Default, PartialEq)]
+#[non_exhaustive]
+pub struct Summary {
+    /// Points in the grid.
+    pub total: usize,
+    /// Points the file already had, so not computed again.
+    pub skipped: usize,
+    /// Points computed by this run, failed ones included.
+    pub computed: usize,
+    /// Points of this run whose computation returned an error or panicked.
+    pub failed: usize,
+    /// Skipped points that the file records as failed (see [`SweepOptions::retry_failed`]).
+    pub failed_before: usize,
+    /// Failed lines removed so that their points were computed again.
+    pub retried: usize,
+    /// Points found on more than one line of the file. A sweep never writes these; they mean
+    /// someone else wrote to the file. They are kept and not recomputed.
+    pub duplicates: Vec<(usize, usize)>,
+    /// Bytes of an unfinished last line (a write cut short by a kill) that were cut off.
+    pub repaired_bytes: usize,
+    pub elapsed: Duration,
+}
+
+/// Compute `compute(x, y)` at every point of `grid` that `path` does not have yet, in parallel,
+/// appending each result to `path` as soon as it is known.
+///
+/// - A missing or empty file is created with its two-line preamble (see [`crate::file`]).
+/// - An existing file must have been written for the same grid, the same `options.run` and the
+///   same record columns, else [`SweepError::GridMismatch`], [`SweepError::RunMismatch`] or
+///   [`SweepError::HeaderMismatch`], and the file is not touched.
+/// - An error (or panic) of `compute` at one point is written to the file and counted in
+///   [`Summary::failed`]; the sweep goes on. Errors writing the file stop it.
+pub fn run_sweep<R, E, F>(
+    grid: &Grid,
+    path: impl AsRef<Path>,
+    compute: F,
+    options: &SweepOptions,
+) -> Result<Summary, SweepError>
+where
+    R: Record + Send,
+    E: Display,
+    F: Fn(f64, f64) -> Result<R, E> + Sync,
+{
+    let start = Instant::now();
+    let path = path.as_ref();
+    check_record_header::<R>()?;
+    let pool = thread_pool(options.threads)?;
+    let resumed = resume::<R>(grid, path, options)?;
+    let mut summary = Summary {
+        total: grid.len(),
+        skipped: resumed.done.len(),
+        failed_before: resumed.done.values().filter(|&&failed| failed).count(),
+        retried: resumed.retried,
+        duplicates: resumed.duplicates,
+        repaired_bytes: resumed.repaired_bytes,
+        ..Summary::default()
+    };
+    let todo: Vec<(usize, usize)> = grid.indices().filter(|ij| !resumed.done.contains_key(ij)).collect();
+
+    let bar = progress_bar(&options.name, summary.total, summary.skipped, todo.len(), options.progress);
+    let appender = Mutex::new(Appender::new(resumed.file, path, options.sync_interval));
+    let failed = AtomicUsize::new(0);
+    let outcome = pool.install(|| {
+        todo.par_iter().try_for_each(|&(i, j)| {
+            let coords = (grid.xs()[i], grid.ys()[j]);
+            let result = compute_one(&compute, coords);
+            let line = format_point((i, j), coords, &result);
+            if result.is_err() {
+                let failed = failed.fetch_add(1, Ordering::Relaxed) + 1;
+                bar.set_message(format!("{} ({failed} failed)", options.name));
+            }
+            // A thread that panicked while holding the lock cannot have left a half line in the
+            // file (`append` does not panic), so a poisoned lock is still usable.
+            appender.lock().unwrap_or_else(|e| e.into_inner()).append(&line)?;
+            bar.inc(1);
+            Ok::<_, SweepError>(())
+        })
+    });
+    let mut appender = appender.into_inner().unwrap_or_else(|e| e.into_inner());
+    let synced = appender.sync();
+    bar.finish();
+    outcome?;
+    synced?;
+    summary.computed = todo.len();
+    summary.failed = failed.into_inner();
+    summary.elapsed = start.elapsed();
+    Ok(summary)
+}
+
+fn thread_pool(threads: Option<usize>) -> Result<rayon::ThreadPool, SweepError> {
+    let mut builder = rayon::ThreadPoolBuilder::new().thread_name(|k| format!("sweep-{k}"));
+    if let Some(threads) = threads {
+        builder = builder.num_threads(threads);
+    }
+    builder.build().map_err(|source| SweepError::ThreadPool { threads: threads.unwrap_or(0), source })
+}
+
+/// One point; a panic becomes the point's error instead of ending the sweep.
+fn compute_one<R, E: Display>(
+    compute: &impl Fn(f64, f64) -> Result<R, E>,
+    (x, y): (f64, f64),
+) -> Result<R, String> {
+    match catch_unwind(AssertUnwindSafe(|| compute(x, y))) {
+        Ok(result) => result.map_err(|e| e.to_string()),
+        Err(payload) => {
+            let message = payload
+                .downcast_ref::<&str>()
+                .map(|s| s.to_string())
+                .or_else(|| payload.downcast_ref::<String>().cloned())
+                .unwrap_or_else(|| "unknown payload".to_owned());
+            Err(format!("panicked: {message}"))
+        }
+    }
+}
+
+/// The results file, locked and ready to append to, and what it already holds.
+struct Resumed {
+    file: File,
+    /// Finished points, and whether each failed.
+    done: HashMap<(usize, usize), bool>,
+    duplicates: Vec<(usize, usize)>,
+    repaired_bytes: usize,
+    retried: usize,
+}
+
+/// Open (or create) and lock the file, check it belongs to this sweep, cut off an unfinished
+/// last line, and collect the finished points.
+fn resume<R: Record>(grid: &Grid, path: &Path, options: &SweepOptions) -> Result<Resumed, SweepError> {
+    let mut file = open_locked(path)?;
+    let mut bytes = Vec::new();
+    file.read_to_end(&mut bytes).map_err(SweepError::io("read", path))?;
+    let preamble = file::preamble::<R>(grid, &options.run);
+    let mut resumed =
+        Resumed { file, done: HashMap::new(), duplicates: Vec::new(), repaired_bytes: 0, retried: 0 };
+
+    // Empty, or killed while the preamble was being written: start afresh.
+    if bytes.len() < preamble.len() && preamble.as_bytes().starts_with(&bytes) {
+        resumed.file.set_len(0).map_err(SweepError::io("truncate", path))?;
+        resumed.file.write_all(preamble.as_bytes()).map_err(SweepError::io("write to", path))?;
+        resumed.file.sync_data().map_err(SweepError::io("sync", path))?;
+        return Ok(resumed);
+    }
+
+    let (mut lines, complete) = complete_lines(&bytes);
+    let found = read_preamble::<R>(path, lines.next().map(|l| l.1), lines.next().map(|l| l.1))?;
+    let mismatch = |expected: String, found: &str| {
+        (expected != found).then(|| (path.to_owned(), expected, found.to_owned()))
+    };
+    if let Some((path, expected, found)) = mismatch(grid.signature(), found.grid) {
+        return Err(SweepError::GridMismatch { path, expected, found });
+    }
+    if let Some((path, expected, found)) = mismatch(file::one_line(&options.run), found.run) {
+        return Err(SweepError::RunMismatch { path, expected, found });
+    }
+    let mut failed_lines = Vec::new();
+    for (line, text) in lines.filter(|(_, text)| !text.is_empty()) {
+        let point = parse_point::<R>(path, line, text, Some(grid))?;
+        let failed = point.outcome.is_err();
+        if failed {
+            failed_lines.push(point.line);
+        }
+        // A point counts as failed only if every line of it failed.
+        match resumed.done.entry(point.index) {
+            Entry::Occupied(mut seen) => {
+                *seen.get_mut() &= failed;
+                resumed.duplicates.push(point.index);
+            }
+            Entry::Vacant(new) => {
+                new.insert(failed);
+            }
+        }
+    }
+
+    if options.retry_failed && !failed_lines.is_empty() {
+        resumed.done.retain(|_, failed| !*failed);
+        resumed.retried = failed_lines.len();
+        resumed.file = rewrite_without(path, &bytes[..complete], &failed_lines, resumed.file)?;
+    } else if complete < bytes.len() {
+        resumed
+            .file
+            .set_len(complete as u64)
+            .map_err(SweepError::io("cut the unfinished last line of", path))?;
+        resumed.file.sync_data().map_err(SweepError::io("sync", path))?;
+    }
+    resumed.repaired_bytes = bytes.len() - complete;
+    Ok(resumed)
+}
+
+/// Open for reading and appending, creating it if need be, and take the exclusive lock.
+fn open_locked(path: &Path) -> Result<File, SweepError> {
+    let file = OpenOptions::new()
+        .read(true)
+        .append(true)
+        .create(true)
+        .open(path)
+        .map_err(SweepError::io("open", path))?;
+    match file.try_lock() {
+        Ok(()) => Ok(file),
+        Err(TryLockError::WouldBlock) => Err(SweepError::Locked { path: path.to_owned() }),
+        Err(TryLockError::Error(e)) => Err(SweepError::io("lock", path)(e)),
+    }
+}
+
+/// Replace the file by its complete lines minus `drop` (1-based line numbers), atomically: a new
+/// file beside it, synced, renamed over it. Returns the new file, locked. `old` keeps its lock
+/// until the new file holds one.
+fn rewrite_without(path: &Path, complete: &[u8], dropped: &[usize], old: File) -> Result<File, SweepError> {
+    let mut kept = Vec::with_capacity(complete.len());
+    let (lines, _) = complete_lines(complete);
+    for (_, text) in lines.filter(|(line, _)| dropped.binary_search(line).is_err()) {
+        kept.extend_from_slice(text);
+        kept.push(b'\n');
+    }
+    let mut temp_name = path.file_name().unwrap_or_default().to_owned();
+    temp_name.push(".rewrite");
+    let temp = path.with_file_name(temp_name);
+    let mut new = File::create(&temp).map_err(SweepError::io("create", &temp))?;
+    new.write_all(&kept).map_err(SweepError::io("write to", &temp))?;
+    new.sync_all().map_err(SweepError::io("sync", &temp))?;
+    drop(new);
+    std::fs::rename(&temp, path).map_err(SweepError::io("replace", path))?;
+    let file = open_locked(path)?;
+    drop(old);
+    Ok(file)
+}
+
+/// Appends whole lines and syncs them to disk at most every `interval`.
+struct Appender {
+    file: File,
+    path: PathBuf,
+    interval: Duration,
+    last_sync: Instant,
+    unsynced: bool,
+}
+
+impl Appender {
+    fn new(file: File, path: &Path, interval: Duration) -> Self {
+        Self { file, path: path.to_owned(), interval, last_sync: Instant::now(), unsynced: false }
+    }
+
+    /// `line` must be one complete line: it reaches the file in one `write_all`.
+    fn append(&mut self, line: &str) -> Result<(), SweepError> {
+        self.file.write_all(line.as_bytes()).map_err(SweepError::io("append to", &self.path))?;
+        // `File` has no buffer, so the line is already the kernel's and survives a kill; `flush`
+        // states the intent and stays right if a buffer is ever put in between.
+        self.file.flush().map_err(SweepError::io("append to", &self.path))?;
+        self.unsynced = true;
+        if self.last_sync.elapsed() >= self.interval { self.sync() } else { Ok(()) }
+    }
+
+    fn sync(&mut self) -> Result<(), SweepError> {
+        if self.unsynced {
+            self.file.sync_data().map_err(SweepError::io("sync", &self.path))?;
+            self.unsynced = false;
+        }
+        self.last_sync = Instant::now();
+        Ok(())
+    }
+}
+
+/// The bar counts this run's points (so rate and ETA are this run's) and shows `done/total` over
+/// the whole grid, the points already in the file included.
+fn progress_bar(name: &str, total: usize, skipped: usize, todo: usize, enabled: bool) -> ProgressBar {
+    if !enabled || !std::io::stderr().is_terminal() {
+        return ProgressBar::hidden();
+    }
+    let bar = ProgressBar::with_draw_target(Some(todo as u64), ProgressDrawTarget::stderr());
+    let template = "{msg} [{elapsed_precise}] {wide_bar} {done}/{total} points ({rate}, ETA {eta})";
+    if let Ok(style) = ProgressStyle::with_template(template) {
+        let style = style
+            .with_key("done", move |s: &ProgressState, w: &mut dyn std::fmt::Write| {
+                let _ = write!(w, "{}", skipped as u64 + s.pos());
+            })
+            .with_key("total", move |_: &ProgressState, w: &mut dyn std::fmt::Write| {
+                let _ = write!(w, "{total}");
+            })
+            .with_key("rate", |s: &ProgressState, w: &mut dyn std::fmt::Write| {
+                let _ = write!(w, "{:.1}/s", s.per_sec());
+            });
+        bar.set_style(style);
+    }
+    bar.set_message(name.to_owned());
+    bar
+}
+
+#[cfg(test)]
+mod tests;
