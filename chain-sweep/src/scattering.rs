@@ -1,4 +1,4 @@
-//! The record of one point of a scattering phase diagram (paper Sec. VII-B, Fig.
+//! The record of one point of a scattering phase diagram (paper Sec. VI, Fig.
 //! `fig:phasediagram`): a kink or antikink launched at speed `v0` towards an impurity spring of
 //! stiffness `k_i`, and what became of it. Written by the `phase-diagram` tool; read back with
 //! [`crate::read_results`] for plotting.

@@ -6,8 +6,8 @@
 //! ([`super::track`]) and the run stops as soon as the outcome is decided.
 //!
 //! **Identity.** Walls are followed from output to output by continuity (nearest wall of the same
-//! charge within `max_jump` sites). A wall that appears within `edge_margin` rotors of a free end
-//! was born there: phonons radiated by the launch reach the free ends at the speed of sound and can
+//! charge within `max_jump` sites). A wall that appears within `edge_margin + 1` rotors of a free
+//! end was born there: phonons radiated by the launch reach the free ends at the speed of sound and can
 //! push an end along its zero-energy mechanism, so a kink walks in from the end. Such walls, and
 //! every wall within `edge_margin` of an end, are ignored; only the incoming wall and walls born
 //! elsewhere (at the impurity) decide the outcome.
@@ -19,11 +19,13 @@
 //! - **split** (the kink's outcome II): a kink on each side beyond `reach` and an antikink within
 //!   `reach` of the impurity;
 //! - **trapped**: a single wall of the incoming charge within `reach` for three times the time it
-//!   would take to cross the impurity's range (`2 reach`) at the speed measured on its way in
-//!   (at least `trap_time`), or at the end of the run.
+//!   would take to cross the impurity's range (`2 reach`) at its launch speed (measured over the
+//!   first 0.1 time units; at least `trap_time`), or at the end of the run. The clock restarts
+//!   whenever the pattern is broken by more than one wall or by a wall leaving the range.
 //!
 //! A pattern must hold for `persistence` (default 0.3 time units) before it decides the outcome,
-//! so transient wall pairs made by phonon radiation do not count. A run that ends undecided says
+//! so transient wall pairs made by phonon radiation do not count (trapping has its own, longer
+//! clock and decides as soon as it runs out). A run that ends undecided says
 //! so ([`Outcome::Undecided`]).
 
 use super::DynamicsError;
