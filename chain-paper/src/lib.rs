@@ -7,7 +7,10 @@
 //!
 //! Figures are named by their LaTeX labels in the paper (`fig:kcobweb`, ...).
 
+pub mod data;
 pub mod figures;
 pub mod model;
+pub mod render;
+pub mod summary;
 
 pub use model::{Chart, Figure, Heatmap, Panel, Quality, Row, Series, Style};

@@ -107,7 +107,13 @@ pub struct Row {
 
 impl Row {
     /// A numeric row; the relative difference is computed here.
-    pub fn number(quantity: impl Into<String>, paper: f64, ours: f64, continuum: Option<f64>, note: impl Into<String>) -> Self {
+    pub fn number(
+        quantity: impl Into<String>,
+        paper: f64,
+        ours: f64,
+        continuum: Option<f64>,
+        note: impl Into<String>,
+    ) -> Self {
         Self {
             quantity: quantity.into(),
             paper: format_number(paper),

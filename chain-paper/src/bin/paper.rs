@@ -1,0 +1,378 @@
+//! `paper`: reproduce every numerical figure of the paper in one command.
+//!
+//! ```text
+//! paper [--out DIR] [--quick] [--only LABEL,...] [--list]
+//! ```
+//!
+//! Computes the figures of `chain_paper::figures::all()` in parallel, and writes into `DIR`
+//! (default `paper-output`): `<name>.png` and `<name>.svg` per figure (`name` is the label
+//! without `fig:`), `data/<name>_<panel>.csv` per panel, and `summary.md`, the paper's numbers
+//! beside ours. Every file is written atomically. Then prints one line on stdout:
+//! `paper: F figures, R summary rows, X failed, T s -> DIR`.
+//!
+//! Exit status: 0 every figure written; 3 some figures failed (each is reported with its label
+//! on stderr and in `summary.md`; the others are written); 1 nothing could be written (the
+//! message says why); 2 bad arguments. On bad arguments or an unwritable `DIR` nothing is
+//! computed or written.
+
+use std::io::IsTerminal as _;
+use std::panic::{AssertUnwindSafe, catch_unwind};
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+use std::sync::Mutex;
+use std::time::{Duration, Instant};
+
+use chain_paper::figures::{self, FigureFn, Params};
+use chain_paper::{Figure, Quality, Row, data, render, summary};
+use clap::Parser;
+use indicatif::{ProgressBar, ProgressStyle};
+use rayon::prelude::*;
+
+/// Reproduce the paper's figures: PNG and SVG per figure, the data of every panel as CSV, and
+/// summary.md with the paper's numbers beside ours. Exit status 3 means some figures failed.
+#[derive(Debug, Parser)]
+#[command(name = "paper", version)]
+struct Cli {
+    /// Output directory (created if missing)
+    #[arg(long, value_name = "DIR", default_value = "paper-output")]
+    out: PathBuf,
+    /// Coarse grids and short runs: every figure in seconds, not at the paper's resolution
+    #[arg(long)]
+    quick: bool,
+    /// Only these figures, comma-separated labels as `--list` prints them (`fig:` optional)
+    #[arg(long, value_name = "LABEL,...", value_delimiter = ',')]
+    only: Vec<String>,
+    /// Print the label of every figure, one per line, and exit
+    #[arg(long)]
+    list: bool,
+    /// FOR TESTING ONLY: synthetic figures instead of the paper's (`fig:demo-fails` fails)
+    #[arg(long, hide = true)]
+    demo: bool,
+}
+
+/// One figure written: what goes into the summary and the report.
+struct Written {
+    label: &'static str,
+    rows: Vec<Row>,
+    /// Time to compute the figure, and to draw and write its files.
+    computed: Duration,
+    written: Duration,
+}
+
+/// One figure that could not be computed, rendered or written.
+struct Failed {
+    label: &'static str,
+    message: String,
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let all = if cli.demo { demo::figures() } else { figures::all() };
+    if cli.list {
+        for (label, _) in &all {
+            println!("{label}");
+        }
+        return ExitCode::SUCCESS;
+    }
+    let selected = match select(&all, &cli.only) {
+        Ok(selected) => selected,
+        Err(message) => {
+            eprintln!("paper: error: {message}");
+            return ExitCode::from(2);
+        }
+    };
+    if let Err(message) = prepare_output(&cli.out) {
+        eprintln!("paper: error: {message}");
+        return ExitCode::FAILURE;
+    }
+    let quality = if cli.quick { Quality::Quick } else { Quality::Full };
+    let start = Instant::now();
+    let (written, failed) = produce_all(&selected, quality, &cli.out);
+    let rows: Vec<(&'static str, Row)> =
+        written.iter().flat_map(|w| w.rows.iter().map(|row| (w.label, row.clone()))).collect();
+    let failures: Vec<(&str, String)> = failed.iter().map(|f| (f.label, f.message.clone())).collect();
+    if let Err(e) = summary::write_summary(&cli.out, &rows, quality, &failures) {
+        eprintln!("paper: error: {e}");
+        return ExitCode::FAILURE;
+    }
+    println!(
+        "paper: {} figures, {} summary rows, {} failed, {:.1} s -> {}",
+        written.len(),
+        rows.len(),
+        failed.len(),
+        start.elapsed().as_secs_f64(),
+        cli.out.display()
+    );
+    if failed.is_empty() { ExitCode::SUCCESS } else { ExitCode::from(3) }
+}
+
+/// The figures named by `--only` (all of them without it), in the order of `all`. An unknown
+/// label is refused with the nearest known one.
+fn select(
+    all: &[(&'static str, FigureFn)],
+    only: &[String],
+) -> Result<Vec<(&'static str, FigureFn)>, String> {
+    if only.is_empty() {
+        return Ok(all.to_vec());
+    }
+    let mut wanted = Vec::new();
+    for name in only {
+        let name = name.trim();
+        if name.is_empty() {
+            return Err("--only: empty figure label (labels are separated by single commas)".into());
+        }
+        let label = if name.starts_with("fig:") { name.to_owned() } else { format!("fig:{name}") };
+        match all.iter().find(|(l, _)| *l == label) {
+            Some(&(l, _)) => wanted.push(l),
+            None => {
+                let nearest = all.iter().map(|(l, _)| *l).min_by_key(|l| edit_distance(l, &label));
+                return Err(match nearest {
+                    Some(near) => {
+                        format!("unknown figure `{name}`; did you mean `{near}`? (`paper --list` lists them)")
+                    }
+                    None => format!("unknown figure `{name}`: no figures are defined"),
+                });
+            }
+        }
+    }
+    Ok(all.iter().filter(|(l, _)| wanted.contains(l)).copied().collect())
+}
+
+/// Levenshtein distance, for "did you mean".
+fn edit_distance(a: &str, b: &str) -> usize {
+    let b: Vec<char> = b.chars().collect();
+    let mut row: Vec<usize> = (0..=b.len()).collect();
+    for (i, ca) in a.chars().enumerate() {
+        let mut diagonal = row[0];
+        row[0] = i + 1;
+        for (j, &cb) in b.iter().enumerate() {
+            let substitute = diagonal + usize::from(ca != cb);
+            diagonal = row[j + 1];
+            row[j + 1] = substitute.min(row[j] + 1).min(diagonal + 1);
+        }
+    }
+    row[b.len()]
+}
+
+/// Create the output directory and its `data/`, and prove it writable with a probe file, before
+/// any figure is computed.
+fn prepare_output(dir: &Path) -> Result<(), String> {
+    let data = dir.join("data");
+    std::fs::create_dir_all(&data)
+        .map_err(|e| format!("cannot create the output directory {}: {e}", data.display()))?;
+    for dir in [dir, &data] {
+        let probe = dir.join(format!(".paper-probe-{}", std::process::id()));
+        std::fs::write(&probe, b"probe")
+            .and_then(|()| std::fs::remove_file(&probe))
+            .map_err(|e| format!("cannot write into the output directory {}: {e}", dir.display()))?;
+    }
+    Ok(())
+}
+
+/// Compute, render and write every selected figure, in parallel, with a progress bar on stderr
+/// (hidden when stderr is not a terminal). Results are in the order of `selected`.
+fn produce_all(
+    selected: &[(&'static str, FigureFn)],
+    quality: Quality,
+    out: &Path,
+) -> (Vec<Written>, Vec<Failed>) {
+    let bar = if std::io::stderr().is_terminal() {
+        let bar = ProgressBar::new(selected.len() as u64);
+        bar.set_style(
+            ProgressStyle::with_template("{spinner} [{elapsed_precise}] {bar:30} {pos}/{len} {wide_msg}")
+                .expect("a valid template"),
+        );
+        bar.enable_steady_tick(Duration::from_millis(120));
+        bar
+    } else {
+        ProgressBar::hidden()
+    };
+    let running = Mutex::new(Vec::<&str>::new());
+    let show_running = |update: &dyn Fn(&mut Vec<&'static str>)| {
+        let mut running = running.lock().unwrap_or_else(|e| e.into_inner());
+        update(&mut running);
+        bar.set_message(format!("computing {}", running.join(", ")));
+    };
+    let params = Params::default();
+    let results: Vec<Result<Written, Failed>> = selected
+        .par_iter()
+        .map(|&(label, compute)| {
+            show_running(&|r| r.push(label));
+            let start = Instant::now();
+            let result = produce(label, compute, &params, quality, out);
+            show_running(&|r| r.retain(|l| *l != label));
+            bar.inc(1);
+            bar.suspend(|| match &result {
+                Ok(w) => eprintln!(
+                    "paper: {label}: {} summary rows, computed in {:.1} s, drawn and written in {:.1} s",
+                    w.rows.len(),
+                    w.computed.as_secs_f64(),
+                    w.written.as_secs_f64()
+                ),
+                Err(f) => {
+                    eprintln!(
+                        "paper: {label}: FAILED after {:.1} s: {}",
+                        start.elapsed().as_secs_f64(),
+                        f.message
+                    )
+                }
+            });
+            result
+        })
+        .collect();
+    bar.finish_and_clear();
+    let (mut written, mut failed) = (Vec::new(), Vec::new());
+    for result in results {
+        match result {
+            Ok(w) => written.push(w),
+            Err(f) => failed.push(f),
+        }
+    }
+    (written, failed)
+}
+
+/// One figure: compute it (a panic counts as a failure of this figure only), render it, write
+/// its data.
+fn produce(
+    label: &'static str,
+    compute: FigureFn,
+    params: &Params,
+    quality: Quality,
+    out: &Path,
+) -> Result<Written, Failed> {
+    let fail = |message: String| Failed { label, message };
+    let start = Instant::now();
+    let figure: Figure = match catch_unwind(AssertUnwindSafe(|| compute(params, quality))) {
+        Ok(Ok(figure)) => figure,
+        Ok(Err(e)) => return Err(fail(e.message)),
+        Err(panic) => {
+            let what = panic
+                .downcast_ref::<&str>()
+                .map(|s| s.to_string())
+                .or_else(|| panic.downcast_ref::<String>().cloned());
+            return Err(fail(format!("panicked: {}", what.unwrap_or_else(|| "(no message)".into()))));
+        }
+    };
+    if figure.label != label {
+        return Err(fail(format!("the figure function returned a figure labelled `{}`", figure.label)));
+    }
+    let computed = start.elapsed();
+    render::render(&figure, out).map_err(|e| fail(e.to_string()))?;
+    data::write_csv(&figure, &out.join("data")).map_err(|e| fail(e.to_string()))?;
+    Ok(Written { label, rows: figure.rows, computed, written: start.elapsed() - computed })
+}
+
+/// Synthetic figures exercising every kind of panel, for the command-line tests (`--demo`).
+mod demo {
+    use chain_paper::figures::{FigureError, FigureFn, Params};
+    use chain_paper::{Chart, Figure, Heatmap, Panel, Quality, Row, Series, Style};
+
+    pub fn figures() -> Vec<(&'static str, FigureFn)> {
+        vec![("fig:demo-lines", lines), ("fig:demo-maps", maps), ("fig:demo-fails", fails)]
+    }
+
+    fn lines(p: &Params, q: Quality) -> Result<Figure, FigureError> {
+        let n = q.pick(400, 60);
+        let xs = (0..n).map(|i| 10.0 * i as f64 / (n - 1) as f64);
+        let curve = |f: fn(f64) -> f64| xs.clone().map(|x| (x, f(x))).collect::<Vec<_>>();
+        let wave = Panel {
+            title: "Lines of every style".into(),
+            x_label: "rotor index i".into(),
+            y_label: "theta_i (rad)".into(),
+            series: vec![
+                Series::new("sin x", curve(f64::sin), Style::Line),
+                Series::new("cos x (dashed)", curve(f64::cos), Style::Dashed),
+                Series::new(
+                    "samples",
+                    curve(|x| 0.5 * (x / 2.0).sin()).into_iter().step_by(4).collect(),
+                    Style::Points,
+                ),
+                Series::new(
+                    "line with points",
+                    curve(|x| 0.1 * x - 0.5).into_iter().step_by(6).collect(),
+                    Style::LinePoints,
+                ),
+            ],
+            log_y: false,
+        };
+        let decay = Panel {
+            title: "A log axis (non-positive points skipped)".into(),
+            x_label: "time t (sqrt(M/k))".into(),
+            y_label: "energy error |dE/E|".into(),
+            series: vec![
+                Series::new("exp(-x)", curve(|x| (-x).exp()), Style::Line),
+                Series::new("x^2 sin x", curve(|x| x * x * x.sin()), Style::Dashed),
+            ],
+            log_y: true,
+        };
+        Ok(Figure {
+            label: "fig:demo-lines",
+            caption: format!(
+                "Synthetic line panels, n = {}, r = {}, k = {}: every series style and a log axis.",
+                p.n, p.r, p.k
+            ),
+            panels: vec![Chart::Lines(wave), Chart::Lines(decay)],
+            rows: vec![
+                Row::number("amplitude of sin", 1.05, 1.0, Some(1.0), "a pipe | in a note"),
+                Row::words("shape", "wave", "wave", ""),
+            ],
+        })
+    }
+
+    fn maps(_: &Params, q: Quality) -> Result<Figure, FigureError> {
+        let (nx, ny) = (q.pick(120, 30), q.pick(300, 40));
+        let x: Vec<f64> = (0..nx).map(|i| i as f64).collect();
+        let y: Vec<f64> = (0..ny).map(|j| 0.1 * j as f64).collect();
+        let values = y
+            .iter()
+            .map(|&t| x.iter().map(|&i| (-(i - nx as f64 / 2.0 - 5.0 * t).powi(2) / 20.0).exp()).collect())
+            .collect();
+        let space_time = Heatmap {
+            title: "Space-time image".into(),
+            x_label: "rotor index i".into(),
+            y_label: "time t (sqrt(M/k))".into(),
+            x: x.clone(),
+            y: y.clone(),
+            values,
+            categories: Vec::new(),
+            value_label: "kinetic energy (k a^2)".into(),
+        };
+        let outcomes = ["transmitted", "reflected", "trapped"];
+        let phases = Heatmap {
+            title: "Phase diagram".into(),
+            x_label: "impurity stiffness k_i/k".into(),
+            y_label: "launch speed v0 (a sqrt(k/M))".into(),
+            x: (0..12).map(|i| 0.1 * (i + 1) as f64).collect(),
+            y: (0..10).map(|j| 0.5 + j as f64).collect(),
+            values: (0..10).map(|j| (0..12).map(|i| ((i + 2 * j) / 7 % 3) as f64).collect()).collect(),
+            categories: outcomes.iter().map(|s| s.to_string()).collect(),
+            value_label: String::new(),
+        };
+        Ok(Figure {
+            label: "fig:demo-maps",
+            caption: "Synthetic heat maps: a continuous space-time image and a categorical phase diagram."
+                .into(),
+            panels: vec![Chart::Heat(space_time), Chart::Heat(phases)],
+            rows: vec![Row::number("critical speed", 2.0, 2.5, None, "")],
+        })
+    }
+
+    fn fails(_: &Params, _: Quality) -> Result<Figure, FigureError> {
+        Err(FigureError::new("fig:demo-fails", "the synthetic solver diverged (on purpose)"))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn labels_are_matched_with_or_without_prefix_and_kept_in_order() {
+        let all = demo::figures();
+        let picked =
+            select(&all, &["demo-maps".into(), "fig:demo-lines".into(), "demo-maps".into()]).unwrap();
+        assert_eq!(picked.iter().map(|f| f.0).collect::<Vec<_>>(), ["fig:demo-lines", "fig:demo-maps"]);
+        assert_eq!(edit_distance("fig:kcobwbe", "fig:kcobweb"), 2);
+        assert_eq!(edit_distance("", "abc"), 3);
+    }
+}

@@ -1,0 +1,88 @@
+//! Every dynamics figure in quick mode: panels with data, and the paper's named scattering outcomes
+//! in the summary rows.
+
+use std::time::Instant;
+
+use chain_paper::figures::Params;
+use chain_paper::figures::dynamics::{
+    ak_scatter, akpntrapprofile, figures, k_scatter, ketimeplot, phasediagram,
+};
+use chain_paper::{Chart, Figure, Quality};
+
+fn quick(name: &str, f: fn(&Params, Quality) -> Result<Figure, chain_paper::figures::FigureError>) -> Figure {
+    let start = Instant::now();
+    let figure = f(&Params::default(), Quality::Quick).unwrap_or_else(|e| panic!("{name}: {e}"));
+    eprintln!("{} (quick): {:.2} s", figure.label, start.elapsed().as_secs_f64());
+    for row in &figure.rows {
+        eprintln!("  {} | paper: {} | ours: {} | {}", row.quantity, row.paper, row.ours, row.note);
+    }
+    assert!(!figure.panels.is_empty(), "{name}: no panels");
+    for chart in &figure.panels {
+        match chart {
+            Chart::Lines(p) => {
+                assert!(!p.series.is_empty(), "{name}: empty panel");
+                assert!(p.series.iter().all(|s| s.points.len() > 1), "{name}: empty series");
+            }
+            Chart::Heat(h) => {
+                assert!(!h.x.is_empty() && !h.y.is_empty(), "{name}: empty heat map");
+                assert_eq!(h.values.len(), h.y.len(), "{name}: rows");
+                assert!(h.values.iter().all(|r| r.len() == h.x.len()), "{name}: columns");
+                assert!(h.y.len() <= 401, "{name}: {} rows", h.y.len());
+                assert!(h.values.iter().flatten().all(|v| v.is_finite()), "{name}: values");
+            }
+        }
+    }
+    assert!(!figure.rows.is_empty(), "{name}: no rows");
+    assert!(!figure.caption.contains('\n'), "{name}: caption on one line");
+    figure
+}
+
+#[test]
+fn every_dynamics_figure_is_listed() {
+    let labels: Vec<&str> = figures().iter().map(|(l, _)| *l).collect();
+    assert_eq!(
+        labels,
+        ["fig:ketimeplot", "fig:akpntrapprofile", "fig:k-scatter", "fig:ak-scatter", "fig:phasediagram"]
+    );
+}
+
+#[test]
+fn kinetic_energy_figure() {
+    let figure = quick("ketimeplot", ketimeplot);
+    assert_eq!(figure.label, "fig:ketimeplot");
+    assert_eq!(figure.rows[0].paper, "nearly constant");
+}
+
+#[test]
+fn trapping_figure() {
+    let figure = quick("akpntrapprofile", akpntrapprofile);
+    assert_eq!(figure.panels.len(), 2);
+    assert_eq!(figure.rows.len(), 2);
+}
+
+#[test]
+fn scattering_figures_reproduce_the_papers_outcomes() {
+    for (name, f, count) in
+        [("k-scatter", k_scatter as fn(&Params, Quality) -> _, 2), ("ak-scatter", ak_scatter, 3)]
+    {
+        let figure = quick(name, f);
+        assert_eq!(figure.panels.len(), count, "{name}");
+        assert_eq!(figure.rows.len(), count, "{name}");
+        for row in &figure.rows {
+            assert_eq!(row.ours, row.paper, "{name}: {}", row.quantity);
+        }
+    }
+}
+
+#[test]
+fn phase_diagram_figure() {
+    let figure = quick("phasediagram", phasediagram);
+    assert_eq!(figure.panels.len(), 2);
+    for chart in &figure.panels {
+        let Chart::Heat(h) = chart else { panic!("phase diagrams are heat maps") };
+        assert_eq!(h.categories.len(), 5);
+        assert!(h.values.iter().flatten().all(|&v| v >= 0.0 && (v as usize) < h.categories.len()));
+    }
+    // The kink is never trapped or reflected (paper Sec. VI).
+    assert!(figure.rows[0].ours.starts_with("0 of"), "{}", figure.rows[0].ours);
+}
