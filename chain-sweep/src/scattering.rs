@@ -3,62 +3,11 @@
 //! stiffness `k_i`, and what became of it. Written by the `phase-diagram` tool; read back with
 //! [`crate::read_results`] for plotting.
 
-use std::fmt;
-use std::str::FromStr;
-
 use crate::record::{ParseError, Record, expect_fields, format_f64, parse_field};
 
-/// What the impurity did to the incident defect: the paper's four regimes, or none yet.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-#[non_exhaustive]
-pub enum Outcome {
-    /// The defect passed the impurity.
-    Transmitted,
-    /// The defect came back.
-    Reflected,
-    /// The defect stayed at the impurity.
-    Trapped,
-    /// The defect broke up: for a kink, a transmitted kink, a reflected kink and an antikink
-    /// trapped at the impurity (Fig. `fig:k-split-utn`).
-    Split,
-    /// No outcome was decided before the run ended.
-    Undecided,
-}
-
-impl Outcome {
-    pub const ALL: [Outcome; 5] =
-        [Outcome::Transmitted, Outcome::Reflected, Outcome::Trapped, Outcome::Split, Outcome::Undecided];
-
-    /// The name written in the `outcome` column.
-    pub fn name(self) -> &'static str {
-        match self {
-            Outcome::Transmitted => "transmitted",
-            Outcome::Reflected => "reflected",
-            Outcome::Trapped => "trapped",
-            Outcome::Split => "split",
-            Outcome::Undecided => "undecided",
-        }
-    }
-}
-
-impl fmt::Display for Outcome {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(self.name())
-    }
-}
-
-/// The name is not one of [`Outcome::ALL`]'s.
-#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
-#[error("unknown outcome `{0}`: expected transmitted, reflected, trapped, split or undecided")]
-pub struct UnknownOutcome(pub String);
-
-impl FromStr for Outcome {
-    type Err = UnknownOutcome;
-
-    fn from_str(name: &str) -> Result<Self, UnknownOutcome> {
-        Outcome::ALL.into_iter().find(|o| o.name() == name).ok_or_else(|| UnknownOutcome(name.to_owned()))
-    }
-}
+/// What the impurity did to the incident defect: the dynamics' own outcome type, with its names
+/// (`transmitted`, ...) as the `outcome` column.
+pub use rotor_chain::dynamics::scatter::{Outcome, UnknownOutcome};
 
 /// One scattering simulation's result: the columns of a phase-diagram results file.
 #[derive(Clone, Debug, PartialEq)]

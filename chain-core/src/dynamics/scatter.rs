@@ -48,6 +48,10 @@ pub enum Outcome {
 }
 
 impl Outcome {
+    /// Every outcome, in the order of the paper's regimes, undecided last.
+    pub const ALL: [Outcome; 5] =
+        [Outcome::Transmitted, Outcome::Reflected, Outcome::Trapped, Outcome::Split, Outcome::Undecided];
+
     /// Lower-case name, for files and tables.
     pub fn name(self) -> &'static str {
         match self {
@@ -57,6 +61,25 @@ impl Outcome {
             Outcome::Split => "split",
             Outcome::Undecided => "undecided",
         }
+    }
+}
+
+impl core::fmt::Display for Outcome {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+/// A name that is not one of [`Outcome::ALL`]'s.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[error("unknown outcome `{0}`: expected transmitted, reflected, trapped, split or undecided")]
+pub struct UnknownOutcome(pub alloc::string::String);
+
+impl core::str::FromStr for Outcome {
+    type Err = UnknownOutcome;
+
+    fn from_str(name: &str) -> Result<Self, UnknownOutcome> {
+        Outcome::ALL.into_iter().find(|o| o.name() == name).ok_or_else(|| UnknownOutcome(name.into()))
     }
 }
 

@@ -41,9 +41,6 @@ const PAPER_TRAP_ROTOR: f64 = 35.0;
 const THETA_BAR_SCATTERING: f64 = 0.28;
 /// The most rows of a space-time image.
 const MAX_IMAGE_ROWS: usize = 400;
-/// Outcome names of the phase diagrams, in the order of their category indices.
-const OUTCOMES: [Outcome; 5] =
-    [Outcome::Transmitted, Outcome::Reflected, Outcome::Trapped, Outcome::Split, Outcome::Undecided];
 
 fn chain(params: &Params, theta_bar: f64, impurity: Option<f64>) -> Result<RuntimeChain, String> {
     let mut builder = RuntimeChain::builder(params.n, params.r, params.k, theta_bar).mass(params.mass);
@@ -395,7 +392,7 @@ fn phase_diagram(
 }
 
 fn category(outcome: Outcome) -> f64 {
-    OUTCOMES.iter().position(|&o| o == outcome).unwrap_or(OUTCOMES.len() - 1) as f64
+    Outcome::ALL.iter().position(|&o| o == outcome).unwrap_or(Outcome::ALL.len() - 1) as f64
 }
 
 fn count(outcomes: &[Vec<Outcome>], which: &[Outcome]) -> usize {
@@ -422,14 +419,18 @@ pub fn phasediagram(params: &Params, quality: Quality) -> Result<Figure, FigureE
             x: kis.clone(),
             y: v0s.clone(),
             values: outcomes.iter().map(|row| row.iter().map(|&o| category(o)).collect()).collect(),
-            categories: OUTCOMES.iter().map(|o| o.name().to_owned()).collect(),
+            categories: Outcome::ALL.iter().map(|o| o.name().to_owned()).collect(),
             value_label: "outcome".to_owned(),
         }));
         diagrams.push(outcomes);
     }
     let (kink, antikink) = (&diagrams[0], &diagrams[1]);
     let counts = |d: &[Vec<Outcome>]| {
-        OUTCOMES.iter().map(|&o| format!("{} {}", count(d, &[o]), o.name())).collect::<Vec<_>>().join(", ")
+        Outcome::ALL
+            .iter()
+            .map(|&o| format!("{} {}", count(d, &[o]), o.name()))
+            .collect::<Vec<_>>()
+            .join(", ")
     };
     let kink_bad = count(kink, &[Outcome::Trapped, Outcome::Reflected]);
     // The lowest v0 on the grid at which some antikink escapes the impurity (transmitted or

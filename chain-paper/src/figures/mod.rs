@@ -34,6 +34,11 @@ impl FigureError {
     pub fn new(label: &'static str, err: impl std::fmt::Display) -> Self {
         Self { label, message: err.to_string() }
     }
+
+    /// Maps any displayable error to a `FigureError` of `label`: `.map_err(FigureError::on(LABEL))`.
+    pub fn on<E: std::fmt::Display>(label: &'static str) -> impl Fn(E) -> FigureError {
+        move |e| FigureError::new(label, e)
+    }
 }
 
 /// A figure function.

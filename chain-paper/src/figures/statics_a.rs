@@ -7,8 +7,6 @@
 //! `k a^2`. The antikink is always the equilibrium with its end rotors held at `-+theta_bar`
 //! (`docs/statics.md` §3, "Boundary treatment").
 
-use std::fmt::Display;
-
 use rotor_chain::statics::antikink::{
     Antikink, AntikinkOptions, PeierlsNabarro, barrier_vs_size, peierls_nabarro,
 };
@@ -50,24 +48,20 @@ const PAPER_LOG_SLOPE: f64 = -10.6;
 /// The equilibrium angle of the finite-size study (Fig. `fig:logvpn-size`).
 const SIZE_THETA_BAR: f64 = 0.40;
 
-/// An error of figure `label`.
-fn fail<E: Display>(label: &'static str) -> impl Fn(E) -> FigureError {
-    move |e| FigureError::new(label, e)
-}
-
 /// The paper's chain with `n` rotors at `theta_bar` (`a = 1`).
 fn chain(p: &Params, n: usize, theta_bar: f64, label: &'static str) -> Result<RuntimeChain, FigureError> {
-    RuntimeChain::builder(n, p.r, p.k, theta_bar).mass(p.mass).build().map_err(fail(label))
+    RuntimeChain::builder(n, p.r, p.k, theta_bar).mass(p.mass).build().map_err(FigureError::on(label))
 }
 
 /// The continuum theory of the same chain.
 fn continuum(p: &Params, theta_bar: f64, label: &'static str) -> Result<ContinuumChain, FigureError> {
-    ContinuumChain::new(1.0, p.r, theta_bar, p.k, p.mass).map_err(fail(label))
+    ContinuumChain::new(1.0, p.r, theta_bar, p.k, p.mass).map_err(FigureError::on(label))
 }
 
 /// The minimum and saddle of the antikink in the middle of `n` rotors, ends held.
 fn pn(p: &Params, n: usize, theta_bar: f64, label: &'static str) -> Result<PeierlsNabarro, FigureError> {
-    peierls_nabarro(&chain(p, n, theta_bar, label)?, &AntikinkOptions::default()).map_err(fail(label))
+    peierls_nabarro(&chain(p, n, theta_bar, label)?, &AntikinkOptions::default())
+        .map_err(FigureError::on(label))
 }
 
 /// `k a^2` with `a = 1`.
@@ -168,7 +162,7 @@ pub fn kcobweb(p: &Params, q: Quality) -> Result<Figure, FigureError> {
     let n = COBWEB_ROTORS;
     let model = chain(p, n, THETA_BAR, LABEL)?;
     let centre = (n - 1) as f64 / 2.0;
-    let theta = kink(&model, centre).map_err(fail(LABEL))?;
+    let theta = kink(&model, centre).map_err(FigureError::on(LABEL))?;
     let mut config = vec![Series::new("kink", profile(&theta), Style::LinePoints)];
     config.extend(uniform_levels(n, THETA_BAR));
     Ok(Figure {
@@ -190,8 +184,10 @@ pub fn kcobweb(p: &Params, q: Quality) -> Result<Figure, FigureError> {
 /// 16-rotor chain at `theta_bar = 0.58`, ends held.
 fn cobweb_antikink(p: &Params, label: &'static str) -> Result<(RuntimeChain, Antikink), FigureError> {
     let model = chain(p, COBWEB_ROTORS, THETA_BAR, label)?;
-    let minimum =
-        peierls_nabarro(&model, &AntikinkOptions::default()).map_err(fail(label))?.minimum().clone();
+    let minimum = peierls_nabarro(&model, &AntikinkOptions::default())
+        .map_err(FigureError::on(label))?
+        .minimum()
+        .clone();
     Ok((model, minimum))
 }
 
@@ -202,7 +198,7 @@ pub fn akcobweb(p: &Params, q: Quality) -> Result<Figure, FigureError> {
     const LABEL: &str = "fig:akcobweb";
     let (model, antikink) = cobweb_antikink(p, LABEL)?;
     let n = model.rotor_count();
-    let start = reflected_kink(&model, antikink.centre).map_err(fail(LABEL))?;
+    let start = reflected_kink(&model, antikink.centre).map_err(FigureError::on(LABEL))?;
     let spring = (antikink.centre.floor() as usize).min(n - 2);
     let mut config = vec![
         Series::new("antikink", profile(&antikink.theta), Style::LinePoints),
@@ -503,7 +499,8 @@ pub fn logvpn_size(p: &Params, q: Quality) -> Result<Figure, FigureError> {
     };
     sizes.push(p.n);
     let build = |n: usize| RuntimeChain::builder(n, p.r, p.k, SIZE_THETA_BAR).mass(p.mass).build();
-    let barriers = barrier_vs_size(&sizes, build, &AntikinkOptions::default()).map_err(fail(LABEL))?;
+    let barriers =
+        barrier_vs_size(&sizes, build, &AntikinkOptions::default()).map_err(FigureError::on(LABEL))?;
     let (_, reference) = barriers[barriers.len() - 1];
     let energy = pn(p, p.n, SIZE_THETA_BAR, LABEL)?.minimum().energy;
     // Differences below this are rounding in the two energies of each barrier (measured: from

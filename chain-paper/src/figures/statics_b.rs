@@ -7,8 +7,6 @@
 //! Frequencies are given in the paper's unit `(r/a) sqrt(k/M)` (Sec. VII-A), energies in
 //! `M a^2 / t^2` (with `a = 1`), positions in lattice spacings `a`.
 
-use std::fmt::Display;
-
 use rotor_chain::RuntimeChain;
 use rotor_chain::prelude::ChainModel;
 use rotor_chain::statics::antikink::{AntikinkOptions, peierls_nabarro};
@@ -51,11 +49,6 @@ const L0_ABOVE: f64 = 2.40;
 const W_TH_ROTORS: usize = 240;
 /// Rotors shown either side of a defect in Fig. `fig:mode-config`.
 const MODE_WINDOW: usize = 12;
-
-/// Maps any displayable error to a [`FigureError`] of `label`.
-fn on<E: Display>(label: &'static str) -> impl Fn(E) -> FigureError {
-    move |e| FigureError::new(label, e)
-}
 
 /// The paper's frequency unit `(r/a) sqrt(k/M)` (`a = 1`), in `1/t`.
 fn unit(params: &Params) -> f64 {
@@ -158,9 +151,9 @@ fn frequency_label(omega: f64, floor: f64, unit: f64) -> String {
 pub fn mode_config(params: &Params, _quality: Quality) -> Result<Figure, FigureError> {
     const LABEL: &str = "fig:mode-config";
     let n = params.n;
-    let model = chain(params, n, THETA_BAR).map_err(on(LABEL))?;
+    let model = chain(params, n, THETA_BAR).map_err(FigureError::on(LABEL))?;
     let DefectModes { kink_theta, kink_modes, antikink_theta, antikink_modes } =
-        defect_modes(&model, n).map_err(on(LABEL))?;
+        defect_modes(&model, n).map_err(FigureError::on(LABEL))?;
     let u = unit(params);
     let mut panels = Vec::new();
     let cases = [
@@ -238,8 +231,11 @@ pub fn w_th(params: &Params, quality: Quality) -> Result<Figure, FigureError> {
     };
     let u = unit(params);
     let n = params.n.max(W_TH_ROTORS);
-    let data: Vec<LocalisedModes> =
-        thetas.iter().map(|&t| localised_modes(params, n, t)).collect::<Result<_, _>>().map_err(on(LABEL))?;
+    let data: Vec<LocalisedModes> = thetas
+        .iter()
+        .map(|&t| localised_modes(params, n, t))
+        .collect::<Result<_, _>>()
+        .map_err(FigureError::on(LABEL))?;
     let points = |get: &dyn Fn(&LocalisedModes) -> Option<f64>| -> Vec<(f64, f64)> {
         data.iter().filter_map(|d| get(d).map(|w| (d.theta_bar, w / u))).filter(|p| p.1 > 0.0).collect()
     };
@@ -247,7 +243,7 @@ pub fn w_th(params: &Params, quality: Quality) -> Result<Figure, FigureError> {
         .map(|j| 0.05 + 0.6 * j as f64 / 60.0)
         .map(|t| continuum(params, t).map(|c| (t, c.shape_mode_frequency() / u)))
         .collect::<Result<_, _>>()
-        .map_err(on(LABEL))?;
+        .map_err(FigureError::on(LABEL))?;
     let panel = |title: &str, shape: Vec<(f64, f64)>, translation: Vec<(f64, f64)>| {
         lines(
             title,
@@ -272,7 +268,7 @@ pub fn w_th(params: &Params, quality: Quality) -> Result<Figure, FigureError> {
     ];
 
     // Rows at theta_bar = 0.1 (the paper: agreement with the continuum at small theta_bar) and 0.58.
-    let small = localised_modes(params, n, 0.1).map_err(on(LABEL))?;
+    let small = localised_modes(params, n, 0.1).map_err(FigureError::on(LABEL))?;
     let mut rows = Vec::new();
     for (name, ours) in [("kink", small.kink_shape), ("antikink", small.antikink_shape)] {
         let ours = ours.ok_or_else(|| FigureError::new(LABEL, format!("{name}: no shape mode at 0.1")))?;
@@ -322,7 +318,7 @@ pub fn w_th(params: &Params, quality: Quality) -> Result<Figure, FigureError> {
         "zero: below 10 sqrt(ε‖K‖/(Mr²)); at n = 60 the ends lift it to ~1e-4 at θ̄ = 0.1 \
          (docs/statics.md §5)",
     ));
-    let mid = localised_modes(params, n, THETA_BAR).map_err(on(LABEL))?;
+    let mid = localised_modes(params, n, THETA_BAR).map_err(FigureError::on(LABEL))?;
     if let (Some(t), Some(s)) = (mid.antikink_translation, mid.antikink_shape) {
         rows.push(Row::words(
             "antikink ω_t / ω_s at θ̄ = 0.58",
@@ -357,12 +353,12 @@ pub fn longbar(params: &Params, _quality: Quality) -> Result<Figure, FigureError
             .mass(params.mass)
             .spring(p, Some(params.k), Some(l0))
             .build()
-            .map_err(on(LABEL))
+            .map_err(FigureError::on(LABEL))
     };
     let model = build(LONGBAR_L0)?;
-    let analysis = impurity_analysis(&model, p).map_err(on(LABEL))?;
+    let analysis = impurity_analysis(&model, p).map_err(FigureError::on(LABEL))?;
     let u = unit(params);
-    let cont = continuum(params, THETA_BAR).map_err(on(LABEL))?;
+    let cont = continuum(params, THETA_BAR).map_err(FigureError::on(LABEL))?;
     let (zero, soft) = (&analysis.modes[0], &analysis.modes[1]);
     let profile: Vec<f64> = analysis.theta.iter().map(|t| t / THETA_BAR).collect();
     let mode_panel = |title: String, mode: &Mode| {
@@ -395,16 +391,16 @@ pub fn longbar(params: &Params, _quality: Quality) -> Result<Figure, FigureError
     ];
 
     let kink_shape = {
-        let plain = chain(params, n, THETA_BAR).map_err(on(LABEL))?;
-        let theta = kink(&plain, (n as f64 - 1.0) / 2.0).map_err(on(LABEL))?;
+        let plain = chain(params, n, THETA_BAR).map_err(FigureError::on(LABEL))?;
+        let theta = kink(&plain, (n as f64 - 1.0) / 2.0).map_err(FigureError::on(LABEL))?;
         let list = modes(&plain, &theta, &ModeOptions { count: Some(4), ..ModeOptions::default() })
-            .map_err(on(LABEL))?;
+            .map_err(FigureError::on(LABEL))?;
         first_of(&list, ModeKind::Shape).map_or(f64::NAN, |m| m.frequency / u)
     };
     let at_critical = {
         let critical = build(analysis.critical_length)?;
-        let theta = two_kink_configuration(&critical, p).map_err(on(LABEL))?;
-        maxwell_calladine(&critical, &theta, None).map_err(on(LABEL))?
+        let theta = two_kink_configuration(&critical, p).map_err(FigureError::on(LABEL))?;
+        maxwell_calladine(&critical, &theta, None).map_err(FigureError::on(LABEL))?
     };
     let plural =
         |count: usize, word: &str, many: &str| format!("{count} {}", if count == 1 { word } else { many });
@@ -516,14 +512,14 @@ fn potential_map(model: &LinkageChain, title: String, points: usize, cap: f64) -
 /// portraits, below, near and above `l_critical`, and the two-kink potential below it.
 pub fn defective_kl(params: &Params, quality: Quality) -> Result<Figure, FigureError> {
     const LABEL: &str = "fig:defectiveKL";
-    let cont = continuum(params, THETA_BAR).map_err(on(LABEL))?;
+    let cont = continuum(params, THETA_BAR).map_err(FigureError::on(LABEL))?;
     let l_c = cont.l_critical();
-    let below = linkage(params, L0_BELOW).map_err(on(LABEL))?;
+    let below = linkage(params, L0_BELOW).map_err(FigureError::on(LABEL))?;
     let (from, to) = coordinate_range(&below);
     let xs = grid(from, to, quality.pick(721, 145));
     let mut panels = Vec::new();
     for (tag, l0) in [("below", L0_BELOW), ("near", L0_NEAR), ("above", L0_ABOVE)] {
-        let model = linkage(params, l0).map_err(on(LABEL))?;
+        let model = linkage(params, l0).map_err(FigureError::on(LABEL))?;
         let e_c = model.critical_energy();
         // V(x1, 0) up to 3 E_c: the walls at the heads rise to 1e3, which would hide the well of
         // depth 0.13 near l_critical.
@@ -646,7 +642,7 @@ struct OrbitCase {
 /// Fig. `fig:orbit`: two-kink trajectories in the `(x1, x2)` plane.
 pub fn orbit(params: &Params, quality: Quality) -> Result<Figure, FigureError> {
     const LABEL: &str = "fig:orbit";
-    let l_c = continuum(params, THETA_BAR).map_err(on(LABEL))?.l_critical();
+    let l_c = continuum(params, THETA_BAR).map_err(FigureError::on(LABEL))?.l_critical();
     let (dt, steps) = (4.0e-4, quality.pick(50_000, 3_000));
     let stride = (steps / 2_000).max(1);
     let cases = [
@@ -683,13 +679,13 @@ pub fn orbit(params: &Params, quality: Quality) -> Result<Figure, FigureError> {
     let mut rows = Vec::new();
     let mut drifts = Vec::new();
     for case in &cases {
-        let model = linkage(params, case.l0).map_err(on(LABEL))?;
+        let model = linkage(params, case.l0).map_err(FigureError::on(LABEL))?;
         let energy = (case.energy)(&model);
         let state = start(&model, case.position, case.direction, energy);
-        let run = model.trajectory(state, dt, steps, stride).map_err(on(LABEL))?;
+        let run = model.trajectory(state, dt, steps, stride).map_err(FigureError::on(LABEL))?;
         let e0 = run[0].energy;
         drifts.push(run.iter().map(|p| (p.energy - e0).abs()).fold(0.0, f64::max) / e0.abs().max(1e-300));
-        let region = model.region(e0).map_err(on(LABEL))?;
+        let region = model.region(e0).map_err(FigureError::on(LABEL))?;
         let region_name = format!("{region:?}").to_lowercase();
         let path: Vec<(f64, f64)> = run.iter().map(|p: &TrajectoryPoint| (p.x1, p.x2)).collect();
         panels.push(lines(
@@ -744,11 +740,11 @@ pub fn orbit(params: &Params, quality: Quality) -> Result<Figure, FigureError> {
 /// Fig. `fig:ELdiagram`: the `(E, l0)` diagram.
 pub fn el_diagram_figure(params: &Params, quality: Quality) -> Result<Figure, FigureError> {
     const LABEL: &str = "fig:ELdiagram";
-    let cont = continuum(params, THETA_BAR).map_err(on(LABEL))?;
+    let cont = continuum(params, THETA_BAR).map_err(FigureError::on(LABEL))?;
     let (l_c, bar) = (cont.l_critical(), cont.rest_length());
     let (from, to) = ((bar + 0.03).max(1.7), 2.9);
     let l0s = grid(from, to, quality.pick(241, 49));
-    let curve = el_diagram(&cont, &l0s).map_err(on(LABEL))?;
+    let curve = el_diagram(&cont, &l0s).map_err(FigureError::on(LABEL))?;
     let e_max = curve.iter().map(|p| p[1]).fold(0.0, f64::max) * 1.1;
     let left: Vec<(f64, f64)> = curve.iter().filter(|p| p[0] <= l_c).map(|p| (p[0], p[1])).collect();
     let right: Vec<(f64, f64)> = curve.iter().filter(|p| p[0] >= l_c).map(|p| (p[0], p[1])).collect();
@@ -765,7 +761,7 @@ pub fn el_diagram_figure(params: &Params, quality: Quality) -> Result<Figure, Fi
                 .collect::<Result<Vec<f64>, rotor_chain::statics::linkage::LinkageError>>()
         })
         .collect::<Result<Vec<_>, _>>()
-        .map_err(on(LABEL))?;
+        .map_err(FigureError::on(LABEL))?;
     // Region labels: one representative point of each region.
     let mid_left = 0.5 * (from + l_c);
     let mid_right = 0.5 * (l_c + to);

@@ -15,7 +15,7 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 use std::time::Duration;
 
-use chain_sweep::scattering::{Outcome, PointRecord, fake_point};
+use chain_sweep::scattering::{PointRecord, fake_point};
 use chain_sweep::{Axis, Grid, Summary, SweepOptions, run_sweep};
 use clap::{Parser, ValueEnum};
 use rotor_chain::RuntimeChain;
@@ -122,7 +122,7 @@ impl Config {
 /// (`rotor_chain::dynamics::scatter::scatter`). The sweep runs this on every core, records an
 /// `Err` in the file and carries on, and turns a panic into an `Err`.
 fn compute_point(cfg: &Config, ki_ratio: f64, v0: f64) -> Result<PointRecord, String> {
-    use rotor_chain::dynamics::scatter::{Outcome as Scatter, ScatterSetup, scatter};
+    use rotor_chain::dynamics::scatter::{ScatterSetup, scatter};
     use rotor_chain::statics::walls::Charge;
     let middle = (cfg.n - 1) / 2;
     let model = RuntimeChain::builder(cfg.n, cfg.r, cfg.k, cfg.theta_bar)
@@ -139,13 +139,7 @@ fn compute_point(cfg: &Config, ki_ratio: f64, v0: f64) -> Result<PointRecord, St
     let (kinks_final, antikinks_final) = last.counts();
     let report = &result.run.report;
     Ok(PointRecord {
-        outcome: match result.outcome {
-            Scatter::Transmitted => Outcome::Transmitted,
-            Scatter::Reflected => Outcome::Reflected,
-            Scatter::Trapped => Outcome::Trapped,
-            Scatter::Split => Outcome::Split,
-            _ => Outcome::Undecided,
-        },
+        outcome: result.outcome,
         t_decided: result.decided_at,
         kinks_final,
         antikinks_final,
