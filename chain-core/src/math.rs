@@ -75,3 +75,15 @@ mod imp {
 }
 
 pub use imp::*;
+
+/// The sign of `x` with `sign(0) = 0` (and NaN for NaN): unlike `f64::signum`, zero is neither side.
+#[inline]
+pub fn sign(x: f64) -> f64 {
+    if x > 0.0 {
+        1.0
+    } else if x < 0.0 {
+        -1.0
+    } else {
+        x * 0.0
+    }
+}

@@ -61,7 +61,8 @@ pub struct Tracker {
 impl Tracker {
     /// Starts tracking from the initial angles.
     pub fn new(theta: &[f64]) -> Self {
-        let (left_lean, right_lean) = (sign(theta[0]), sign(theta[theta.len() - 1]));
+        let (left_lean, right_lean) =
+            (crate::math::sign(theta[0]), crate::math::sign(theta[theta.len() - 1]));
         let charge = domain_walls(theta).iter().map(|w| if w.charge == Charge::Kink { 1 } else { -1 }).sum();
         Self { left_lean, right_lean, charge, snapshots: Vec::new(), violations: Vec::new() }
     }
@@ -73,7 +74,7 @@ impl Tracker {
         let mut at_boundary = alloc::vec![false; walls.len()];
         // A flipped left end: a wall left through it. Moving left, a kink (+ to -) leaves the
         // left end leaning -, an antikink leaves it leaning +.
-        let (l, r) = (sign(theta[0]), sign(theta[n - 1]));
+        let (l, r) = (crate::math::sign(theta[0]), crate::math::sign(theta[n - 1]));
         if l != 0.0 && l != self.left_lean {
             walls.push(Wall { position: 0.0, charge: if l < 0.0 { Charge::Kink } else { Charge::Antikink } });
             at_boundary.push(true);
@@ -101,16 +102,6 @@ impl Tracker {
     /// The conserved `N_kink - N_antikink`.
     pub fn charge(&self) -> isize {
         self.charge
-    }
-}
-
-fn sign(x: f64) -> f64 {
-    if x > 0.0 {
-        1.0
-    } else if x < 0.0 {
-        -1.0
-    } else {
-        0.0
     }
 }
 

@@ -320,7 +320,7 @@ impl LinkageChain {
     }
 
     /// Angle and `d/dx` of the rotor at position `at` for a kink at `x` (left frame), on `side`:
-    /// `|x|` is read as `side * x`, so `side = signum(x)` is the model and a fixed `side = +-1` is
+    /// `|x|` is read as `side * x`, so `side = sign(x)` is the model and a fixed `side = +-1` is
     /// the smooth continuation of one half past `x = 0` (used by the integrator).
     fn rotor_angle(&self, x: f64, at: f64, side: f64) -> (f64, f64) {
         let (theta, slope, _) = wall_angle(self.sin_bar(), (side * x - at) / self.profile_width);
@@ -333,17 +333,17 @@ impl LinkageChain {
 
     /// The head angle `theta~(x)` (Sec. VII-B, module doc), in the left frame.
     pub fn head_angle(&self, x: f64) -> f64 {
-        self.rotor_angle(x, self.head_position(), signum(x)).0
+        self.rotor_angle(x, self.head_position(), crate::math::sign(x)).0
     }
 
     /// `dtheta~/dx` (zero at `x = 0`, where the two one-sided slopes are opposite).
     pub fn head_angle_slope(&self, x: f64) -> f64 {
-        self.rotor_angle(x, self.head_position(), signum(x)).1
+        self.rotor_angle(x, self.head_position(), crate::math::sign(x)).1
     }
 
     /// The continuum angles of one sub-chain's rotors for a kink at `x`, in the left frame.
     pub fn sub_chain_profile(&self, x: f64) -> Vec<f64> {
-        (1..=self.rotors).map(|pos| self.rotor_angle(x, pos as f64, signum(x)).0).collect()
+        (1..=self.rotors).map(|pos| self.rotor_angle(x, pos as f64, crate::math::sign(x)).0).collect()
     }
 
     /// All `2m` angles of the chain in the real frame: the left sub-chain as is, the right one
@@ -371,7 +371,7 @@ impl LinkageChain {
 
     /// The impurity spring's length `l12(x1, x2)`.
     pub fn impurity_length(&self, x1: f64, x2: f64) -> f64 {
-        self.impurity(x1, x2, [signum(x1), signum(x2)]).0
+        self.impurity(x1, x2, [crate::math::sign(x1), crate::math::sign(x2)]).0
     }
 
     /// `V(x1, x2; l0) = k (l12 - l0)^2 / 2` (Sec. VII-B).
@@ -382,7 +382,7 @@ impl LinkageChain {
 
     /// `[dV/dx1, dV/dx2]`, from the closed form (zero component at `x_i = 0`, the cusp).
     pub fn potential_gradient(&self, x1: f64, x2: f64) -> [f64; 2] {
-        self.gradient_on(x1, x2, [signum(x1), signum(x2)])
+        self.gradient_on(x1, x2, [crate::math::sign(x1), crate::math::sign(x2)])
     }
 
     fn gradient_on(&self, x1: f64, x2: f64, sides: [f64; 2]) -> [f64; 2] {
@@ -427,12 +427,12 @@ impl LinkageChain {
 
     /// The effective kink mass `m(x)` (module doc).
     pub fn kink_mass(&self, x: f64) -> f64 {
-        self.mass_and_slope(x, signum(x)).0
+        self.mass_and_slope(x, crate::math::sign(x)).0
     }
 
     /// `dm/dx`.
     pub fn kink_mass_slope(&self, x: f64) -> f64 {
-        self.mass_and_slope(x, signum(x)).1
+        self.mass_and_slope(x, crate::math::sign(x)).1
     }
 
     /// `H(x1, x2, p1, p2) = p1^2/(2 m(x1)) + p2^2/(2 m(x2)) + V(x1, x2; l0)`.
@@ -557,7 +557,7 @@ impl LinkageChain {
     fn advance(&self, s: PhaseState, h: f64, step: usize) -> Result<PhaseState, LinkageError> {
         let side = |x: f64, p: f64| {
             if x != 0.0 {
-                signum(x)
+                crate::math::sign(x)
             } else if p < 0.0 {
                 -1.0
             } else {
@@ -687,15 +687,4 @@ fn wall_angle(s: f64, xi: f64) -> (f64, f64, f64) {
     let h = s * sech2 / root;
     let dh = s * t * sech2 * (s * s * sech2 - 2.0 * q) / (q * root);
     (libm::asin(s * t), h, dh)
-}
-
-/// `sign(x)` with `sign(0) = 0`: the symmetric choice at the cusp of `|x|`.
-fn signum(x: f64) -> f64 {
-    if x > 0.0 {
-        1.0
-    } else if x < 0.0 {
-        -1.0
-    } else {
-        0.0
-    }
 }
