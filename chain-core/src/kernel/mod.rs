@@ -25,22 +25,40 @@ pub mod quartic;
 /// Kernel argument `[s1, c1, s2, c2, a, r1, r2, k, l0]`.
 pub type KernelArgs = [f64; 9];
 
+/// Angles whose `sin_cos` is computed in one batch before their springs are visited.
+const CHUNK: usize = 64;
+
 /// Calls `f(p, args)` for every spring `p` of the chain with angles `theta`.
+///
+/// The `sin_cos` of a chunk of angles is computed first, into a small stack buffer, and the springs
+/// of the chunk are visited after: a loop without calls lets the spring arithmetic pipeline
+/// (measured on a 60-rotor `RuntimeChain`: tangent stiffness 1.61 -> 1.28 us, gradient unchanged
+/// at ~1.0 us), and a fixed-size buffer keeps this `no_std` without allocation.
 #[inline(always)]
 pub fn for_each_spring(
     theta: &[f64],
     params: impl Fn(usize) -> [f64; 5],
     mut f: impl FnMut(usize, KernelArgs),
 ) {
-    let Some((&first, rest)) = theta.split_first() else {
+    let n = theta.len();
+    if n < 2 {
         return;
-    };
-    let (mut s1, mut c1) = math::sin_cos(first);
-    for (p, &next) in rest.iter().enumerate() {
-        let (s2, c2) = math::sin_cos(next);
-        let [a, r1, r2, k, l0] = params(p);
-        f(p, [s1, c1, s2, c2, a, r1, r2, k, l0]);
-        (s1, c1) = (s2, c2);
+    }
+    let (mut sin, mut cos) = ([0.0; CHUNK + 1], [0.0; CHUNK + 1]);
+    (sin[0], cos[0]) = math::sin_cos(theta[0]);
+    let mut start = 0;
+    while start + 1 < n {
+        let end = (start + CHUNK).min(n - 1);
+        for i in start + 1..=end {
+            (sin[i - start], cos[i - start]) = math::sin_cos(theta[i]);
+        }
+        for p in start..end {
+            let k = p - start;
+            let [a, r1, r2, kp, l0] = params(p);
+            f(p, [sin[k], cos[k], sin[k + 1], cos[k + 1], a, r1, r2, kp, l0]);
+        }
+        (sin[0], cos[0]) = (sin[end - start], cos[end - start]);
+        start = end;
     }
 }
 
