@@ -137,17 +137,25 @@ impl Row {
     }
 }
 
-/// Four significant digits, scientific notation outside `[1e-3, 1e5)`.
+/// Six significant digits with trailing zeros dropped (the paper's 1359.15 and 1359.75, whose
+/// difference is its barrier, must stay apart), scientific notation outside `[1e-3, 1e5)`.
 pub fn format_number(x: f64) -> String {
     let a = x.abs();
     if x == 0.0 {
-        "0".to_owned()
-    } else if !(1e-3..1e5).contains(&a) {
-        format!("{x:.3e}")
-    } else {
-        let digits = (3 - a.log10().floor() as i32).max(0) as usize;
-        format!("{x:.digits$}")
+        return "0".to_owned();
     }
+    if !(1e-3..1e5).contains(&a) {
+        let text = format!("{x:.5e}");
+        let (mantissa, exponent) = text.split_once('e').unwrap_or((&text, "0"));
+        return format!("{}e{exponent}", trim_zeros(mantissa));
+    }
+    let digits = (5 - a.log10().floor() as i32).max(0) as usize;
+    trim_zeros(&format!("{x:.digits$}")).to_owned()
+}
+
+/// `1.500` -> `1.5`, `2.000` -> `2`; integers untouched.
+fn trim_zeros(text: &str) -> &str {
+    if text.contains('.') { text.trim_end_matches('0').trim_end_matches('.') } else { text }
 }
 
 #[cfg(test)]
@@ -158,8 +166,10 @@ mod tests {
     fn rows_compute_their_relative_difference() {
         let r = Row::number("barrier", 0.60, 0.668, None, "");
         assert!((r.relative_difference.unwrap() - 0.1133).abs() < 1e-3);
-        assert_eq!(r.paper, "0.6000");
-        assert_eq!(format_number(1359.15), "1359");
-        assert_eq!(format_number(7.7e-9), "7.700e-9");
+        assert_eq!(r.paper, "0.6");
+        assert_eq!(format_number(1359.15), "1359.15");
+        assert_eq!(format_number(1392.029215), "1392.03");
+        assert_eq!(format_number(7.7e-9), "7.7e-9");
+        assert_eq!(format_number(-10.6), "-10.6");
     }
 }

@@ -16,7 +16,11 @@ pub const COLUMNS: [&str; 7] =
 pub fn summary_markdown(rows: &[(&'static str, Row)]) -> String {
     let mut table = format!("| {} |\n|{}\n", COLUMNS.join(" | "), " --- |".repeat(COLUMNS.len()));
     for (label, row) in rows {
-        let percent = row.relative_difference.map(|d| format_number(100.0 * d)).unwrap_or_default();
+        // A percentage needs no more than two decimals (below 0.01 %, scientific notation).
+        let percent = row
+            .relative_difference
+            .map(|d| if 100.0 * d >= 0.01 { format!("{:.2}", 100.0 * d) } else { format_number(100.0 * d) })
+            .unwrap_or_default();
         let cells = [
             *label,
             &row.quantity,
@@ -96,7 +100,7 @@ mod tests {
         );
         assert_eq!(
             lines[2],
-            "| fig:barrier | PN barrier \\| n = 60 | 0.6000 | 0.6680 | 0.7000 | 11.33 | discreteness of the chain |"
+            "| fig:barrier | PN barrier \\| n = 60 | 0.6 | 0.668 | 0.7 | 11.33 | discreteness of the chain |"
         );
         assert_eq!(lines[3], "| fig:scatter | outcome at v0 = 2 | transmitted | transmitted |  |  |  |");
     }

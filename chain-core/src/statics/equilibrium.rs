@@ -114,7 +114,7 @@ pub struct Solution {
 }
 
 /// The rotors that move: all of them, or all but the two ends.
-fn moving(n: usize, hold_ends: bool) -> core::ops::Range<usize> {
+pub(crate) fn moving(n: usize, hold_ends: bool) -> core::ops::Range<usize> {
     if hold_ends && n > 2 { 1..n - 1 } else { 0..n }
 }
 

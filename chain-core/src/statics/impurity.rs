@@ -18,16 +18,11 @@ use super::error::StaticsError;
 use super::modes::{Mode, ModeOptions, modes};
 use crate::model::ChainModel;
 
-/// The length of spring `p` with its rotors at `theta_p`, `theta_{p+1}` (other rotors irrelevant),
-/// from the model's generated code.
+/// The length of spring `p` with its rotors at `theta_p`, `theta_{p+1}`: O(1), from the model's
+/// own lattice spacing and rotor lengths.
 fn spring_length<M: ChainModel + ?Sized>(model: &M, p: usize, theta_p: f64, theta_next: f64) -> f64 {
-    let n = model.rotor_count();
-    let mut theta = vec![0.0; n];
-    theta[p] = theta_p;
-    theta[p + 1] = theta_next;
-    let mut lengths = vec![0.0; n - 1];
-    model.spring_lengths_into(&theta, &mut lengths);
-    lengths[p]
+    let (a, r1, r2) = (model.lattice_spacing(), model.rotor_length(p), model.rotor_length(p + 1));
+    chain_geometry::spring_length(a, r1, r2, theta_p, theta_next)
 }
 
 /// `l_critical` of spring `p`, computed: the spring's length with its left rotor at `-theta_bar`

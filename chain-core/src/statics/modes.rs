@@ -99,8 +99,7 @@ pub fn modes<M: ChainModel + ?Sized>(
     let inertia: Vec<f64> = (0..n).map(|i| model.inertia(i)).collect();
     let root: Vec<f64> = inertia.iter().map(|&x| math::sqrt(x)).collect();
     // The moving rotors: all, or all but the held ends.
-    let first = usize::from(options.hold_ends && n > 2);
-    let end = if options.hold_ends && n > 2 { n - 1 } else { n };
+    let core::ops::Range { start: first, end } = super::equilibrium::moving(n, options.hold_ends);
     let sdiag: Vec<f64> = (first..end).map(|i| diag[i] / inertia[i]).collect();
     let soff: Vec<f64> = (first..end - 1).map(|i| off[i] / (root[i] * root[i + 1])).collect();
     let k = options.count.unwrap_or(n).min(sdiag.len());
