@@ -76,6 +76,20 @@ mod imp {
 
 pub use imp::*;
 
+/// `sin[i], cos[i] = sin_cos(theta[i])` for every angle: the one entry point through which
+/// generated code and the kernel drivers take the sines and cosines of a whole chain, so that a
+/// faster evaluation of many angles at once serves all of them.
+///
+/// # Panics
+/// If `sin` or `cos` is shorter than `theta` (a programming error).
+#[inline]
+pub fn sin_cos_into(theta: &[f64], sin: &mut [f64], cos: &mut [f64]) {
+    let (sin, cos) = (&mut sin[..theta.len()], &mut cos[..theta.len()]);
+    for ((t, s), c) in theta.iter().zip(sin.iter_mut()).zip(cos.iter_mut()) {
+        (*s, *c) = sin_cos(*t);
+    }
+}
+
 /// The sign of `x` with `sign(0) = 0` (and NaN for NaN): unlike `f64::signum`, zero is neither side.
 #[inline]
 pub fn sign(x: f64) -> f64 {
