@@ -138,9 +138,15 @@ fn constraint_curve<M: ChainModel>(model: &M, p: usize, range: f64, samples: usi
 
 /// The cobweb panel: spring `p`'s constraint curve (flipper branch solid, the other branch dashed
 /// where it enters the window), the diagonal, the staircase, rotor and spring points.
-fn cobweb_panel<M: ChainModel>(title: &str, model: &M, p: usize, theta: &[f64], q: Quality) -> Chart {
+fn cobweb_panel<M: ChainModel>(
+    title: &str,
+    model: &M,
+    p: usize,
+    theta: &[f64],
+    q: Quality,
+) -> Result<Chart, rotor_chain::statics::StaticsError> {
     let samples = q.pick(241, 61);
-    let web = cobweb(model, p, theta, COBWEB_RANGE, 2);
+    let web = cobweb(model, p, theta, COBWEB_RANGE, 2)?;
     let (flipper, other) = constraint_curve(model, p, COBWEB_RANGE, samples);
     let mut series = vec![Series::new("flipper branch", flipper, Style::Line)];
     if other.len() > 1 {
@@ -152,7 +158,7 @@ fn cobweb_panel<M: ChainModel>(title: &str, model: &M, p: usize, theta: &[f64], 
         Series::new("rotors", pairs(&web.rotors), Style::Points),
         Series::new("springs", pairs(&web.springs), Style::Points),
     ]);
-    lines(title, "θ_i (rad)", "θ_{i+1} (rad)", series)
+    Ok(lines(title, "θ_i (rad)", "θ_{i+1} (rad)", series))
 }
 
 /// Fig. `fig:kcobweb`: the zero-energy kink centred in a 16-rotor chain (on its middle spring) and
@@ -174,7 +180,7 @@ pub fn kcobweb(p: &Params, q: Quality) -> Result<Figure, FigureError> {
         ),
         panels: vec![
             lines("(a) kink", "rotor index i", "θ_i (rad)", config),
-            cobweb_panel("(b) cobweb plot", &model, n / 2 - 1, &theta, q),
+            cobweb_panel("(b) cobweb plot", &model, n / 2 - 1, &theta, q).map_err(FigureError::on(LABEL))?,
         ],
         rows: Vec::new(),
     })
@@ -214,7 +220,8 @@ pub fn akcobweb(p: &Params, q: Quality) -> Result<Figure, FigureError> {
         ),
         panels: vec![
             lines("(a) antikink", "rotor index i", "θ_i (rad)", config),
-            cobweb_panel("(b) cobweb plot", &model, spring, &antikink.theta, q),
+            cobweb_panel("(b) cobweb plot", &model, spring, &antikink.theta, q)
+                .map_err(FigureError::on(LABEL))?,
         ],
         rows: Vec::new(),
     })
