@@ -74,14 +74,18 @@ fn the_runtime_error_says_what_the_compile_error_says() {
     // The texts of tests/ui/compile_fail/keys/spring_overrides_nothing.stderr and
     // spring_overridden_twice.stderr, from the same Display.
     let empty = builder(10).spring(3, None, None).build().unwrap_err().to_string();
-    assert_eq!(empty, "the override of spring 3 changes nothing: give a stiffness `k` and/or a rest length `l0`");
+    assert_eq!(
+        empty,
+        "the override of spring 3 changes nothing: give a stiffness `k` and/or a rest length `l0`"
+    );
     let twice = builder(10).spring(3, Some(1.0), None).spring(3, None, Some(1.7)).build().unwrap_err();
     assert_eq!(twice.to_string(), "spring 3 is overridden twice: give all of its values in one override");
 }
 
 #[test]
 fn valid_overrides_still_apply() {
-    let chain = builder(10).spring(3, Some(2.0), None).spring(4, None, Some(1.9)).rotor(2, 0.7).build().unwrap();
+    let chain =
+        builder(10).spring(3, Some(2.0), None).spring(4, None, Some(1.9)).rotor(2, 0.7).build().unwrap();
     assert_eq!((chain.stiffness(3), chain.rest_length(4), chain.rotor_length(2)), (2.0, 1.9, 0.7));
     assert_eq!(chain.stiffness(4), 1.0e4);
 }
