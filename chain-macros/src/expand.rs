@@ -28,21 +28,28 @@ use crate::fallback::{self, Stubs};
 use crate::model::{PRIVATE, math_prefix, value_tokens};
 use crate::valid::{self, Model, Uniform};
 
-/// The dense `hessian()` (an `N x N` matrix on the stack) is emitted up to this many rotors;
-/// larger chains use the banded `tangent_stiffness()`. At 256 rotors it is 512 KiB, the
-/// [`STACK_LIMIT`].
-pub const DENSE_LIMIT: usize = 256;
+/// The stack a generated method may use in a debug build, its caller's copy of the result
+/// included: 1 MiB, half the 2 MiB stack of a thread Rust spawns (and of a test), so the caller
+/// keeps the other half. A method that would need more is not generated; the slice methods of
+/// `ChainModel` (`gradient_into`, ...) write into the caller's buffers and exist for every chain.
+/// Release builds use about a third of this (`docs/macro.md`, measured).
+pub const STACK_BUDGET: usize = 1 << 20;
 
-/// The largest value an inherent method returns on the stack: 512 KiB, a quarter of the 2 MiB
-/// stack of a thread Rust spawns (and of a test). A method whose result would be larger is not
-/// generated; the slice methods of `ChainModel` (`gradient_into`, ...) write into the caller's
-/// buffers and exist for every chain. The measured stack use of each method is in
-/// `docs/macro.md`.
-pub const STACK_LIMIT: usize = 512 * 1024;
+/// How many copies of its result a method holds on the stack at once in a debug build, measured
+/// (`docs/macro.md`): an array, the method's and the caller's; a banded matrix, one more for its
+/// constructor; the dense Hessian, nine (nalgebra's constructors copy it in debug builds).
+#[derive(Clone, Copy)]
+pub(crate) enum Returns {
+    Array = 2,
+    Banded = 3,
+    Dense = 9,
+}
 
-/// Whether a method returning `values` `f64`s is generated.
-pub(crate) fn fits_on_stack(values: usize) -> bool {
-    values.saturating_mul(8) <= STACK_LIMIT
+/// Whether a method returning `values` `f64`s of the kind `returns` fits [`STACK_BUDGET`]: arrays
+/// up to 65536 values (`gradient` of 65536 rotors), banded matrices up to 43690 values (21845
+/// rotors), the dense Hessian up to 120 rotors.
+pub(crate) fn fits_on_stack(values: usize, returns: Returns) -> bool {
+    values.saturating_mul(8).saturating_mul(returns as usize) <= STACK_BUDGET
 }
 
 pub fn expand(attr: TokenStream, item: TokenStream) -> TokenStream {
@@ -209,7 +216,7 @@ fn unrolled_body(g: &Graph, out: &ChainOutputs, shape: Shape) -> TokenStream {
     ))
 }
 
-/// The bodies of the inherent methods (`None`: not generated, see [`STACK_LIMIT`]).
+/// The bodies of the inherent methods (`None`: not generated, see [`STACK_BUDGET`]).
 struct Bodies {
     energy: TokenStream,
     gradient: Option<TokenStream>,
@@ -241,7 +248,7 @@ fn unrolled_bodies(model: &Model) -> Bodies {
 /// The looped strategy: the kernel module, and the trait's slice methods as kernel-driver calls
 /// that write straight into the caller's buffers (no `n`-sized arrays on the stack, so very long
 /// chains work through the trait with heap buffers). The inherent array methods wrap them, where
-/// their results fit [`STACK_LIMIT`].
+/// they fit [`STACK_BUDGET`].
 fn looped_bodies(model: &Model) -> (Bodies, TokenStream) {
     let p = private();
     let (n, m) = (model.n, model.springs());
@@ -287,7 +294,7 @@ fn looped_bodies(model: &Model) -> (Bodies, TokenStream) {
     let t = quote!(#p::ChainModel);
     // One local, the result itself, filled in place.
     let blocks = |method: TokenStream| {
-        fits_on_stack(n + m).then(|| {
+        fits_on_stack(n + m, Returns::Banded).then(|| {
             quote!({
                 let mut result = #p::Tridiagonal::new([0.0f64; #n], [0.0f64; #m]);
                 #t::#method(self, theta, &mut result.diag, &mut result.off);
@@ -296,7 +303,7 @@ fn looped_bodies(model: &Model) -> (Bodies, TokenStream) {
         })
     };
     let per_spring = |method: TokenStream| {
-        fits_on_stack(m).then(|| {
+        fits_on_stack(m, Returns::Array).then(|| {
             quote!({
                 let mut out = [0.0f64; #m];
                 #t::#method(self, theta, &mut out);
@@ -306,7 +313,7 @@ fn looped_bodies(model: &Model) -> (Bodies, TokenStream) {
     };
     let bodies = Bodies {
         energy: quote!({ #t::energy(self, theta) }),
-        gradient: fits_on_stack(n).then(|| {
+        gradient: fits_on_stack(n, Returns::Array).then(|| {
             quote!({
                 let mut out = [0.0f64; #n];
                 #t::gradient_into(self, theta, &mut out);
@@ -318,7 +325,7 @@ fn looped_bodies(model: &Model) -> (Bodies, TokenStream) {
         stress: blocks(quote!(stress_matrix_into)),
         lengths: per_spring(quote!(spring_lengths_into)),
         tensions: per_spring(quote!(tensions_into)),
-        compatibility: fits_on_stack(2 * m).then(|| {
+        compatibility: fits_on_stack(2 * m, Returns::Banded).then(|| {
             quote!({
                 let mut result = #p::Bidiagonal::new([0.0f64; #m], [0.0f64; #m]);
                 #t::compatibility_into(self, theta, &mut result.left, &mut result.right);
@@ -450,7 +457,7 @@ fn emit(item: &ItemStruct, model: &Model) -> TokenStream {
     let strategy =
         if model.unrolled() { "unrolled straight-line code" } else { "the per-spring kernel in a loop" };
     let doc_strategy = format!(" Generated by `#[rotor_chain]` as {strategy}.");
-    let hessian = (n <= DENSE_LIMIT && tangent_stiffness.is_some()).then(|| {
+    let hessian = (fits_on_stack(n * n, Returns::Dense) && tangent_stiffness.is_some()).then(|| {
         quote! {
             /// The dense Hessian `d2V/dtheta_i dtheta_j` (the tangent stiffness as an `n x n` matrix).
             pub fn hessian(&self, theta: &[f64; #n]) -> #p::SMatrix<f64, #n, #n> {
@@ -610,6 +617,32 @@ mod tests {
         assert!(text.contains("const _: () = {"), "{text}");
         assert!(text.contains("mod __rotor_chain_kernel {"), "{text}");
         assert!(text.contains("kernel::assemble_pairs"), "{text}");
+    }
+
+    #[test]
+    fn methods_returning_on_the_stack_stop_at_the_budget() {
+        let methods = |n: usize| {
+            let attr: TokenStream = format!("n = {n}, r = 0.8, theta_bar = 0.58, k = 1.0e4").parse().unwrap();
+            let text = expand(
+                attr,
+                quote!(
+                    struct C;
+                ),
+            )
+            .to_string();
+            ["gradient", "spring_lengths", "tangent_stiffness", "compatibility", "hessian"]
+                .map(|m| text.contains(&format!("pub fn {m} (& self")))
+        };
+        // [gradient, spring_lengths, tangent_stiffness, compatibility, hessian]
+        assert_eq!(methods(120), [true; 5]);
+        assert_eq!(methods(121), [true, true, true, true, false]);
+        assert_eq!(methods(21845), [true, true, true, true, false]);
+        assert_eq!(methods(21846), [true, true, false, true, false]);
+        assert_eq!(methods(21847), [true, true, false, false, false]);
+        assert_eq!(methods(65536), [true, true, false, false, false]);
+        assert_eq!(methods(65537), [false, true, false, false, false]);
+        assert_eq!(methods(65538), [false; 5]);
+        assert_eq!(methods(chain_geometry::MAX_ROTORS), [false; 5]);
     }
 
     #[test]

@@ -10,7 +10,7 @@ use proc_macro2::{Ident, TokenStream};
 use quote::quote;
 use syn::Generics;
 
-use crate::expand::{DENSE_LIMIT, fits_on_stack};
+use crate::expand::{Returns, fits_on_stack};
 use crate::model::PRIVATE;
 
 /// What the stubs are generated for: the item's name and generics, and `n` if it is valid.
@@ -42,23 +42,45 @@ impl Stubs {
         };
         let m_value = n_value - 1;
         // The methods the real expansion would have for this `n` (all of them for an unknown `n`).
-        let exists = |values: usize| self.n.is_none_or(|_| fits_on_stack(values));
+        let exists = |values: usize, result| self.n.is_none_or(|_| fits_on_stack(values, result));
         let theta = quote!(theta: &[f64; #n_ty]);
-        let array = |name: TokenStream, values: usize, ret: TokenStream, generics: &TokenStream| {
-            exists(values).then(|| quote!(pub fn #name #generics (&self, #theta) -> #ret #body))
+        let method = |name: TokenStream, values: usize, returns, ret: TokenStream, generics: &TokenStream| {
+            exists(values, returns).then(|| quote!(pub fn #name #generics (&self, #theta) -> #ret #body))
         };
         let tridiagonal = quote!(#p::Tridiagonal<#n_ty, #m_ty>);
         let methods = [
             Some(quote!(pub fn energy #generic_n (&self, #theta) -> f64 #body)),
-            array(quote!(gradient), n_value, quote!([f64; #n_ty]), &generic_n),
-            array(quote!(tangent_stiffness), n_value + m_value, tridiagonal.clone(), &generic_nm),
-            array(quote!(material_stiffness), n_value + m_value, tridiagonal.clone(), &generic_nm),
-            array(quote!(stress_matrix), n_value + m_value, tridiagonal, &generic_nm),
-            array(quote!(spring_lengths), m_value, quote!([f64; #m_ty]), &generic_nm),
-            array(quote!(tensions), m_value, quote!([f64; #m_ty]), &generic_nm),
-            array(quote!(compatibility), 2 * m_value, quote!(#p::Bidiagonal<#m_ty, #n_ty>), &generic_nm),
-            self.n.is_none_or(|n| n <= DENSE_LIMIT).then(
-                || quote!(pub fn hessian #generic_n (&self, #theta) -> #p::SMatrix<f64, #n_ty, #n_ty> #body),
+            method(quote!(gradient), n_value, Returns::Array, quote!([f64; #n_ty]), &generic_n),
+            method(
+                quote!(tangent_stiffness),
+                n_value + m_value,
+                Returns::Banded,
+                tridiagonal.clone(),
+                &generic_nm,
+            ),
+            method(
+                quote!(material_stiffness),
+                n_value + m_value,
+                Returns::Banded,
+                tridiagonal.clone(),
+                &generic_nm,
+            ),
+            method(quote!(stress_matrix), n_value + m_value, Returns::Banded, tridiagonal, &generic_nm),
+            method(quote!(spring_lengths), m_value, Returns::Array, quote!([f64; #m_ty]), &generic_nm),
+            method(quote!(tensions), m_value, Returns::Array, quote!([f64; #m_ty]), &generic_nm),
+            method(
+                quote!(compatibility),
+                2 * m_value,
+                Returns::Banded,
+                quote!(#p::Bidiagonal<#m_ty, #n_ty>),
+                &generic_nm,
+            ),
+            method(
+                quote!(hessian),
+                n_value * n_value,
+                Returns::Dense,
+                quote!(#p::SMatrix<f64, #n_ty, #n_ty>),
+                &generic_n,
             ),
         ];
         let methods = methods.into_iter().flatten();
