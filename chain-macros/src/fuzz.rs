@@ -204,8 +204,10 @@ struct Value {
 
 fn step(v: f64, operands: &[Value], pole: bool) -> Value {
     let finite_in = operands.iter().all(|o| o.v.is_finite());
-    let subnormal = v != 0.0 && v.is_finite() && v.abs() < f64::MIN_POSITIVE;
-    let overflow = finite_in && v.is_infinite();
+    // An exact result below the normal range can round up to MIN_POSITIVE, one above it down to
+    // MAX: both are at the edge, where a rounding may have changed the exponent range.
+    let subnormal = v != 0.0 && v.is_finite() && v.abs() <= f64::MIN_POSITIVE;
+    let overflow = finite_in && (v.is_infinite() || v.abs() == f64::MAX);
     Value {
         v,
         irregular: operands.iter().any(|o| o.irregular) || subnormal || overflow || pole,

@@ -97,7 +97,7 @@ impl ChainOutputs {
         }
     }
 
-    /// The leaf names of an unrolled chain: `s[i]` / `c[i]` for the sine and cosine of rotor
+    /// The leaf names of an unrolled chain: `s[iusize]` / `c[iusize]` for the sine and cosine of rotor
     /// `i` (the emitter fills two arrays `s` and `c` with one `sin_cos_into` call), and every
     /// symbol by its own name (struct fields are named by the Rust expression that reads them,
     /// e.g. `self.k_imp`).
@@ -245,7 +245,7 @@ mod tests {
         assert_eq!(out.gradient.len(), 5);
         assert_eq!(out.hessian_off.len(), 4);
         let namer = out.leaf_namer(&g);
-        assert_eq!(namer(out.trig[3].1).as_deref(), Some("c[3]"));
+        assert_eq!(namer(out.trig[3].1).as_deref(), Some("c[3usize]"));
     }
 
     #[test]

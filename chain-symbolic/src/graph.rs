@@ -361,7 +361,7 @@ impl Graph {
     /// `(-x)^n = x^n` for even `n`. `sqrt(x)^2` is kept: it is NaN, not `x`, for `x < 0`, and
     /// `(x^m)^n` is kept: it overflows and rounds differently from `x^(m n)`. The one exponent
     /// whose derivative's `n - 1` does not fit in an `i32`, `i32::MIN`, is built as
-    /// `(x^(i32::MIN / 2))^2`.
+    /// `1 / (x^(2^30))^2`, which is how `powi` computes it (31 squarings, then the reciprocal).
     pub fn powi(&mut self, a: Id, n: i32) -> Id {
         if n == 0 {
             return self.one();
@@ -373,8 +373,12 @@ impl Graph {
             return self.constant(x.powi(n));
         }
         if n == i32::MIN {
-            let half = self.powi(a, n / 2);
-            return self.powi(half, 2);
+            // powi computes x^-2^31 as 1 / (x squared 31 times): the same operations, bit for
+            // bit, and no exponent of the derivative overflows.
+            let big = self.powi(a, 1 << 30);
+            let square = self.powi(big, 2);
+            let one = self.one();
+            return self.div(one, square);
         }
         match self.node(a) {
             Node::Neg(x) if n % 2 == 0 => self.powi(x, n),
