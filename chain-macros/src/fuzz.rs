@@ -396,17 +396,9 @@ fn moderate(e: &Expr) -> bool {
     let mut stack = vec![e];
     while let Some(e) = stack.pop() {
         match e {
-            Expr::Lit(v) => {
-                if *v != 0.0 && !(1e-3..=1e3).contains(v) {
-                    return false;
-                }
-            }
-            Expr::Powi(a, n) => {
-                if n.unsigned_abs() > 8 {
-                    return false;
-                }
-                stack.push(a);
-            }
+            Expr::Lit(v) if *v != 0.0 && !(1e-3..=1e3).contains(v) => return false,
+            Expr::Powi(_, n) if n.unsigned_abs() > 8 => return false,
+            Expr::Powi(a, _) => stack.push(a),
             Expr::Neg(a) | Expr::Fun(_, a) | Expr::Paren(a) => stack.push(a),
             Expr::Bin(_, a, b) => {
                 stack.push(a);
