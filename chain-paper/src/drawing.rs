@@ -73,7 +73,7 @@ impl ChainDrawing {
             .map(|i| {
                 let (s, c) = theta[i].sin_cos();
                 let r = model.rotor_length(i) / a;
-                (i as f64 + r * s, if i % 2 == 0 { r * c } else { -r * c })
+                (i as f64 + r * s, if i.is_multiple_of(2) { r * c } else { -r * c })
             })
             .collect();
         let springs = rotors.start..rotors.end - 1;
@@ -126,7 +126,7 @@ impl ChainDrawing {
                 let (pivot, tip) = (self.pivots[j], self.tips[j]);
                 // d(tip)/dθ: the arm turned a quarter towards +x for positive θ on every rotor.
                 let (dx, dy) = (tip.0 - pivot.0, tip.1 - pivot.1);
-                let tangent = if i % 2 == 0 { (dy, -dx) } else { (-dy, dx) };
+                let tangent = if i.is_multiple_of(2) { (dy, -dx) } else { (-dy, dx) };
                 (shape[i] * tangent.0, shape[i] * tangent.1)
             })
             .collect();

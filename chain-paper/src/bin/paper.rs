@@ -94,7 +94,7 @@ enum Failure {
 /// One figure that could not be computed, rendered or written.
 struct Failed {
     label: &'static str,
-    failure: Failure,
+    failure: Box<Failure>,
 }
 
 impl Failed {
@@ -343,7 +343,7 @@ fn produce(
     quality: Quality,
     out: &Path,
 ) -> Result<Written, Failed> {
-    let fail = |failure: Failure| Failed { label, failure };
+    let fail = |failure: Failure| Failed { label, failure: Box::new(failure) };
     let start = Instant::now();
     let figure: Figure = match catch_unwind(AssertUnwindSafe(|| compute(params, quality))) {
         Ok(Ok(figure)) => figure,

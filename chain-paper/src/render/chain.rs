@@ -100,7 +100,7 @@ where
         font(TICK_FONT, FontStyle::Normal).into_text_style(&body).pos(Pos::new(HPos::Center, VPos::Top));
     for (j, pivot) in d.pivots.iter().enumerate() {
         let i = d.rotors.start + j;
-        if i % every == 0 {
+        if i.is_multiple_of(every) {
             body.draw(&Text::new(format!("{i}"), (px(*pivot).0, label_y), style.clone()))?;
         }
     }

@@ -217,6 +217,7 @@ where
     bar.configure_mesh()
         .disable_x_axis()
         .disable_mesh()
+        .y_labels(if height < 200 { 5 } else { 9 })
         .label_style(font(TICK_FONT, FontStyle::Normal))
         .y_label_formatter(&ticks)
         .draw()?;

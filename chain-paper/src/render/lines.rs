@@ -161,7 +161,7 @@ where
 
     let x_ticks = linear_ticks(&x);
     let mut chart = ChartBuilder::on(area)
-        .caption(&panel.title, title_font(&panel.title, width))
+        .caption(&panel.title, title_font(&panel.title, width.saturating_sub(right - MARGIN)))
         .margin(MARGIN)
         .margin_right(right)
         .x_label_area_size(X_LABEL_AREA)

@@ -58,7 +58,7 @@ pub const SINGLE: (u32, u32) = (1000, 700);
 /// Size of one panel of a figure with several.
 pub const CELL: (u32, u32) = (800, 560);
 /// Height of a row of chain drawings.
-pub const CHAIN_ROW: u32 = 330;
+pub const CHAIN_ROW: u32 = 250;
 const CAPTION_FONT: f64 = 17.0;
 const TITLE_FONT: f64 = 21.0;
 const LABEL_FONT: f64 = 17.0;
@@ -75,9 +75,9 @@ pub struct Layout {
 }
 
 /// The rows of panels, in reading order. A figure of one panel is [`SINGLE`]. Otherwise the
-/// width is two [`CELL`]s: consecutive drawings of the chain share a row of height [`CHAIN_ROW`],
-/// a drawing followed by another kind of panel has such a row to itself, across the width; other
-/// panels go two to a row of height `CELL.1`.
+/// width is two [`CELL`]s: consecutive drawings of the chain share a row of height [`CHAIN_ROW`];
+/// a drawing followed by another kind of panel has such a row to itself, across the width if it
+/// is the figure's only drawing; other panels go two to a row of height `CELL.1`.
 pub fn layout(panels: &[Chart]) -> Layout {
     if panels.len() <= 1 {
         let size = match panels.first() {
@@ -91,6 +91,8 @@ pub fn layout(panels: &[Chart]) -> Layout {
     }
     let width = 2 * CELL.0;
     let is_chain = |i: usize| matches!(panels.get(i), Some(Chart::Chain(_)));
+    // A figure's only drawing spans the width; several drawings keep one size, a cell each.
+    let drawings = (0..panels.len()).filter(|&i| is_chain(i)).count();
     let (mut slots, mut top, mut i) = (Vec::new(), 0, 0);
     while i < panels.len() {
         let pair = i + 1 < panels.len() && is_chain(i) == is_chain(i + 1);
@@ -100,7 +102,7 @@ pub fn layout(panels: &[Chart]) -> Layout {
             slots.push((i + 1, CELL.0, top, CELL.0, height));
             i += 2;
         } else {
-            let w = if is_chain(i) { width } else { CELL.0 };
+            let w = if is_chain(i) && drawings == 1 { width } else { CELL.0 };
             slots.push((i, 0, top, w, height));
             i += 1;
         }

@@ -21,7 +21,7 @@ const PAPER_LOG_SLOPE: &str = "-10.6";
 /// The equilibrium angle of the finite-size study (Fig. `fig:logvpn-size`).
 const SIZE_THETA_BAR: f64 = 0.40;
 /// Rotors drawn either side of the antikink's centre in Fig. `fig:akconfigpn`.
-const DRAWN: usize = 9;
+const DRAWN: usize = 7;
 
 /// Fig. `fig:akenergy`: the antikink's energy (the Peierls-Nabarro minimum) against `theta_bar`,
 /// `n = params.n`, with Eq. (`eq:akenergy`).

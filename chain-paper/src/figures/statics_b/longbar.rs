@@ -20,7 +20,7 @@ use crate::model::{
 /// The impurity's rest length of Fig. `fig:longbar`.
 const LONGBAR_L0: f64 = 2.30;
 /// Rotors drawn either side of the impurity.
-const DRAWN: usize = 9;
+const DRAWN: usize = 7;
 
 /// Fig. `fig:longbar`: zero mode, soft mode and soft tensional mode of a long middle spring.
 pub fn longbar(params: &Params, _quality: Quality) -> Result<Figure, FigureError> {
@@ -133,7 +133,10 @@ pub fn longbar(params: &Params, _quality: Quality) -> Result<Figure, FigureError
             "7.7e-9 would need l_critical − l0 ≈ 2e-9, not the paper's 0.005; ours scales as \
              4.1 (l_critical − l0) (docs/statics.md §7)",
         )
-        .resolution(floor / u, "the smallest ω a double-precision ω² resolves for this chain"),
+        .resolution(
+            floor / u,
+            "10 √(ε‖K‖/(M r²)), the least ω resolved from a double-precision ω² for this chain",
+        ),
         Row::number(
             "l̄ / a (θ̄ = 0.58, r/a = 0.8)",
             "1.68",

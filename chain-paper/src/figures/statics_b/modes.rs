@@ -21,7 +21,7 @@ const W_TH_ROTORS: usize = 240;
 /// Rotors plotted either side of a defect in Fig. `fig:mode-config`.
 const MODE_WINDOW: usize = 12;
 /// Rotors drawn either side of a defect in Fig. `fig:mode-config`.
-const DRAWN: usize = 7;
+const DRAWN: usize = 6;
 /// How many of the lowest modes are searched for the translation and shape modes.
 const LOWEST: usize = 6;
 
