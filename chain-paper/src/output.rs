@@ -101,6 +101,11 @@ pub fn stop_writes(patience: Duration) -> Option<RwLockWriteGuard<'static, ()>> 
     }
 }
 
+/// Whether [`stop_writes`] has been called: the process is about to exit on a signal.
+pub fn stopping() -> bool {
+    STOPPING.load(Ordering::SeqCst)
+}
+
 /// Make every write pause `pause` before its rename, so a test can interrupt a run while
 /// temporaries exist. Not for anything else.
 #[doc(hidden)]

@@ -112,6 +112,16 @@ impl Failed {
 static BAR: OnceLock<ProgressBar> = OnceLock::new();
 
 fn main() -> ExitCode {
+    let code = run();
+    // Interrupted: the signal handler is finishing the writes in flight and exits with the
+    // signal's status; the main thread must not end the process first with its own.
+    while output::stopping() {
+        std::thread::park();
+    }
+    code
+}
+
+fn run() -> ExitCode {
     let cli = Cli::parse();
     let all = if cli.demo { demo::figures() } else { figures::all() };
     if cli.list {
