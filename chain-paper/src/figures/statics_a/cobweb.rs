@@ -128,7 +128,7 @@ pub fn akcobweb(p: &Params, q: Quality) -> Result<Figure, FigureError> {
     let spring = (antikink.centre.floor() as usize).min(n - 2);
     let drawing = ChainDrawing::new("(a) antikink: springs stretched", &model, &antikink.theta, 0..n)
         .map_err(FigureError::on(LABEL))?;
-    let guess = Series::new(Quantity::Reference, "reflected kink (start)", profile(&start), Style::Dashed);
+    let guess = Series::new(Quantity::Antikink, "reflected kink (start)", profile(&start), Style::Dashed);
     Ok(Figure {
         label: LABEL,
         caption: format!(
