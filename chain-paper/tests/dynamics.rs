@@ -30,6 +30,7 @@ fn quick(name: &str, f: fn(&Params, Quality) -> Result<Figure, chain_paper::figu
                 assert!(h.y.len() <= 401, "{name}: {} rows", h.y.len());
                 assert!(h.values.iter().flatten().all(|v| v.is_finite()), "{name}: values");
             }
+            Chart::Chain(d) => assert!(d.tips.len() >= 2, "{name}: drawing"),
         }
     }
     assert!(!figure.rows.is_empty(), "{name}: no rows");
