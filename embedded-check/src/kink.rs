@@ -27,7 +27,7 @@ pub fn kink_into<T: Real, M: Model<T> + ?Sized>(
     theta: &mut [T],
 ) -> Result<(), RunError> {
     let n = model.rotor_count();
-    if theta.len() != n || n < 2 {
+    if theta.len() != n {
         return Err(RunError::WrongRotorCount { rotors: n, expected: theta.len() });
     }
     let max = T::of((n - 1) as f64);

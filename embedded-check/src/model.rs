@@ -1,7 +1,6 @@
 //! What the run needs from a chain, in the chain's own float type.
 //!
-//! Every `#[rotor_chain]` struct and [`RuntimeChain`](rotor_chain::ChainModel) implements
-//! [`ChainModel`], which is `f64`; the blanket impl below makes each of them a `Model<f64>`. A chain
+//! Every `#[rotor_chain]` struct and `RuntimeChain` implements [`ChainModel`], which is `f64`; the blanket impl below makes each of them a `Model<f64>`. A chain
 //! that computes in `f32` implements `Model<f32>` with its own `f32` methods.
 
 use rotor_chain::{BranchError, ChainModel};

@@ -13,7 +13,7 @@ use num_traits::Float;
 /// `f64` or `f32`: arithmetic and `floor`/`sqrt` from [`num_traits::Float`] (backed by `libm`
 /// without `std`), formatting that round-trips (`{:e}` prints the shortest digits that parse back
 /// to the same value), and the two conversions a run needs.
-pub trait Real: Float + Display + LowerExp + Debug + FromStr + Default + Send + Sync + 'static {
+pub trait Real: Float + Display + LowerExp + Debug + FromStr + 'static {
     /// `"f64"` or `"f32"`: written in the firmware's output so that the host compares like with like.
     const NAME: &'static str;
 
