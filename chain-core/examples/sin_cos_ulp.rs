@@ -42,8 +42,10 @@ fn reference_in_parallel(theta: &[f64]) -> Vec<(f64, f64)> {
     let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
     let chunk = theta.len().div_ceil(threads).max(1);
     std::thread::scope(|s| {
-        let handles: Vec<_> =
-            theta.chunks(chunk).map(|c| s.spawn(move || c.iter().map(|&x| ulp::reference(x)).collect::<Vec<_>>())).collect();
+        let handles: Vec<_> = theta
+            .chunks(chunk)
+            .map(|c| s.spawn(move || c.iter().map(|&x| ulp::reference(x)).collect::<Vec<_>>()))
+            .collect();
         handles.into_iter().flat_map(|h| h.join().expect("reference thread")).collect()
     })
 }

@@ -103,7 +103,12 @@ fn detect() -> Level {
 /// Without `std` there is no detection: the level is what the build targets.
 #[cfg(not(all(target_arch = "x86_64", feature = "std")))]
 fn detect() -> Level {
-    if cfg!(all(target_arch = "x86_64", target_feature = "avx512f", target_feature = "avx2", target_feature = "fma")) {
+    if cfg!(all(
+        target_arch = "x86_64",
+        target_feature = "avx512f",
+        target_feature = "avx2",
+        target_feature = "fma"
+    )) {
         Level::Avx512
     } else if cfg!(all(target_arch = "x86_64", target_feature = "avx2", target_feature = "fma")) {
         Level::Avx2

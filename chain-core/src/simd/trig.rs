@@ -94,7 +94,8 @@ fn reduced<V: Trig>(x: V) -> (V, V) {
     let v = z * hi;
     let sin = hi - ((z * (sp(0.5) * lo - v * r) - lo) - v * sp(S1));
     // cos(hi + lo)
-    let r = z * z.mul_add(z.mul_add(sp(C3), sp(C2)), sp(C1)) + w * w * z.mul_add(z.mul_add(sp(C6), sp(C5)), sp(C4));
+    let r = z * z.mul_add(z.mul_add(sp(C3), sp(C2)), sp(C1))
+        + w * w * z.mul_add(z.mul_add(sp(C6), sp(C5)), sp(C4));
     let hz = sp(0.5) * z;
     let one_hz = sp(1.0) - hz;
     let cos = one_hz + (((sp(1.0) - one_hz) - hz) + (z * r - hi * lo));

@@ -218,7 +218,9 @@ impl Trig for F64x4 {
 impl F64x8 {
     #[inline(always)]
     fn from_bits_xor(self, bits: i64) -> F64x8 {
-        F64x8(unsafe { _mm512_castsi512_pd(_mm512_xor_si512(_mm512_castpd_si512(self.0), _mm512_set1_epi64(bits))) })
+        F64x8(unsafe {
+            _mm512_castsi512_pd(_mm512_xor_si512(_mm512_castpd_si512(self.0), _mm512_set1_epi64(bits)))
+        })
     }
 }
 
@@ -254,10 +256,8 @@ impl Trig for F64x8 {
     #[inline(always)]
     fn any_outside(x: F64x8) -> bool {
         unsafe {
-            let abs = _mm512_castsi512_pd(_mm512_and_si512(
-                _mm512_castpd_si512(x.0),
-                _mm512_set1_epi64(i64::MAX),
-            ));
+            let abs =
+                _mm512_castsi512_pd(_mm512_and_si512(_mm512_castpd_si512(x.0), _mm512_set1_epi64(i64::MAX)));
             _mm512_cmp_pd_mask::<_CMP_NLE_UQ>(abs, _mm512_set1_pd(trig::LIMIT)) != 0
         }
     }
