@@ -80,7 +80,7 @@ macro_rules! vector_ops {
             #[inline(always)]
             fn neg(self) -> $t {
                 // Flips the sign bit, exactly like scalar negation (also of zeros and NaNs).
-                $t::from_bits_xor(self, i64::MIN)
+                $t::xor_bits(self, i64::MIN)
             }
         }
         impl $t {
@@ -172,7 +172,7 @@ vector_ops!(F64x8, 8, add: _mm512_add_pd, sub: _mm512_sub_pd, mul: _mm512_mul_pd
 
 impl F64x4 {
     #[inline(always)]
-    fn from_bits_xor(self, bits: i64) -> F64x4 {
+    fn xor_bits(self, bits: i64) -> F64x4 {
         F64x4(unsafe { _mm256_xor_pd(self.0, _mm256_castsi256_pd(_mm256_set1_epi64x(bits))) })
     }
 }
@@ -217,7 +217,7 @@ impl Trig for F64x4 {
 
 impl F64x8 {
     #[inline(always)]
-    fn from_bits_xor(self, bits: i64) -> F64x8 {
+    fn xor_bits(self, bits: i64) -> F64x8 {
         F64x8(unsafe {
             _mm512_castsi512_pd(_mm512_xor_si512(_mm512_castpd_si512(self.0), _mm512_set1_epi64(bits)))
         })
