@@ -1,15 +1,26 @@
 //! Shared by `tests/sin_cos.rs` (1e5 points) and `examples/sin_cos_ulp.rs` (1e7 points): the
 //! correctly rounded reference, the ulp distance, and reproducible sample angles.
 
-use dashu_float::FBig;
+use std::cell::RefCell;
+
 use dashu_float::round::mode::HalfEven;
+use dashu_float::{ConstCache, Context, FBig};
+
+std::thread_local! {
+    /// pi at the working precisions, kept between calls (recomputing it dominated the time).
+    static CACHE: RefCell<ConstCache> = RefCell::new(ConstCache::default());
+}
 
 /// Correctly rounded `(sin x, cos x)` of a finite `x`: dashu-float evaluates them with Ziv's
 /// method at the 53 bits of an `f64`, rounding to nearest, and the conversion back is exact.
 pub fn reference(x: f64) -> (f64, f64) {
-    let big = FBig::<HalfEven, 2>::try_from(x).expect("finite angle").with_precision(53).value();
-    let (s, c) = big.sin_cos();
-    (s.to_f64().value(), c.to_f64().value())
+    let big = FBig::<HalfEven, 2>::try_from(x).expect("finite angle");
+    let (s, c) =
+        CACHE.with(|cache| Context::<HalfEven>::new(53).sin_cos(big.repr(), Some(&mut cache.borrow_mut())));
+    let value = |r: Result<dashu_float::round::Rounded<FBig<HalfEven, 2>>, _>| {
+        r.expect("finite").value().to_f64().value()
+    };
+    (value(s), value(c))
 }
 
 /// How many doubles lie between `a` and `b` (0 if equal; both finite).
