@@ -112,60 +112,74 @@ fn drive<V: Vector, K: SpringFn<M>, const M: usize, const SUM: bool>(
     // Angles start..=start + count of the chunk at offsets 0..=count; room for a padded vector.
     let (mut sin, mut cos) = ([0.0; CHUNK + 1 + 8], [0.0; CHUNK + 1 + 8]);
     let mut outs: Chunk<M> = [[0.0; CHUNK]; M];
-    let (mut acc, mut acc_tail) = (V::splat(0.0), 0.0);
-    simd::sin_cos_lanes::<V>(&theta[..1], &mut sin, &mut cos);
+    let mut acc = V::splat(0.0);
     let mut start = 0;
     while start < m {
         let count = (m - start).min(CHUNK);
-        simd::sin_cos_lanes::<V>(&theta[start + 1..=start + count], &mut sin[1..], &mut cos[1..]);
+        if start == 0 {
+            simd::sin_cos_lanes::<V>(&theta[..=count], &mut sin, &mut cos);
+        } else {
+            simd::sin_cos_lanes::<V>(&theta[start + 1..=start + count], &mut sin[1..], &mut cos[1..]);
+        }
         let mut j = 0;
-        while j + V::LANES <= count {
+        while j < count {
             let p = start + j;
+            // The last springs of the chain, fewer than a vector, go in a vector with the
+            // remaining lanes unused: their sines and cosines are the buffer's slack, their
+            // parameters zero (slices) or repeated (gathered); nothing of them is stored or summed.
+            let rest = (count - j).min(V::LANES);
             let [a, r1, r2, k, l0] = match &slices {
-                Some(s) => [
+                Some(s) if rest == V::LANES => [
                     V::splat(s.a),
                     V::load(&s.rotor_lengths[p..]),
                     V::load(&s.rotor_lengths[p + 1..]),
                     V::load(&s.stiffness[p..]),
                     V::load(&s.rest_lengths[p..]),
                 ],
-                None => gather::<V>(springs, p),
+                Some(s) => [
+                    V::splat(s.a),
+                    V::load_partial(&s.rotor_lengths[p..p + rest]),
+                    V::load_partial(&s.rotor_lengths[p + 1..p + 1 + rest]),
+                    V::load_partial(&s.stiffness[p..p + rest]),
+                    V::load_partial(&s.rest_lengths[p..p + rest]),
+                ],
+                None => gather::<V>(springs, p, rest),
             };
             let x = [V::load(&sin[j..]), V::load(&cos[j..]), V::load(&sin[j + 1..]), V::load(&cos[j + 1..])];
             let y = K::eval([x[0], x[1], x[2], x[3], a, r1, r2, k, l0]);
-            for (o, v) in outs.iter_mut().zip(y).skip(usize::from(SUM)) {
-                v.store(&mut o[j..]);
+            if rest == V::LANES {
+                for (o, v) in outs.iter_mut().zip(y).skip(usize::from(SUM)) {
+                    v.store(&mut o[j..]);
+                }
+                if SUM {
+                    acc = acc + y[0];
+                }
+            } else {
+                for (o, v) in outs.iter_mut().zip(y).skip(usize::from(SUM)) {
+                    v.store_partial(&mut o[j..j + rest]);
+                }
+                if SUM {
+                    let mut e = [0.0; 8];
+                    y[0].store_partial(&mut e[..rest]);
+                    acc = acc + V::load(&e);
+                }
             }
-            if SUM {
-                acc = acc + y[0];
-            }
-            j += V::LANES;
-        }
-        // The last springs of the chain, fewer than a vector: one at a time (same arithmetic).
-        while j < count {
-            let [a, r1, r2, k, l0] = springs.params(start + j);
-            let y = K::eval([sin[j], cos[j], sin[j + 1], cos[j + 1], a, r1, r2, k, l0]);
-            for (o, v) in outs.iter_mut().zip(y).skip(usize::from(SUM)) {
-                o[j] = v;
-            }
-            if SUM {
-                acc_tail += y[0];
-            }
-            j += 1;
+            j += rest;
         }
         visit(start, count, &outs);
         (sin[0], cos[0]) = (sin[count], cos[count]);
         start += count;
     }
-    acc.sum() + acc_tail
+    acc.sum()
 }
 
-/// Parameters of springs `p..p + V::LANES` from a chain that does not store them in slices.
+/// Parameters of springs `p..p + count` (`count <= V::LANES`; the last one repeated in the
+/// remaining lanes) from a chain that does not store them in slices.
 #[inline(always)]
-fn gather<V: Vector>(springs: &impl Springs, p: usize) -> [V; 5] {
+fn gather<V: Vector>(springs: &impl Springs, p: usize, count: usize) -> [V; 5] {
     let mut lanes = [[0.0; 8]; 5];
     for j in 0..V::LANES {
-        let x = springs.params(p + j);
+        let x = springs.params(p + j.min(count - 1));
         for (l, v) in lanes.iter_mut().zip(x) {
             l[j] = v;
         }

@@ -215,6 +215,11 @@ pub(crate) trait Vector: Lane {
     fn load(s: &[f64]) -> Self;
     /// Writes the lanes to the first `LANES` entries of `s`.
     fn store(self, s: &mut [f64]);
+    /// The entries of `s` (fewer than `LANES`) in the first lanes, zeros in the others; memory
+    /// past `s` is not touched (masked loads).
+    fn load_partial(s: &[f64]) -> Self;
+    /// Writes the first `min(s.len(), LANES)` lanes to `s` (masked stores).
+    fn store_partial(self, s: &mut [f64]);
     /// The sum of the lanes.
     fn sum(self) -> f64;
     /// Sine and cosine of every lane.
@@ -230,6 +235,16 @@ impl Vector for f64 {
     #[inline(always)]
     fn store(self, s: &mut [f64]) {
         s[0] = self;
+    }
+    #[inline(always)]
+    fn load_partial(s: &[f64]) -> f64 {
+        s.first().copied().unwrap_or(0.0)
+    }
+    #[inline(always)]
+    fn store_partial(self, s: &mut [f64]) {
+        if let Some(x) = s.first_mut() {
+            *x = self;
+        }
     }
     #[inline(always)]
     fn sum(self) -> f64 {
@@ -262,7 +277,7 @@ pub(crate) fn dispatch<W: WithLanes>(work: W) -> W::Output {
 }
 
 /// `sin[i], cos[i] = sin_cos(theta[i])` for `i < theta.len()`, `V::LANES` angles at a time. A
-/// short last group is padded, so an angle gets the same result wherever it sits in `theta`.
+/// short last group is padded with zeros, so an angle gets the same result wherever it sits.
 #[inline(always)]
 pub(crate) fn sin_cos_lanes<V: Vector>(theta: &[f64], sin: &mut [f64], cos: &mut [f64]) {
     let n = theta.len();
@@ -275,15 +290,9 @@ pub(crate) fn sin_cos_lanes<V: Vector>(theta: &[f64], sin: &mut [f64], cos: &mut
         i += V::LANES;
     }
     if i < n {
-        let rest = n - i;
-        let mut buf = [0.0; 8];
-        buf[..rest].copy_from_slice(&theta[i..]);
-        let (s, c) = V::load(&buf).sin_cos();
-        let mut out = [0.0; 8];
-        s.store(&mut out);
-        sin[i..].copy_from_slice(&out[..rest]);
-        c.store(&mut out);
-        cos[i..].copy_from_slice(&out[..rest]);
+        let (s, c) = V::load_partial(&theta[i..]).sin_cos();
+        s.store_partial(&mut sin[i..]);
+        c.store_partial(&mut cos[i..]);
     }
 }
 

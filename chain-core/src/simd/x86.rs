@@ -141,6 +141,19 @@ macro_rules! vector_ops {
                 unsafe { $store(s.as_mut_ptr(), self.0) }
             }
             #[inline(always)]
+            fn load_partial(s: &[f64]) -> $t {
+                let len = s.len().min($n);
+                // SAFETY: the mask covers the `len` readable values only; masked lanes are not
+                // read. See the module documentation.
+                $t(unsafe { $t::masked_load(s.as_ptr(), len) })
+            }
+            #[inline(always)]
+            fn store_partial(self, s: &mut [f64]) {
+                let len = s.len().min($n);
+                // SAFETY: as in `load_partial`, for writes.
+                unsafe { self.masked_store(s.as_mut_ptr(), len) }
+            }
+            #[inline(always)]
             fn sum(self) -> f64 {
                 let mut a = [0.0; $n];
                 self.store(&mut a);
@@ -171,6 +184,19 @@ vector_ops!(F64x8, 8, add: _mm512_add_pd, sub: _mm512_sub_pd, mul: _mm512_mul_pd
 // SAFETY (every `unsafe` block below): see the module documentation.
 
 impl F64x4 {
+    /// Lanes `i < len` have all bits set.
+    #[inline(always)]
+    fn lane_mask(len: usize) -> __m256i {
+        unsafe { _mm256_cmpgt_epi64(_mm256_set1_epi64x(len as i64), _mm256_setr_epi64x(0, 1, 2, 3)) }
+    }
+    #[inline(always)]
+    unsafe fn masked_load(p: *const f64, len: usize) -> __m256d {
+        unsafe { _mm256_maskload_pd(p, F64x4::lane_mask(len)) }
+    }
+    #[inline(always)]
+    unsafe fn masked_store(self, p: *mut f64, len: usize) {
+        unsafe { _mm256_maskstore_pd(p, F64x4::lane_mask(len), self.0) }
+    }
     #[inline(always)]
     fn xor_bits(self, bits: i64) -> F64x4 {
         F64x4(unsafe { _mm256_xor_pd(self.0, _mm256_castsi256_pd(_mm256_set1_epi64x(bits))) })
@@ -216,6 +242,14 @@ impl Trig for F64x4 {
 }
 
 impl F64x8 {
+    #[inline(always)]
+    unsafe fn masked_load(p: *const f64, len: usize) -> __m512d {
+        unsafe { _mm512_maskz_loadu_pd(((1u32 << len) - 1) as u8, p) }
+    }
+    #[inline(always)]
+    unsafe fn masked_store(self, p: *mut f64, len: usize) {
+        unsafe { _mm512_mask_storeu_pd(p, ((1u32 << len) - 1) as u8, self.0) }
+    }
     #[inline(always)]
     fn xor_bits(self, bits: i64) -> F64x8 {
         F64x8(unsafe {
