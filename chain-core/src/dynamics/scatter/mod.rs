@@ -146,6 +146,9 @@ pub struct ScatterSetup {
     /// The impurity's range: a wall within `reach` of its centre is at the impurity. Default 4
     /// (1.8 wall widths at `theta_bar = 0.28`).
     pub reach: f64,
+    /// A wall farther than `clear` from the impurity's centre has left it; between `reach` and
+    /// `clear` it may still be orbiting in the impurity's basin. Default 8.
+    pub clear: f64,
     /// The end zones: a wall born within `edge_margin + 1` of a free end came from it, and a wall
     /// within `edge_margin` of an end has reached it. Default 3.
     pub edge_margin: f64,
@@ -199,6 +202,7 @@ impl ScatterSetup {
             start: impurity as f64 + 0.5 + 15.0,
             direction: Direction::Left,
             reach: 4.0,
+            clear: 8.0,
             edge_margin: 3.0,
             persistence: 0.5,
             progress: 1.0,

@@ -24,9 +24,12 @@ enum Pattern {
     Approaching,
     /// One wall within `reach` of the impurity.
     Near,
-    /// One wall beyond `reach` on the far side; its distance from the impurity.
+    /// One wall between `reach` and `clear` of the impurity, after it met the impurity: in the
+    /// impurity's basin, on a wide orbit or on its way out.
+    Around,
+    /// One wall beyond `clear` on the far side; its distance from the impurity.
     Beyond { distance: f64, at_end: bool },
-    /// One wall back beyond `reach` on the incoming side after a visit.
+    /// One wall back beyond `clear` on the incoming side after a visit.
     Back { distance: f64, at_end: bool },
     /// A kink beyond `reach` on each side and an antikink within `reach` (the kink's split).
     Split,
@@ -51,7 +54,7 @@ impl Pattern {
             Pattern::Breaking => Some(Outcome::Disintegrated),
             Pattern::Pairs => Some(Outcome::PairCreation),
             Pattern::Annihilated => Some(Outcome::Annihilated),
-            Pattern::Approaching | Pattern::Unclear => None,
+            Pattern::Around | Pattern::Approaching | Pattern::Unclear => None,
         }
     }
 }
@@ -74,6 +77,7 @@ pub(super) struct Classifier {
     side: f64,
     last_rotor: f64,
     follower: Follower,
+    /// Whether the defect has met the impurity: been within `reach`, or turned back on its way.
     visited: bool,
     /// When the single wall entered the impurity's range (the trap clock), how fast it came
     /// in, and how often it has turned round since.
@@ -192,6 +196,8 @@ impl Classifier {
                 let x = self.x_imp + d * self.side;
                 if near(d) {
                     Pattern::Near
+                } else if d.abs() <= s.clear && self.visited {
+                    Pattern::Around
                 } else if d < 0.0 {
                     Pattern::Beyond { distance: -d, at_end: self.at_end(x) }
                 } else if self.visited {
@@ -248,6 +254,14 @@ impl Classifier {
             self.heading = -self.heading;
             self.extreme = x;
             self.turns += 1;
+            // Turned back before reaching the impurity's range: repelled by it (a stiff spring
+            // repels a slow antikink from farther than `reach`).
+            if pattern == Pattern::Approaching && self.heading == self.side {
+                self.visited = true;
+            }
+        }
+        if pattern == Pattern::Around && self.entered.is_some() {
+            return;
         }
         if pattern == Pattern::Near {
             if self.entered.is_none() {
@@ -305,7 +319,9 @@ impl Classifier {
     /// Before a decision: time the current pattern.
     fn decide(&mut self, pattern: Pattern, time: f64) -> bool {
         let s = self.setup;
-        let Some(outcome) = pattern.outcome() else {
+        // On a wide orbit the trap clock keeps running.
+        let orbiting = pattern == Pattern::Around && self.entered.is_some();
+        let Some(outcome) = pattern.outcome().or(orbiting.then_some(Outcome::Trapped)) else {
             self.candidate = None;
             return false;
         };
@@ -322,7 +338,7 @@ impl Classifier {
         };
         let held = time - since;
         let settled = match pattern {
-            Pattern::Near => self.entered.is_some_and(|t| time - t >= self.trap_time()),
+            Pattern::Near | Pattern::Around => self.entered.is_some_and(|t| time - t >= self.trap_time()),
             // Moved clear and keeps going: held, and moved on by `progress` sites (or reached an
             // end); a wall that stays beyond the range without moving decides after 4 times as
             // long.
