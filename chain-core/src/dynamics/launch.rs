@@ -166,7 +166,7 @@ pub fn translation_mode<M: ChainModel + ?Sized>(
     let shift_norm = crate::math::sqrt(shift.iter().map(|x| x * x).sum::<f64>());
     let push: f64 = e.iter().zip(&shift).map(|(a, b)| a * b).sum();
     let overlap = push.abs() / shift_norm.max(f64::MIN_POSITIVE);
-    if !(overlap >= MIN_OVERLAP) {
+    if overlap.is_nan() || overlap < MIN_OVERLAP {
         return Err(DynamicsError::NoTranslationMode { position });
     }
     let want = if direction == Direction::Right { 1.0 } else { -1.0 };

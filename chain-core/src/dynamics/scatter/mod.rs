@@ -178,6 +178,9 @@ pub struct ScatterSetup {
     pub pair_age: f64,
     /// See [`ScatterSetup::pair_age`]. Default 8 (twice `reach`).
     pub pair_extent: f64,
+    /// A defect that has had three walls or more for this long before reaching the impurity has
+    /// disintegrated. Default 0.1.
+    pub break_time: f64,
     /// A wall unseen for this long has vanished (shorter: two walls overlapping, or a wall
     /// passing through another's core). Default 0.25.
     pub grace: f64,
@@ -214,6 +217,7 @@ impl ScatterSetup {
             cluster_gap: 2.0,
             pair_age: 1.0,
             pair_extent: 8.0,
+            break_time: 0.1,
             grace: 0.25,
             max_jump: 3.0,
             confirm: 1.0,
@@ -252,6 +256,7 @@ fn check_setup<M: ChainModel + ?Sized>(model: &M, setup: &ScatterSetup) -> Resul
         ("pair_age", setup.pair_age),
         ("pair_extent", setup.pair_extent),
         ("grace", setup.grace),
+        ("break_time", setup.break_time),
         ("confirm", setup.confirm),
         ("watch", setup.watch),
         ("edge_margin", setup.edge_margin),

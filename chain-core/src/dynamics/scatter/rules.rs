@@ -97,6 +97,8 @@ pub(super) struct Classifier {
     exited: Option<f64>,
     /// The walls of the defect that left through a free end: they count as being at that end.
     departed: Vec<(f64, Charge)>,
+    /// Since when the defect, not yet at the impurity, has had three walls or more.
+    breaking: Option<f64>,
     pub verdict: Option<Verdict>,
 }
 
@@ -120,6 +122,7 @@ impl Classifier {
             lost_to_end: None,
             exited: None,
             departed: Vec::new(),
+            breaking: None,
             verdict: None,
         }
     }
@@ -298,6 +301,25 @@ impl Classifier {
         }
         let (pattern, single) = self.pattern(time);
         self.track_single(pattern, single, time);
+        // Breaking up on its way: three walls or more (a pair emitted), of any age, from before
+        // the impurity on, for `break_time`. Final: what the impurity does to the pieces is
+        // another question.
+        let walls = self.follower.walls.iter().filter(|w| w.origin != Origin::End).count();
+        if self.verdict.is_none() && (!self.visited || self.breaking.is_some()) && walls >= 3 {
+            let since = *self.breaking.get_or_insert(time);
+            if time - since >= self.setup.break_time {
+                let confirmed_at = Some(time);
+                self.verdict = Some(Verdict {
+                    outcome: Outcome::Disintegrated,
+                    decided_at: time,
+                    confirmed_at,
+                    later: None,
+                });
+                return self.setup.watch <= 0.0;
+            }
+        } else {
+            self.breaking = None;
+        }
         #[cfg(feature = "std")]
         if std::env::var("SCATTER_DEBUG").is_ok() {
             std::eprintln!(
@@ -370,7 +392,8 @@ impl Classifier {
         // A wall unseen for less than the grace time may yet reappear, or turn out to have left
         // through an end or been annihilated: wait before judging.
         let pending = self.follower.has_ghosts();
-        let holds = now == Some(v.outcome) || gone || annihilated || pending;
+        let holds =
+            now == Some(v.outcome) || gone || annihilated || pending || v.outcome == Outcome::Disintegrated;
         if v.later.is_none() && annihilated && v.outcome != Outcome::Annihilated {
             v.later = Some((LaterEvent::Annihilated, self.lost_to_end.unwrap_or(time)));
         }
