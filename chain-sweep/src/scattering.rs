@@ -113,11 +113,12 @@ pub const DEFAULT_ENERGY_TOLERANCE: f64 = 5e-3;
 #[derive(Clone, Debug, PartialEq)]
 pub struct PhaseDiagram {
     /// Rotors `n`, rotor length `r` (lattice spacing `a = 1`), stiffness `k`, angle
-    /// `theta_bar`; mass `M = 1`.
+    /// `theta_bar`, tip mass `M` (default 1).
     pub n: usize,
     pub r: f64,
     pub k: f64,
     pub theta_bar: f64,
+    pub mass: f64,
     pub defect: Defect,
     pub ends: Ends,
     pub integrator: Integrator,
@@ -141,6 +142,7 @@ impl PhaseDiagram {
             r,
             k,
             theta_bar,
+            mass: 1.0,
             defect,
             ends: Ends::Free,
             integrator: Integrator::Verlet,
@@ -166,6 +168,7 @@ impl PhaseDiagram {
             }
         };
         positive("energy tolerance", self.energy_tolerance)?;
+        positive("mass", self.mass)?;
         positive("t_max", self.t_max)?;
         if let Some(dt) = self.dt {
             positive("dt", dt)?;
@@ -200,13 +203,14 @@ impl PhaseDiagram {
     pub fn run_label(&self) -> String {
         let dt = self.dt.map_or("stable".to_owned(), |dt| format!("{dt:?}"));
         format!(
-            "defect={} n={} r={:?} k={:?} theta_bar={:?} ends={} integrator={} dt={dt} energy_tolerance={:?} \
+            "defect={} n={} r={:?} k={:?} theta_bar={:?}{} ends={} integrator={} dt={dt} energy_tolerance={:?} \
              recompute={} t_max={:?} physics=scatter-v2",
             self.defect.name(),
             self.n,
             self.r,
             self.k,
             self.theta_bar,
+            if self.mass == 1.0 { String::new() } else { format!(" mass={:?}", self.mass) },
             self.ends.name(),
             self.integrator.name(),
             self.energy_tolerance,
@@ -219,6 +223,7 @@ impl PhaseDiagram {
     pub fn chain(&self, ki_ratio: f64) -> Result<RuntimeChain, String> {
         self.check_ki(ki_ratio).map_err(|e| e.to_string())?;
         RuntimeChain::builder(self.n, self.r, self.k, self.theta_bar)
+            .mass(self.mass)
             .spring(self.impurity(), Some(ki_ratio * self.k), None)
             .build()
             .map_err(|e| e.to_string())
