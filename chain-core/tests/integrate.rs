@@ -640,10 +640,16 @@ fn steps_that_underflow_or_run_out_are_typed_errors() {
     let options = AdaptiveOptions { min_step: 0.5, ..AdaptiveOptions::default() };
     let e = adaptive(&model, &mut state, &[10.0], &options, &mut continue_always);
     assert!(matches!(e, Err(IntegrateError::StepSizeTooSmall { time: 0.0, .. })), "{e:?}");
-    // A budget too small for the run; the state is left at the last accepted step.
+    // A budget that cannot cover the run even at the largest stable step: refused before the
+    // first step, the state untouched.
     let options = AdaptiveOptions { max_steps: 5, ..AdaptiveOptions::default() };
     let e = adaptive(&model, &mut state, &[10.0], &options, &mut continue_always).unwrap_err();
-    let IntegrateError::TooManySteps { time, steps: 5 } = e else { panic!("{e}") };
+    assert!(matches!(e, IntegrateError::StepBudget { budget: 5, .. }), "{e}");
+    assert_eq!(state.time, 0.0);
+    // A budget the error control runs out of; the state is left at the last accepted step.
+    let options = AdaptiveOptions { max_steps: 20, ..AdaptiveOptions::default() };
+    let e = adaptive(&model, &mut state, &[10.0], &options, &mut continue_always).unwrap_err();
+    let IntegrateError::TooManySteps { time, steps: 20 } = e else { panic!("{e}") };
     assert!(time > 0.0 && state.time == time);
 }
 

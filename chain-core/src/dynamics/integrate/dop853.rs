@@ -108,6 +108,11 @@ impl AdaptiveOptions {
     }
 }
 
+/// A generous bound on `h omega` for DOP853 to be stable on an oscillation (its stability region
+/// reaches about 4-6 along the imaginary axis): used only to refuse runs that cannot fit their
+/// step budget.
+const STABILITY_LIMIT: f64 = 6.0;
+
 /// Safety factor on the predicted step (Hairer's default).
 const SAFETY: f64 = 0.9;
 /// Bounds on `h_new / h` (Hairer's defaults for DOP853).
@@ -162,6 +167,20 @@ fn run<M: ChainModel + ?Sized>(
         return Ok(monitor.report);
     }
     let t_end = output(count - 1);
+    // An explicit Runge-Kutta method needs h omega_max below its stability limit (about 6 for
+    // DOP853 on oscillations, generously): a run that would need more steps than its budget at
+    // that step is refused before it starts, instead of after max_steps.
+    if let Ok(omega) = super::verlet::omega_bound(model, &state.theta, 1.0) {
+        let needed = (t_end - state.time) * omega / STABILITY_LIMIT;
+        if needed > options.max_steps as f64 {
+            return Err(IntegrateError::StepBudget {
+                steps: needed,
+                dt: STABILITY_LIMIT / omega,
+                span: t_end - state.time,
+                budget: options.max_steps as u64,
+            });
+        }
+    }
 
     let mut w = Stepper::new(state);
     let mut t = state.time;

@@ -23,7 +23,8 @@ pub enum IntegrateError {
     /// shorter than the span (a very stiff chain, or an output interval far below the step).
     /// Refused before the first step.
     #[error(
-        "the run needs {steps:e} steps of {dt:e} to cover {span:e}, more than the budget of {budget}:          raise max_steps, or shorten the run"
+        "the run needs {steps:e} steps of {dt:e} to cover {span:e}, more than the budget of {budget}: raise max_steps, \
+         or shorten the run"
     )]
     StepBudget { steps: f64, dt: f64, span: f64, budget: u64 },
     /// A run would report at more output times than its budget (`max_outputs`).

@@ -137,13 +137,17 @@ pub struct Report {
     pub stopped_early: bool,
     /// Whether the equations of motion had any damping.
     pub damped: bool,
+    /// The smallest energy scale of the chain: `1e-12 k_max a^2`, the energy of a spring
+    /// stretched by a millionth of the lattice spacing. A chain whose energy `E0` is below it (a
+    /// zero-energy kink at rest has `E0 ~ 1e-27`, rounding) measures errors against it instead.
+    pub energy_floor: f64,
 }
 
 impl Report {
-    /// What relative energy errors are measured against: `|E0|`, or 1 (the model's energy unit)
-    /// when `E0 = 0` exactly (a chain at rest in a zero-energy state, which stays there).
+    /// What relative energy errors are measured against: `max(|E0|, energy_floor)`, or 1 (the
+    /// model's energy unit) if both are 0.
     pub fn energy_scale(&self) -> f64 {
-        energy_scale(self.energy_initial)
+        energy_scale(self.energy_initial, self.energy_floor)
     }
 
     /// The largest relative energy error of the run: `max |E - E0| / scale` without damping,
@@ -154,8 +158,17 @@ impl Report {
     }
 }
 
-fn energy_scale(e0: f64) -> f64 {
-    if e0 == 0.0 { 1.0 } else { e0.abs() }
+fn energy_scale(e0: f64, floor: f64) -> f64 {
+    let scale = e0.abs().max(floor);
+    if scale > 0.0 { scale } else { 1.0 }
+}
+
+/// `1e-12 k_max a^2` (see [`Report::energy_floor`]), 0 if not finite.
+fn energy_floor<M: ChainModel + ?Sized>(model: &M) -> f64 {
+    let k = (0..model.spring_count()).map(|p| model.stiffness(p).abs()).fold(0.0, f64::max);
+    let a = model.lattice_spacing();
+    let floor = 1e-12 * k * a * a;
+    if floor.is_finite() { floor } else { 0.0 }
 }
 
 /// `T = sum_i I_i omega_i^2 / 2`.
@@ -345,6 +358,7 @@ impl Monitor {
             max_energy_rise: 0.0,
             stopped_early: false,
             damped,
+            energy_floor: energy_floor(model),
         };
         Ok(Self { report, limit })
     }

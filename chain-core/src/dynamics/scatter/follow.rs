@@ -208,15 +208,19 @@ mod tests {
         f.update(&snapshot(0.01, &[(1.0, K), (43.0, A)]));
         assert_eq!(f.walls[0].origin, Origin::End);
         assert_eq!(f.walls[1].origin, Origin::Incoming);
-        f.update(&snapshot(0.02, &[(20.0, K), (22.0, A)]));
+        // They approach each other a site per output.
+        let mut time = 0.01;
+        for k in 1..=20 {
+            time += 0.01;
+            f.update(&snapshot(time, &[(1.0 + k as f64, K), (43.0 - k as f64, A)]));
+        }
         // Overlapping for one output: ghosts, and the same walls when they reappear.
-        assert!(f.update(&snapshot(0.03, &[])).is_empty());
-        f.update(&snapshot(0.04, &[(20.5, K), (21.5, A)]));
+        assert!(f.update(&snapshot(time + 0.01, &[])).is_empty());
+        f.update(&snapshot(time + 0.02, &[(21.5, K), (22.0, A)]));
         assert_eq!(f.walls.iter().map(|w| w.origin).collect::<Vec<_>>(), [Origin::End, Origin::Incoming]);
-        f.update(&snapshot(0.05, &[]));
         let mut gone = Vec::new();
-        for k in 6..12 {
-            gone.extend(f.update(&snapshot(0.01 * k as f64, &[])));
+        for k in 3..12 {
+            gone.extend(f.update(&snapshot(time + 0.01 * k as f64, &[])));
         }
         assert_eq!(gone.len(), 2);
         let incoming = gone.iter().find(|v| v.wall.origin == Origin::Incoming).unwrap();

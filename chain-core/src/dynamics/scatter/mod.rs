@@ -243,7 +243,7 @@ pub struct Scattering {
 /// A setup whose numbers cannot describe an experiment.
 fn check_setup<M: ChainModel + ?Sized>(model: &M, setup: &ScatterSetup) -> Result<(), DynamicsError> {
     let n = model.rotor_count();
-    if setup.impurity + 1 >= n {
+    if setup.impurity >= n.saturating_sub(1) {
         return Err(DynamicsError::NoSuchSpring { spring: setup.impurity, springs: n.saturating_sub(1) });
     }
     let times = [
