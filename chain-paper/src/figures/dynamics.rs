@@ -655,6 +655,26 @@ fn boundary_row(
     Row::words(format!("{name}: boundary {} | {}", left.name(), right.name()), paper, &ours, note.to_owned())
 }
 
+/// `trapped 2.5-3.6, transmitted 3.7-3.9, ...`: the runs of equal outcomes along `v0s`.
+fn alternation(outcomes: &[Option<Outcome>], v0s: &[f64]) -> String {
+    let mut parts: Vec<String> = Vec::new();
+    let mut k = 0;
+    while k < outcomes.len() {
+        let mut end = k;
+        while end + 1 < outcomes.len() && outcomes[end + 1] == outcomes[k] {
+            end += 1;
+        }
+        let name = outcomes[k].map_or(FAILED, Outcome::name);
+        parts.push(if end == k {
+            format!("{name} {:.2}", v0s[k])
+        } else {
+            format!("{name} {:.2}-{:.2}", v0s[k], v0s[end])
+        });
+        k = end + 1;
+    }
+    parts.join(", ")
+}
+
 /// The antikink of the paper's scattering chain run along a perfect chain at each `v0`: the most
 /// walls seen at once and the longest time it had three or more (paper: "above v0 = 12 the
 /// antikink itself becomes unstable and tends to quickly disintegrate").
@@ -731,6 +751,13 @@ pub fn phasediagram(params: &Params, quality: Quality) -> Result<Figure, FigureE
     let lasting =
         scan.iter().find(|s| s.2 >= 0.25).map_or("none up to 25".to_owned(), |s| format!("{}", s.0));
     let grid_note = format!("k_i/k 0.01..3 log-spaced, v0 0.5..12, {size} x {size}");
+    // The paper's alternating window: outcomes along v0 at k_i/k = 0.75.
+    let window_v0s = Axis::linspace(2.5, 5.0, quality.pick(26, 6)).map_err(FigureError::on(LABEL))?;
+    let column = Grid::new(Axis::from_values(vec![0.75]).map_err(FigureError::on(LABEL))?, window_v0s)
+        .map_err(FigureError::on(LABEL))?;
+    let window =
+        phase_diagram(params, Defect::Antikink, &column).map_err(|e| fail(format!("window: {e}")))?;
+    let runs = alternation(&window.iter().map(|row| row[0]).collect::<Vec<_>>(), column.ys());
     let rows = vec![
         Row::words(
             format!("kink phase diagram: trapped or reflected points ({size} x {size})"),
@@ -781,6 +808,15 @@ pub fn phasediagram(params: &Params, quality: Quality) -> Result<Figure, FigureE
             (Outcome::Reflected, Outcome::Trapped),
             "positive slope (lower reflection regime)",
             "reflected below, trapped above in k_i/k",
+        ),
+        Row::words(
+            "antikink outcomes along v0 at k_i/k = 0.75 (alternating regimes)".to_owned(),
+            "a small range of alternating transmitted / trapped regimes around k_i/k = 0.75, v0 = 3.6",
+            &runs,
+            format!(
+                "v0 from 2.5 to 5 in {} steps; the 40 x 40 grid is too coarse to show it",
+                column.ys().len()
+            ),
         ),
         Row::words(
             "antikink stability against v0, perfect chain, θ̄ = 0.28".to_owned(),
