@@ -320,18 +320,6 @@ impl Classifier {
         } else {
             self.breaking = None;
         }
-        #[cfg(feature = "std")]
-        if std::env::var("SCATTER_DEBUG").is_ok() {
-            std::eprintln!(
-                "{time:.2} {pattern:?} entered {:?} v {:?} turns {} cand {:?} verdict {:?} walls {:?}",
-                self.entered,
-                self.entry_speed,
-                self.turns,
-                self.candidate,
-                self.verdict,
-                self.follower.walls.iter().map(|w| (w.position, w.origin)).collect::<Vec<_>>()
-            );
-        }
         match self.verdict {
             None => self.decide(pattern, time),
             Some(v) => self.confirm(v, pattern, time),
@@ -392,8 +380,14 @@ impl Classifier {
         // A wall unseen for less than the grace time may yet reappear, or turn out to have left
         // through an end or been annihilated: wait before judging.
         let pending = self.follower.has_ghosts();
-        let holds =
-            now == Some(v.outcome) || gone || annihilated || pending || v.outcome == Outcome::Disintegrated;
+        // A trapped wall on a wide orbit in the impurity's basin is still trapped.
+        let orbiting = v.outcome == Outcome::Trapped && pattern == Pattern::Around;
+        let holds = now == Some(v.outcome)
+            || orbiting
+            || gone
+            || annihilated
+            || pending
+            || v.outcome == Outcome::Disintegrated;
         if v.later.is_none() && annihilated && v.outcome != Outcome::Annihilated {
             v.later = Some((LaterEvent::Annihilated, self.lost_to_end.unwrap_or(time)));
         }
