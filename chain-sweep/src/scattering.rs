@@ -104,7 +104,7 @@ pub enum ConfigError {
 /// it by up to `(omega dt)^2 / 4` of the energy in the fastest phonons, 1 % at the default step.
 /// A collision that radiates a tenth of the energy into phonons therefore shows ~1e-3 without any
 /// error in the walls' motion: over both 40 x 40 diagrams the largest is 1.75e-3, and the labels
-/// agree with DOP853 (energy error ~1e-9) at 98.8-99.9 % of the points (docs/dynamics.md §6).
+/// agree with DOP853 (energy error ~1e-9) at 99.4-99.9 % of the points (docs/dynamics.md §6).
 /// A step past the stability limit exceeds it within a few steps.
 pub const DEFAULT_ENERGY_TOLERANCE: f64 = 5e-3;
 
