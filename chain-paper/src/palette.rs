@@ -70,7 +70,18 @@ pub enum Quantity {
     Reflected,
     Trapped,
     Split,
+    Annihilated,
+    Disintegrated,
+    PairCreation,
     Undecided,
+    /// A sweep point that failed (energy budget, unreadable walls): shown, never hidden.
+    Failed,
+    /// Member `index` of a family of `of` curves that differ in one parameter (e.g. the launch
+    /// speed): shades of the sequential map, in the parameter's order.
+    Parameter {
+        index: usize,
+        of: usize,
+    },
     /// Regions of the `(E, l0)` diagram (Sec. VII-B).
     Annulus,
     Disk,
@@ -89,7 +100,7 @@ const LIGHT_GREY: RGBColor = RGBColor(185, 185, 185);
 
 impl Quantity {
     /// Its colour, the same in every figure.
-    pub const fn colour(self) -> RGBColor {
+    pub fn colour(self) -> RGBColor {
         match self {
             Quantity::Rotor | Quantity::Kink | Quantity::Bound | Quantity::Trajectory => BLUE,
             Quantity::Spring | Quantity::Configuration => RED,
@@ -104,7 +115,15 @@ impl Quantity {
             Quantity::Reflected => RGBColor(110, 160, 215),
             Quantity::Trapped => RGBColor(225, 110, 100),
             Quantity::Split => RGBColor(180, 140, 210),
+            Quantity::Annihilated => RGBColor(150, 150, 150),
+            Quantity::Disintegrated => RGBColor(230, 190, 90),
+            Quantity::PairCreation => RGBColor(240, 170, 210),
             Quantity::Undecided => RGBColor(205, 205, 205),
+            Quantity::Failed => BLACK,
+            // Up to 0.85 of viridis: its last shades are too light for a line on white.
+            Quantity::Parameter { index, of } => {
+                sequential(0.85 * index as f64 / of.saturating_sub(1).max(1) as f64)
+            }
             Quantity::Annulus => RGBColor(160, 200, 230),
             Quantity::Disk => RGBColor(250, 200, 140),
             Quantity::Forbidden => RGBColor(170, 170, 170),
@@ -119,7 +138,11 @@ impl Quantity {
             "reflected" => Quantity::Reflected,
             "trapped" => Quantity::Trapped,
             "split" => Quantity::Split,
+            "annihilated" => Quantity::Annihilated,
+            "disintegrated" => Quantity::Disintegrated,
+            "pair-creation" => Quantity::PairCreation,
             "undecided" => Quantity::Undecided,
+            "failed" => Quantity::Failed,
             "annulus" => Quantity::Annulus,
             "disk" => Quantity::Disk,
             "forbidden" => Quantity::Forbidden,

@@ -67,6 +67,15 @@ pub enum Cause {
     Dynamics(#[from] DynamicsError),
     #[error("chain drawing: {0}")]
     Drawing(#[from] DrawingError),
+    /// A phase diagram's settings (chain-sweep).
+    #[error("phase diagram: {0}")]
+    PhaseDiagram(#[from] chain_sweep::scattering::ConfigError),
+    /// A grid of chain-sweep.
+    #[error(transparent)]
+    Grid(#[from] chain_sweep::GridError),
+    /// The sweep machinery (thread pool).
+    #[error(transparent)]
+    Sweep(#[from] chain_sweep::SweepError),
     /// A fit or a figure needs more resolved points than the computation gave.
     #[error("{what}: {found} resolved, at least {needed} needed")]
     TooFewPoints { what: &'static str, found: usize, needed: usize },

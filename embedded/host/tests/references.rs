@@ -120,7 +120,7 @@ fn verlet_follows_the_library_verlet_step_for_step() {
     for _ in 0..steps {
         stepper.step(&Chain16).unwrap();
     }
-    let options = VerletOptions { dt: scenario.dt, damping: 0.0 };
+    let options = VerletOptions::new(scenario.dt);
     integrate::verlet(&Chain16, &mut state, scenario.time(steps), &options, 1000, &mut |_| Flow::Continue)
         .unwrap();
     assert!(max_difference(stepper.theta(), &state.theta) <= 1e-13);
