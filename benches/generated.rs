@@ -8,9 +8,12 @@
 //! any timing, `main` checks that the plain loop and the runtime chain compute the same numbers as
 //! the generated code (to 1e-9 relative), so the comparisons are between equal work.
 
+mod support;
+
 use divan::{Bencher, black_box};
 use rotor_chain::prelude::*;
 use rotor_chain::{RuntimeChain, math};
+use support::{configuration, transcendental_floor};
 
 #[rotor_chain(n = 60, r = 0.8, theta_bar = 0.58, k = 1.0e4)]
 struct Chain;
@@ -28,37 +31,10 @@ const THETA_BAR: f64 = 0.58;
 /// Spring stiffness.
 const K: f64 = 1.0e4;
 
-/// `theta_i = theta_bar cos(0.3 i)` plus a small deterministic perturbation: every spring is
-/// stretched or compressed by a different amount, so no term of the gradient or Hessian vanishes.
-fn configuration() -> [f64; N] {
-    core::array::from_fn(|i| {
-        let x = i as f64;
-        THETA_BAR * (0.3 * x).cos() + 0.01 * (1.7 * x + 0.2).sin()
-    })
-}
-
 /// Rest length of every spring: the length in the uniform state `theta_i = theta_bar`.
 fn rest_length() -> f64 {
     let dy = 2.0 * R * THETA_BAR.cos();
     (A * A + dy * dy).sqrt()
-}
-
-// ---------------------------------------------------------------------------------------------
-// The transcendental floor: the sin_cos and sqrt calls any exact evaluation has to make.
-// ---------------------------------------------------------------------------------------------
-
-/// `N` `sin_cos` and `N - 1` `sqrt` of data-dependent arguments (each sqrt takes the trig of two
-/// neighbouring angles, as a spring length does), summed so none can be dropped.
-#[inline(never)]
-fn transcendental_floor(theta: &[f64; N]) -> f64 {
-    let (mut s1, mut c1) = math::sin_cos(theta[0]);
-    let mut total = s1 + c1;
-    for &next in &theta[1..] {
-        let (s2, c2) = math::sin_cos(next);
-        total += s2 + c2 + f64::sqrt(2.0 + s1 * c2 - c1 * s2);
-        (s1, c1) = (s2, c2);
-    }
-    total
 }
 
 // ---------------------------------------------------------------------------------------------

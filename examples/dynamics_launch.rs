@@ -3,12 +3,14 @@
 //! `M v0^2 / 2`. For each defect and direction: the norm of `e`, the kinetic energy, where the mode
 //! lives (its centre and participation number), and the way the defect moves in the first 0.5 t.
 //! Then the near-zero modes of the antikink: its translation mode beside the edge modes of its
-//! two domains, which the launch leaves alone.
+//! two domains, which mix in a finite chain; the launch separates them (issue 8's case, antikink
+//! at rotor 44 at theta_bar = 0.28), and the leakage of launch energy away from the wall over the
+//! paper's whole range.
 //!
 //! Run: `cargo run --example dynamics_launch`
 
 use rotor_chain::dynamics::integrate::kinetic_energy;
-use rotor_chain::dynamics::launch::{Direction, launch, static_defect};
+use rotor_chain::dynamics::launch::{Direction, launch, static_defect, wall_width};
 use rotor_chain::dynamics::observe::propagation;
 use rotor_chain::dynamics::run::RunOptions;
 use rotor_chain::statics::modes::{ModeKind, ModeOptions, modes};
@@ -93,8 +95,39 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             );
         }
     }
+    // The launch separates the translation from the edge modes: the most localised vector of the
+    // near-null subspace (launch.rs). Issue 8's case first, then the whole range.
+    let chain = RuntimeChain::builder(60, 0.8, 1.0e4, 0.28).build()?;
+    let theta = static_defect(&chain, Charge::Antikink, 44.0)?;
+    let found = modes(&chain, &theta, &ModeOptions { count: Some(3), ..ModeOptions::default() })?;
+    let share = |e: &[f64]| e[54..].iter().map(|x| x * x).sum::<f64>() / e.iter().map(|x| x * x).sum::<f64>();
+    let eigenvector = found.iter().find(|m| m.kind == ModeKind::Translation).ok_or("no translation mode")?;
+    let tips: Vec<f64> =
+        eigenvector.shape.iter().enumerate().map(|(i, v)| v * chain.rotor_length(i)).collect();
+    let launched = launch(&chain, Charge::Antikink, 44.0, V0, Direction::Left)?;
+    println!("\nAntikink at rotor 44, theta_bar = 0.28: share of sum e_i^2 on rotors 54-59");
+    println!("  the eigenvector classified as its translation mode: {:.3}", share(&tips));
+    println!("  the launch (most localised vector of the 3 lowest modes): {:.2e}", share(&launched.mode));
+
     println!(
-        "\nThe launch uses the translation mode nearest the wall, never an edge mode, so the ends start at rest."
+        "\nLargest fraction of the launch kinetic energy farther than 3 wall widths (>= 3 sites) from the wall,"
     );
+    println!("over starts from rotor 8 to 50.5 in steps of 2.5, both directions (n = 60):");
+    println!("{:>10} | {:>6} | {:>10} | {:>10}", "theta_bar", "3w", "kink", "antikink");
+    for k in 0..12 {
+        let theta_bar = 0.1 + 0.05 * k as f64;
+        let chain = RuntimeChain::builder(60, 0.8, 1.0e4, theta_bar).build()?;
+        let distance = (3.0 * wall_width(&chain)).max(3.0);
+        let mut worst = [0.0_f64; 2];
+        for (c, charge) in [Charge::Kink, Charge::Antikink].into_iter().enumerate() {
+            for s in 0..=17 {
+                for direction in [Direction::Left, Direction::Right] {
+                    let l = launch(&chain, charge, 8.0 + 2.5 * s as f64, V0, direction)?;
+                    worst[c] = worst[c].max(l.kinetic_energy_beyond(distance));
+                }
+            }
+        }
+        println!("{theta_bar:>10.2} | {distance:>6.2} | {:>10.2e} | {:>10.2e}", worst[0], worst[1]);
+    }
     Ok(())
 }

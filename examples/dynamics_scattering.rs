@@ -66,8 +66,12 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         let name = format!("{charge:?}").to_lowercase();
         finals.push(format!("{name:>8} {v0:>4} {ki_ratio:>5.2} | {violations:>10} | {}", walls(last)));
     }
-    println!("(kinks, antikinks: walls at the decision, boundary walls included)");
-    println!("\nWalls at the decision ('(end)': a boundary wall, Appendix C), and the outputs at which");
+    println!(
+        "(kinks, antikinks: walls at the end of the run, 1 t after the decision to confirm it; boundary walls included)"
+    );
+    println!(
+        "\nWalls at the end of the run ('(end)': a boundary wall, Appendix C), and the outputs at which"
+    );
     println!("N_K - N_A differed from its initial value (+1 kink, -1 antikink):");
     println!("{:>19} | {:>10} | walls", "", "violations");
     for line in &finals {

@@ -33,7 +33,7 @@
 
 pub use chain_core::{
     Bidiagonal, BranchError, ChainModel, ParameterError, Tridiagonal, banded, branch, error, geometry,
-    kernel, math, model,
+    kernel, math, model, simd,
 };
 #[cfg(feature = "alloc")]
 pub use chain_core::{ChainBuilder, Law, RuntimeChain, dynamics, linalg, runtime, statics};

@@ -21,6 +21,7 @@ pub mod math;
 pub mod model;
 #[cfg(feature = "alloc")]
 pub mod runtime;
+pub mod simd;
 #[cfg(feature = "alloc")]
 pub mod statics;
 

@@ -77,17 +77,19 @@ mod imp {
 pub use imp::*;
 
 /// `sin[i], cos[i] = sin_cos(theta[i])` for every angle: the one entry point through which
-/// generated code and the kernel drivers take the sines and cosines of a whole chain, so that a
-/// faster evaluation of many angles at once serves all of them.
+/// generated code and the kernel drivers take the sines and cosines of a whole chain.
+///
+/// It runs at the widest vector level the CPU offers ([`crate::simd`], detected at run time): a
+/// polynomial over 4 (AVX2 + FMA) or 8 (AVX-512F) lanes, within 2 ulp of the correctly rounded
+/// values (measured: `docs/benchmarks.md`), and [`sin_cos`] itself on other machines and without
+/// `std`. Angles beyond `simd::VECTOR_SIN_COS_LIMIT`, NaN and the infinities always get
+/// [`sin_cos`]'s result. An angle's result does not depend on where it sits in `theta`.
 ///
 /// # Panics
 /// If `sin` or `cos` is shorter than `theta` (a programming error).
 #[inline]
 pub fn sin_cos_into(theta: &[f64], sin: &mut [f64], cos: &mut [f64]) {
-    let (sin, cos) = (&mut sin[..theta.len()], &mut cos[..theta.len()]);
-    for ((t, s), c) in theta.iter().zip(sin.iter_mut()).zip(cos.iter_mut()) {
-        (*s, *c) = sin_cos(*t);
-    }
+    crate::simd::sin_cos_into(theta, sin, cos);
 }
 
 /// The sign of `x` with `sign(0) = 0` (and NaN for NaN): unlike `f64::signum`, zero is neither side.

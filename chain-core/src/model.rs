@@ -59,6 +59,29 @@ pub trait ChainModel {
     /// `n - 1`, entry `(p, p + 1)`).
     fn tangent_stiffness_into(&self, theta: &[f64], diag: &mut [f64], off: &mut [f64]);
 
+    /// The energy, with the gradient into `out`, in one pass: each angle's `sin_cos` and each
+    /// spring's length computed once. The default calls [`ChainModel::gradient_into`] and
+    /// [`ChainModel::energy`]; both kinds of chain override it.
+    fn energy_and_gradient_into(&self, theta: &[f64], out: &mut [f64]) -> f64 {
+        self.gradient_into(theta, out);
+        self.energy(theta)
+    }
+
+    /// The energy, with the gradient into `grad` and the tangent stiffness into `diag` / `off`
+    /// (as [`ChainModel::tangent_stiffness_into`]), in one pass. The default calls the three
+    /// separate methods; both kinds of chain override it.
+    fn energy_gradient_stiffness_into(
+        &self,
+        theta: &[f64],
+        grad: &mut [f64],
+        diag: &mut [f64],
+        off: &mut [f64],
+    ) -> f64 {
+        self.gradient_into(theta, grad);
+        self.tangent_stiffness_into(theta, diag, off);
+        self.energy(theta)
+    }
+
     /// The material part `sum_p g^_p a_p a_p^T` of the tangent stiffness (paper Appendix D), with
     /// `a_p = dl_p/dtheta` (the paper's `a_p` is per tip displacement `r theta`: ours is `r` times it).
     fn material_stiffness_into(&self, theta: &[f64], diag: &mut [f64], off: &mut [f64]);

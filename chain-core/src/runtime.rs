@@ -1,7 +1,8 @@
 //! A chain whose size and parameters are chosen at run time, for sweeps and large chains.
 //!
 //! Its spring terms come from the same rendered kernels ([`crate::kernel`]) that `#[rotor_chain]`
-//! emits for large chains, called in one loop that computes each angle's `sin_cos` once.
+//! emits for large chains, driven over the springs in vector lanes at the level [`crate::simd`]
+//! detects at run time, each angle's `sin_cos` computed once.
 
 use alloc::collections::BTreeSet;
 use alloc::vec::Vec;
@@ -77,10 +78,15 @@ impl RuntimeChain {
         self.law
     }
 
-    /// `[a, r_p, r_{p+1}, k_p, l0_p]` of spring `p`.
+    /// The springs' parameters as slices, which the kernel drivers load straight into lanes.
     #[inline(always)]
-    fn params(&self, p: usize) -> [f64; 5] {
-        [self.a, self.rotor_lengths[p], self.rotor_lengths[p + 1], self.stiffness[p], self.rest_lengths[p]]
+    fn springs(&self) -> kernel::SpringSlices<'_> {
+        kernel::SpringSlices {
+            a: self.a,
+            rotor_lengths: &self.rotor_lengths,
+            stiffness: &self.stiffness,
+            rest_lengths: &self.rest_lengths,
+        }
     }
 
     fn check_len(&self, theta: &[f64]) {
@@ -88,14 +94,14 @@ impl RuntimeChain {
     }
 }
 
-/// Runs kernel driver `$driver` on `$theta` with the kernel function `$f` of the chain's law.
-/// Each arm monomorphises the driver for that law's function, so the kernel inlines.
+/// Runs kernel driver `$driver` on `$theta` with the kernel `$kernel` of the chain's law. Each
+/// arm monomorphises the driver for that law's kernel, so the kernel inlines.
 macro_rules! with_law {
-    ($self:ident, $theta:ident, $driver:path, $f:ident $(, $out:expr)*) => {{
+    ($self:ident, $theta:ident, $driver:ident, $kernel:ident $(, $out:expr)*) => {{
         $self.check_len($theta);
         match $self.law {
-            Law::Harmonic => $driver($theta, |p| $self.params(p) $(, $out)*, kernel::harmonic::$f),
-            Law::Quartic => $driver($theta, |p| $self.params(p) $(, $out)*, kernel::quartic::$f),
+            Law::Harmonic => kernel::$driver::<kernel::harmonic::$kernel>($theta, $self.springs() $(, $out)*),
+            Law::Quartic => kernel::$driver::<kernel::quartic::$kernel>($theta, $self.springs() $(, $out)*),
         }
     }};
 }
@@ -124,35 +130,49 @@ impl ChainModel for RuntimeChain {
     }
 
     fn energy(&self, theta: &[f64]) -> f64 {
-        with_law!(self, theta, kernel::sum, energy)
+        with_law!(self, theta, sum, Energy)
     }
 
     fn gradient_into(&self, theta: &[f64], out: &mut [f64]) {
-        with_law!(self, theta, kernel::assemble_pairs, gradient, out)
+        with_law!(self, theta, assemble_pairs, Gradient, out)
     }
 
     fn tangent_stiffness_into(&self, theta: &[f64], diag: &mut [f64], off: &mut [f64]) {
-        with_law!(self, theta, kernel::assemble_blocks, hessian, diag, off)
+        with_law!(self, theta, assemble_blocks, Hessian, diag, off)
+    }
+
+    fn energy_and_gradient_into(&self, theta: &[f64], out: &mut [f64]) -> f64 {
+        with_law!(self, theta, energy_and_gradient, EnergyGradient, out)
+    }
+
+    fn energy_gradient_stiffness_into(
+        &self,
+        theta: &[f64],
+        grad: &mut [f64],
+        diag: &mut [f64],
+        off: &mut [f64],
+    ) -> f64 {
+        with_law!(self, theta, energy_gradient_stiffness, EnergyGradientHessian, grad, diag, off)
     }
 
     fn material_stiffness_into(&self, theta: &[f64], diag: &mut [f64], off: &mut [f64]) {
-        with_law!(self, theta, kernel::assemble_blocks, material, diag, off)
+        with_law!(self, theta, assemble_blocks, Material, diag, off)
     }
 
     fn stress_matrix_into(&self, theta: &[f64], diag: &mut [f64], off: &mut [f64]) {
-        with_law!(self, theta, kernel::assemble_blocks, stress, diag, off)
+        with_law!(self, theta, assemble_blocks, Stress, diag, off)
     }
 
     fn spring_lengths_into(&self, theta: &[f64], out: &mut [f64]) {
-        with_law!(self, theta, kernel::per_spring, length, out)
+        with_law!(self, theta, per_spring, Length, out)
     }
 
     fn tensions_into(&self, theta: &[f64], out: &mut [f64]) {
-        with_law!(self, theta, kernel::per_spring, tension, out)
+        with_law!(self, theta, per_spring, Tension, out)
     }
 
     fn compatibility_into(&self, theta: &[f64], left: &mut [f64], right: &mut [f64]) {
-        with_law!(self, theta, kernel::per_spring_pairs, compatibility, left, right)
+        with_law!(self, theta, per_spring_pairs, Compatibility, left, right)
     }
 }
 

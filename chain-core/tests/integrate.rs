@@ -196,7 +196,14 @@ fn damped_oscillators_follow_the_closed_form() {
         // Verlet: second order, with or without the exact decay.
         let errors: Vec<f64> = [4e-3, 2e-3, 1e-3]
             .iter()
-            .map(|&dt| exact(&run_verlet(&model, &start, t_end, &VerletOptions { dt, damping: gamma })))
+            .map(|&dt| {
+                exact(&run_verlet(
+                    &model,
+                    &start,
+                    t_end,
+                    &VerletOptions { damping: gamma, ..VerletOptions::new(dt) },
+                ))
+            })
             .collect();
         for pair in errors.windows(2) {
             let ratio = pair[0] / pair[1];
@@ -245,7 +252,7 @@ fn small_oscillations_are_the_exact_normal_modes() {
         // Verlet's discrete oscillation is known exactly: cos(w dt) = 1 - (omega dt)^2 / 2.
         let dt = t_end / 600.0;
         let discrete = (1.0 - 0.5 * (omega * dt).powi(2)).acos() / dt;
-        let d = deviation(&run_verlet(&model, &start, t_end, &VerletOptions { dt, damping: 0.0 }), discrete);
+        let d = deviation(&run_verlet(&model, &start, t_end, &VerletOptions::new(dt)), discrete);
         assert!(d < 1e-4, "mode {j}: Verlet deviates by {d:e} eps from its discrete mode");
     }
 }
@@ -261,9 +268,7 @@ fn verlet_converges_at_second_order_on_the_nonlinear_chain() {
     let reference = run_adaptive(&model, &start, t_end, &tight());
     let errors: Vec<f64> = [2e-3, 1e-3, 5e-4]
         .iter()
-        .map(|&dt| {
-            distance(&run_verlet(&model, &start, t_end, &VerletOptions { dt, damping: 0.0 }), &reference).0
-        })
+        .map(|&dt| distance(&run_verlet(&model, &start, t_end, &VerletOptions::new(dt)), &reference).0)
         .collect();
     for pair in errors.windows(2) {
         let ratio = pair[0] / pair[1];
@@ -436,7 +441,7 @@ fn observer_stop_ends_the_run() {
     assert_eq!(state.time, 0.3);
 
     let mut state = start.clone();
-    let options = VerletOptions { dt: 1e-3, damping: 0.0 };
+    let options = VerletOptions::new(1e-3);
     let report = verlet(&model, &mut state, 5.0, &options, 10, &mut stop_at_third()).unwrap();
     // Outputs at steps 0, 10, 20: it stops after 20 of 5000 steps.
     assert!(report.stopped_early);
@@ -455,7 +460,7 @@ fn observer_stop_ends_the_run() {
 fn bad_input_is_a_typed_error() {
     let model = chain(10);
     let good = State::at_rest(vec![TB; 10]);
-    let verlet_options = VerletOptions { dt: 1e-3, damping: 0.0 };
+    let verlet_options = VerletOptions::new(1e-3);
     let run_both = |state: &State| {
         let v = verlet(&model, &mut state.clone(), 1.0, &verlet_options, 1, &mut continue_always);
         let a =
@@ -481,8 +486,15 @@ fn bad_input_is_a_typed_error() {
 
     let mut state = good.clone();
     let mut run_verlet = |dt: f64, damping: f64, t_end: f64, every: usize| {
-        verlet(&model, &mut state, t_end, &VerletOptions { dt, damping }, every, &mut continue_always)
-            .unwrap_err()
+        verlet(
+            &model,
+            &mut state,
+            t_end,
+            &VerletOptions { damping, ..VerletOptions::new(dt) },
+            every,
+            &mut continue_always,
+        )
+        .unwrap_err()
     };
     assert!(matches!(run_verlet(0.0, 0.0, 1.0, 1), IntegrateError::InvalidOption { name: "dt", .. }));
     assert!(matches!(run_verlet(1e-3, -1.0, 1.0, 1), IntegrateError::InvalidOption { name: "damping", .. }));
@@ -543,7 +555,7 @@ fn a_nan_force_during_the_run_is_a_typed_error() {
     // Moving out of the region where the force is defined.
     let start = State { time: 0.0, theta: vec![0.0, 0.4], omega: vec![0.0, 1.0] };
     let mut state = start.clone();
-    let options = VerletOptions { dt: 1e-2, damping: 0.0 };
+    let options = VerletOptions::new(1e-2);
     let e = verlet(&model, &mut state, 1.0, &options, 1, &mut continue_always).unwrap_err();
     assert!(
         matches!(e, IntegrateError::NotFinite { what: "omega", index: 1, time, .. } if time > 0.05),
@@ -568,13 +580,49 @@ fn a_nan_force_during_the_run_is_a_typed_error() {
 
 #[test]
 fn an_unstable_step_ends_in_a_typed_error() {
-    // omega dt = 4, twice Verlet's stability limit: the oscillation grows ~14-fold per step until
-    // it overflows.
+    // omega dt = 4, twice Verlet's stability limit: the oscillation grows ~14-fold per step. The
+    // energy check stops it at the first output, long before it overflows.
     let model = Oscillators::new(&[100.0], &[1.0]);
     let mut state = State::at_rest(vec![0.1]);
-    let options = VerletOptions { dt: 0.4, damping: 0.0 };
+    let options = VerletOptions::new(0.4);
     let e = verlet(&model, &mut state, 1e4, &options, 1, &mut continue_always).unwrap_err();
+    assert!(
+        matches!(e, IntegrateError::EnergyNotConserved { time, limit, .. } if time <= 0.4 && limit == 0.1),
+        "{e}"
+    );
+    // With the check switched off it still ends in an error once the motion overflows.
+    let options = VerletOptions { energy_limit: f64::INFINITY, ..options };
+    let e =
+        verlet(&model, &mut State::at_rest(vec![0.1]), 1e4, &options, 1, &mut continue_always).unwrap_err();
     assert!(matches!(e, IntegrateError::NotFinite { index: 0, time, .. } if time < 400.0), "{e}");
+}
+
+#[test]
+fn steps_far_past_the_stability_limit_never_return_ok() {
+    // The paper's chain with a moving kink: bounded forces (sines and cosines) never overflow,
+    // so only the energy shows that the run went wrong. Every step from twice to 500 times the
+    // stability limit must end in a typed error carrying the numbers, never in `Ok`.
+    let model = chain(60);
+    let start = moving_kink(&model, 30.0, 2.4);
+    let limit = VerletOptions::stable_for(&model, &start.theta, 1.0).unwrap().dt;
+    for factor in [2.0, 10.0, 50.0, 200.0, 500.0] {
+        for every in [1, 7, 1000] {
+            let mut state = start.clone();
+            let options = VerletOptions::new(factor * limit);
+            let e = verlet(&model, &mut state, 2.0, &options, every, &mut continue_always).unwrap_err();
+            match e {
+                IntegrateError::EnergyNotConserved { relative, limit, energy, initial, .. } => {
+                    assert!(relative > limit && limit == 0.1 && energy != initial, "{factor}x: {e}");
+                }
+                IntegrateError::NotFinite { .. } => {}
+                other => panic!("{factor}x, every {every}: {other}"),
+            }
+        }
+    }
+    // At the default step the same run is fine.
+    let options = VerletOptions::stable_for(&model, &start.theta, VerletOptions::DEFAULT_SAFETY).unwrap();
+    let report = verlet(&model, &mut start.clone(), 2.0, &options, 7, &mut continue_always).unwrap();
+    assert!(report.relative_energy_error() < 1e-3);
 }
 
 #[test]
@@ -592,10 +640,16 @@ fn steps_that_underflow_or_run_out_are_typed_errors() {
     let options = AdaptiveOptions { min_step: 0.5, ..AdaptiveOptions::default() };
     let e = adaptive(&model, &mut state, &[10.0], &options, &mut continue_always);
     assert!(matches!(e, Err(IntegrateError::StepSizeTooSmall { time: 0.0, .. })), "{e:?}");
-    // A budget too small for the run; the state is left at the last accepted step.
+    // A budget that cannot cover the run even at the largest stable step: refused before the
+    // first step, the state untouched.
     let options = AdaptiveOptions { max_steps: 5, ..AdaptiveOptions::default() };
     let e = adaptive(&model, &mut state, &[10.0], &options, &mut continue_always).unwrap_err();
-    let IntegrateError::TooManySteps { time, steps: 5 } = e else { panic!("{e}") };
+    assert!(matches!(e, IntegrateError::StepBudget { budget: 5, .. }), "{e}");
+    assert_eq!(state.time, 0.0);
+    // A budget the error control runs out of; the state is left at the last accepted step.
+    let options = AdaptiveOptions { max_steps: 20, ..AdaptiveOptions::default() };
+    let e = adaptive(&model, &mut state, &[10.0], &options, &mut continue_always).unwrap_err();
+    let IntegrateError::TooManySteps { time, steps: 20 } = e else { panic!("{e}") };
     assert!(time > 0.0 && state.time == time);
 }
 

@@ -258,7 +258,7 @@ fn looped_bodies(model: &Model) -> (Bodies, TokenStream) {
         #[doc(hidden)]
         #[allow(non_snake_case, clippy::all)]
         mod #kmod {
-            use #p::math as m;
+            use #p::kernel::{Lane, SpringFn};
             #kernel
         }
     };
@@ -270,17 +270,17 @@ fn looped_bodies(model: &Model) -> (Bodies, TokenStream) {
         let (driver, kernel) = (format_ident!("{driver}"), format_ident!("{kernel}"));
         quote!({
             let lbar = #lbar;
-            #p::kernel::#driver(#theta, #params, #outs #kmod::#kernel)
+            #p::kernel::#driver::<#kmod::#kernel>(#theta, #params, #outs)
         })
     };
-    let energy = call("sum", "energy", quote!());
-    let gradient = call("assemble_pairs", "gradient", quote!(out,));
-    let hessian = call("assemble_blocks", "hessian", quote!(diag, off,));
-    let material = call("assemble_blocks", "material", quote!(diag, off,));
-    let stress = call("assemble_blocks", "stress", quote!(diag, off,));
-    let length = call("per_spring", "length", quote!(out,));
-    let tension = call("per_spring", "tension", quote!(out,));
-    let compatibility = call("per_spring_pairs", "compatibility", quote!(left, right,));
+    let energy = call("sum", "Energy", quote!());
+    let gradient = call("assemble_pairs", "Gradient", quote!(out));
+    let hessian = call("assemble_blocks", "Hessian", quote!(diag, off));
+    let material = call("assemble_blocks", "Material", quote!(diag, off));
+    let stress = call("assemble_blocks", "Stress", quote!(diag, off));
+    let length = call("per_spring", "Length", quote!(out));
+    let tension = call("per_spring", "Tension", quote!(out));
+    let compatibility = call("per_spring_pairs", "Compatibility", quote!(left, right));
     let trait_bodies = quote! {
         fn energy(&self, theta: &[f64]) -> f64 #energy
         fn gradient_into(&self, theta: &[f64], out: &mut [f64]) #gradient

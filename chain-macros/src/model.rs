@@ -151,6 +151,6 @@ impl Model {
     /// Rust source of the per-spring kernel for the looped strategy.
     pub fn kernel_source(&self) -> String {
         let kernel = Kernel::new(&|g: &mut Graph| self.spring_law(g));
-        kernel.render("m::").expect("the kernel names every symbol")
+        kernel.render().expect("the kernel names every symbol")
     }
 }

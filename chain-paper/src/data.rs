@@ -1,5 +1,4 @@
-//! The numbers behind each figure as CSV, one file per panel, and the atomic write every output
-//! of the `paper` binary goes through.
+//! The numbers behind each figure as CSV, one file per panel.
 //!
 //! A line panel is written in long format, one row per point, so curves of different lengths
 //! share one file:
@@ -10,25 +9,18 @@
 //! ```
 //!
 //! A heat map is written one row per cell, `x,y,value`, with a fourth column `category` (the
-//! name of the value) when the map is categorical. Numbers are Rust's shortest round-trip form,
+//! name of the value) when the map is categorical. A drawing of the chain is written one row per
+//! drawn part, `part,index,x0,y0,x1,y1,value`: each rotor from pivot to tip (value `θ_i`), each
+//! spring from tip to tip (value its stretch `(l − l0)/a`; `impurity` for an impurity spring), each
+//! mode arrow (value its length) and tension bar (value its amplitude). Numbers are Rust's shortest round-trip form,
 //! so reading a file back gives the figure's `f64`s exactly; text is quoted as RFC 4180 says.
 
 use std::fmt::Write as _;
-use std::fs::{self, File};
-use std::io::{self, Write as _};
+use std::fs;
 use std::path::{Path, PathBuf};
-use std::sync::atomic::{AtomicU64, Ordering};
 
-use crate::model::{Chart, Figure, Heatmap, Panel};
-
-/// A file that could not be written, and why.
-#[derive(Debug, thiserror::Error)]
-#[error("cannot write {}: {source}", path.display())]
-pub struct WriteError {
-    pub path: PathBuf,
-    #[source]
-    pub source: io::Error,
-}
+use crate::model::{ChainDrawing, Chart, Figure, Heatmap, Panel};
+pub use crate::output::{WriteError, write_atomic};
 
 /// The file stem of a figure's outputs: its label without the `fig:` prefix (`fig:kcobweb` →
 /// `kcobweb`).
@@ -62,7 +54,31 @@ pub fn panel_csv(chart: &Chart) -> String {
     match chart {
         Chart::Lines(panel) => lines_csv(panel),
         Chart::Heat(map) => heatmap_csv(map),
+        Chart::Chain(drawing) => chain_csv(drawing),
     }
+}
+
+fn chain_csv(d: &ChainDrawing) -> String {
+    let mut csv = String::from("part,index,x0,y0,x1,y1,value\n");
+    let mut row = |part: &str, index: usize, from: (f64, f64), to: (f64, f64), value: f64| {
+        writeln!(csv, "{part},{index},{},{},{},{},{value}", from.0, from.1, to.0, to.1)
+            .expect("writing to a String");
+    };
+    let first = d.rotors.start;
+    for (j, ((&pivot, &tip), &angle)) in d.pivots.iter().zip(&d.tips).zip(&d.angles).enumerate() {
+        row("rotor", first + j, pivot, tip, angle);
+    }
+    for (j, (&stretch, pair)) in d.stretch.iter().zip(d.tips.windows(2)).enumerate() {
+        let part = if d.impurities.contains(&j) { "impurity" } else { "spring" };
+        row(part, first + j, pair[0], pair[1], stretch);
+    }
+    for (j, (&tip, &(dx, dy))) in d.tips.iter().zip(&d.arrows).enumerate() {
+        row("arrow", first + j, tip, (tip.0 + dx, tip.1 + dy), dx.hypot(dy));
+    }
+    for (j, (&amplitude, pair)) in d.tensions.iter().zip(d.tips.windows(2)).enumerate() {
+        row("tension", first + j, pair[0], pair[1], amplitude);
+    }
+    csv
 }
 
 fn lines_csv(panel: &Panel) -> String {
@@ -106,36 +122,10 @@ fn quote(field: &str) -> String {
     }
 }
 
-/// Write `bytes` to `path` so that a reader finds either the old file or the complete new one,
-/// never a part: the bytes go to a temporary file beside it, are synced, and the temporary file
-/// is renamed over `path`. On failure the temporary file is removed.
-pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), WriteError> {
-    // Unique per process and call, so parallel writers never share a temporary file.
-    static COUNTER: AtomicU64 = AtomicU64::new(0);
-    let error = |source| WriteError { path: path.to_owned(), source };
-    let name = path.file_name().ok_or_else(|| error(io::Error::other("the path names no file")))?;
-    let temp = path.with_file_name(format!(
-        ".{}.{}-{}.tmp",
-        name.to_string_lossy(),
-        std::process::id(),
-        COUNTER.fetch_add(1, Ordering::Relaxed)
-    ));
-    let written = File::create(&temp)
-        .and_then(|mut file| {
-            file.write_all(bytes)?;
-            file.sync_all()
-        })
-        .and_then(|()| fs::rename(&temp, path));
-    written.map_err(|source| {
-        let _ = fs::remove_file(&temp);
-        error(source)
-    })
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::model::{Series, Style};
+    use crate::model::{Quantity, Series, Style};
 
     #[test]
     fn line_panels_are_long_format_with_quoted_names() {
@@ -144,8 +134,8 @@ mod tests {
             x_label: "x".into(),
             y_label: "y".into(),
             series: vec![
-                Series::new("a, \"b\"", vec![(0.0, 0.1), (1.0, -2.5e-9)], Style::Line),
-                Series::new("c", vec![(2.0, f64::NAN)], Style::Points),
+                Series::new(Quantity::Rotor, "a, \"b\"", vec![(0.0, 0.1), (1.0, -2.5e-9)], Style::Line),
+                Series::new(Quantity::Spring, "c", vec![(2.0, f64::NAN)], Style::Points),
             ],
             log_y: false,
         };
@@ -168,18 +158,5 @@ mod tests {
             value_label: String::new(),
         };
         assert_eq!(panel_csv(&Chart::Heat(map)), "x,y,value,category\n0.5,3,1,transmitted\n1,3,7,\n");
-    }
-
-    #[test]
-    fn atomic_writes_replace_and_leave_no_temporary_file() {
-        let dir = tempfile::tempdir().unwrap();
-        let path = dir.path().join("a.csv");
-        write_atomic(&path, b"old").unwrap();
-        write_atomic(&path, b"new").unwrap();
-        assert_eq!(fs::read_to_string(&path).unwrap(), "new");
-        assert_eq!(fs::read_dir(dir.path()).unwrap().count(), 1);
-        let missing = dir.path().join("no-such-dir").join("a.csv");
-        let err = write_atomic(&missing, b"x").unwrap_err();
-        assert!(err.to_string().starts_with(&format!("cannot write {}", missing.display())), "{err}");
     }
 }

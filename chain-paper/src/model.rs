@@ -1,4 +1,9 @@
-//! The renderer-independent description of a figure and of a summary row.
+//! The renderer-independent description of a figure: panels of curves, heat maps and drawings of
+//! the chain. Summary rows are in [`crate::row`], chain drawings in [`crate::drawing`].
+
+pub use crate::drawing::ChainDrawing;
+pub use crate::palette::Quantity;
+pub use crate::row::{Comparison, Printed, Row, format_number};
 
 /// How much work a figure does: `Full` reproduces the paper, `Quick` a coarse version (fewer
 /// grid points, shorter runs) that exercises the same code in seconds.
@@ -23,22 +28,28 @@ impl Quality {
 pub enum Style {
     Line,
     Dashed,
+    /// Filled dots.
     Points,
+    /// Open circles (the paper's translation-mode points, `fig:w-th`).
+    OpenPoints,
     LinePoints,
 }
 
-/// One curve or set of points of a panel.
+/// One curve or set of points of a panel. Its colour is its quantity's
+/// ([`Quantity::colour`]), the same in every figure.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Series {
-    /// Legend entry (also the CSV column name).
+    /// What it shows; sets its colour.
+    pub quantity: Quantity,
+    /// Legend entry (also the CSV column name); empty for no legend entry.
     pub name: String,
     pub points: Vec<(f64, f64)>,
     pub style: Style,
 }
 
 impl Series {
-    pub fn new(name: impl Into<String>, points: Vec<(f64, f64)>, style: Style) -> Self {
-        Self { name: name.into(), points, style }
+    pub fn new(quantity: Quantity, name: impl Into<String>, points: Vec<(f64, f64)>, style: Style) -> Self {
+        Self { quantity, name: name.into(), points, style }
     }
 }
 
@@ -46,7 +57,7 @@ impl Series {
 #[derive(Clone, Debug, PartialEq)]
 pub struct Panel {
     pub title: String,
-    /// Axis labels with units, e.g. `"rotor index i"`, `"theta (rad)"`.
+    /// Axis labels with units, e.g. `"rotor index i"`, `"θ_i (rad)"`.
     pub x_label: String,
     pub y_label: String,
     pub series: Vec<Series>,
@@ -54,8 +65,27 @@ pub struct Panel {
     pub log_y: bool,
 }
 
+impl Panel {
+    /// A panel on linear axes.
+    pub fn new(
+        title: impl Into<String>,
+        x_label: impl Into<String>,
+        y_label: impl Into<String>,
+        series: Vec<Series>,
+    ) -> Self {
+        Self { title: title.into(), x_label: x_label.into(), y_label: y_label.into(), series, log_y: false }
+    }
+
+    /// The same panel with a logarithmic y axis.
+    pub fn log_y(self) -> Self {
+        Self { log_y: true, ..self }
+    }
+}
+
 /// A colour map over a regular grid (space-time images, phase diagrams). `values[row][col]` sits
 /// at `(x[col], y[row])`. With `categories`, values are indices into it (discrete legend).
+/// Continuous values of both signs are drawn with a diverging map centred on zero, others with
+/// viridis (see [`crate::palette`]).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Heatmap {
     pub title: String,
@@ -64,7 +94,8 @@ pub struct Heatmap {
     pub x: Vec<f64>,
     pub y: Vec<f64>,
     pub values: Vec<Vec<f64>>,
-    /// Names of discrete values `0, 1, 2, ...` (e.g. outcomes); empty for a continuous map.
+    /// Names of discrete values `0, 1, 2, ...` (e.g. outcomes); empty for a continuous map. A
+    /// name of [`Quantity::of_category`] gets that quantity's colour.
     pub categories: Vec<String>,
     /// Label of the colour bar for a continuous map, with units.
     pub value_label: String,
@@ -75,6 +106,26 @@ pub struct Heatmap {
 pub enum Chart {
     Lines(Panel),
     Heat(Heatmap),
+    /// A drawing of the chain itself: pivots, rotors, springs coloured by their stretch.
+    Chain(ChainDrawing),
+}
+
+impl From<Panel> for Chart {
+    fn from(panel: Panel) -> Self {
+        Chart::Lines(panel)
+    }
+}
+
+impl From<Heatmap> for Chart {
+    fn from(map: Heatmap) -> Self {
+        Chart::Heat(map)
+    }
+}
+
+impl From<ChainDrawing> for Chart {
+    fn from(drawing: ChainDrawing) -> Self {
+        Chart::Chain(drawing)
+    }
 }
 
 /// A figure of the paper: its label, what it shows, and its panels.
@@ -87,89 +138,4 @@ pub struct Figure {
     pub panels: Vec<Chart>,
     /// Rows this figure contributes to the summary table.
     pub rows: Vec<Row>,
-}
-
-/// One row of the summary table: a number the paper states, beside ours.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Row {
-    /// What the number is, with its parameters.
-    pub quantity: String,
-    /// The paper's statement (a number or a word such as "transmitted").
-    pub paper: String,
-    pub ours: String,
-    /// The continuum theory's value where one exists.
-    pub continuum: Option<String>,
-    /// `|ours - paper| / |paper|` when both are numbers.
-    pub relative_difference: Option<f64>,
-    /// One line on why they differ, where they do.
-    pub note: String,
-}
-
-impl Row {
-    /// A numeric row; the relative difference is computed here.
-    pub fn number(
-        quantity: impl Into<String>,
-        paper: f64,
-        ours: f64,
-        continuum: Option<f64>,
-        note: impl Into<String>,
-    ) -> Self {
-        Self {
-            quantity: quantity.into(),
-            paper: format_number(paper),
-            ours: format_number(ours),
-            continuum: continuum.map(format_number),
-            relative_difference: (paper != 0.0).then(|| ((ours - paper) / paper).abs()),
-            note: note.into(),
-        }
-    }
-
-    /// A row whose values are words (outcomes).
-    pub fn words(quantity: impl Into<String>, paper: &str, ours: &str, note: impl Into<String>) -> Self {
-        Self {
-            quantity: quantity.into(),
-            paper: paper.to_owned(),
-            ours: ours.to_owned(),
-            continuum: None,
-            relative_difference: None,
-            note: note.into(),
-        }
-    }
-}
-
-/// Six significant digits with trailing zeros dropped (the paper's 1359.15 and 1359.75, whose
-/// difference is its barrier, must stay apart), scientific notation outside `[1e-3, 1e5)`.
-pub fn format_number(x: f64) -> String {
-    let a = x.abs();
-    if x == 0.0 {
-        return "0".to_owned();
-    }
-    if !(1e-3..1e5).contains(&a) {
-        let text = format!("{x:.5e}");
-        let (mantissa, exponent) = text.split_once('e').unwrap_or((&text, "0"));
-        return format!("{}e{exponent}", trim_zeros(mantissa));
-    }
-    let digits = (5 - a.log10().floor() as i32).max(0) as usize;
-    trim_zeros(&format!("{x:.digits$}")).to_owned()
-}
-
-/// `1.500` -> `1.5`, `2.000` -> `2`; integers untouched.
-fn trim_zeros(text: &str) -> &str {
-    if text.contains('.') { text.trim_end_matches('0').trim_end_matches('.') } else { text }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn rows_compute_their_relative_difference() {
-        let r = Row::number("barrier", 0.60, 0.668, None, "");
-        assert!((r.relative_difference.unwrap() - 0.1133).abs() < 1e-3);
-        assert_eq!(r.paper, "0.6");
-        assert_eq!(format_number(1359.15), "1359.15");
-        assert_eq!(format_number(1392.029215), "1392.03");
-        assert_eq!(format_number(7.7e-9), "7.7e-9");
-        assert_eq!(format_number(-10.6), "-10.6");
-    }
 }

@@ -4,23 +4,21 @@
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
-use crate::data::{WriteError, write_atomic};
-use crate::model::{Quality, Row, format_number};
+use crate::model::{Quality, Row};
+use crate::output::{WriteError, write_atomic};
 
 /// The columns of the summary table, in order.
 pub const COLUMNS: [&str; 7] =
     ["figure", "quantity", "paper", "ours", "continuum", "relative difference (%)", "note"];
 
 /// The summary table in Markdown: a header, then one line per row, each starting with
-/// `| <figure label> |`. A missing continuum value or relative difference is an empty cell.
+/// `| <figure label> |`. A missing continuum value is an empty cell; the last but one column is the
+/// row's [`Comparison`](crate::model::Comparison): a percentage, or "not comparable" and why, or
+/// empty for a row in words.
 pub fn summary_markdown(rows: &[(&'static str, Row)]) -> String {
     let mut table = format!("| {} |\n|{}\n", COLUMNS.join(" | "), " --- |".repeat(COLUMNS.len()));
     for (label, row) in rows {
-        // A percentage needs no more than two decimals (below 0.01 %, scientific notation).
-        let percent = row
-            .relative_difference
-            .map(|d| if 100.0 * d >= 0.01 { format!("{:.2}", 100.0 * d) } else { format_number(100.0 * d) })
-            .unwrap_or_default();
+        let percent = row.comparison.to_string();
         let cells = [
             *label,
             &row.quantity,
@@ -87,7 +85,7 @@ mod tests {
         let rows = [
             (
                 "fig:barrier",
-                Row::number("PN barrier | n = 60", 0.60, 0.668, Some(0.7), "discreteness\nof the chain"),
+                Row::number("PN barrier | n = 60", "0.60", 0.668, Some(0.7), "discreteness\nof the chain"),
             ),
             ("fig:scatter", Row::words("outcome at v0 = 2", "transmitted", "transmitted", "")),
         ];
@@ -100,9 +98,25 @@ mod tests {
         );
         assert_eq!(
             lines[2],
-            "| fig:barrier | PN barrier \\| n = 60 | 0.6 | 0.668 | 0.7 | 11.33 | discreteness of the chain |"
+            "| fig:barrier | PN barrier \\| n = 60 | 0.60 | 0.668 | 0.7 | 11.33 | discreteness of the chain |"
         );
         assert_eq!(lines[3], "| fig:scatter | outcome at v0 = 2 | transmitted | transmitted |  |  |  |");
+    }
+
+    #[test]
+    fn numbers_that_cannot_be_compared_say_why() {
+        let rows = [(
+            "fig:longbar",
+            Row::number("soft mode", "7.7e-9", 0.020132, None, "")
+                .resolution(2.1e-8, "the smallest ω a double-precision ω² resolves"),
+        )];
+        let table = summary_markdown(&rows);
+        let line = table.lines().nth(2).unwrap();
+        assert!(
+            line.contains("| not comparable: the paper's 7.7e-9 is at or below 2.1e-8, the smallest ω"),
+            "{line}"
+        );
+        assert!(!line.contains("261"), "{line}");
     }
 
     #[test]

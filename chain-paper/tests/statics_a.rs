@@ -5,7 +5,8 @@
 use std::time::Instant;
 
 use chain_paper::figures::{Params, statics_a};
-use chain_paper::{Chart, Figure, Quality};
+use chain_paper::render::missing_glyphs;
+use chain_paper::{Chart, Comparison, Figure, Quality};
 
 fn run(quality: Quality) -> Vec<Figure> {
     let params = Params::default();
@@ -30,6 +31,12 @@ fn every_figure_has_data_and_finite_rows() {
     let figures = run(Quality::Quick);
     assert_eq!(figures.len(), 7);
     for figure in &figures {
+        assert_eq!(
+            missing_glyphs(figure),
+            Vec::<char>::new(),
+            "{}: characters the font cannot draw",
+            figure.label
+        );
         assert!(!figure.caption.is_empty() && !figure.caption.contains('\n'), "{}", figure.label);
         assert!(!figure.panels.is_empty(), "{}: no panels", figure.label);
         for chart in &figure.panels {
@@ -51,6 +58,10 @@ fn every_figure_has_data_and_finite_rows() {
                     }
                 }
                 Chart::Heat(map) => assert!(!map.values.is_empty(), "{}: empty heat map", figure.label),
+                Chart::Chain(d) => {
+                    assert!(d.tips.len() >= 2 && d.stretch.len() + 1 == d.tips.len(), "{}", figure.label);
+                    assert!(d.stretch.iter().all(|s| s.is_finite()), "{}: stretch", figure.label);
+                }
             }
         }
         for row in &figure.rows {
@@ -58,7 +69,12 @@ fn every_figure_has_data_and_finite_rows() {
                 let ours =
                     number(&row.ours).unwrap_or_else(|| panic!("{}: ours {:?}", row.quantity, row.ours));
                 assert!(paper.is_finite() && ours.is_finite(), "{}", row.quantity);
-                assert!(row.relative_difference.is_some_and(f64::is_finite), "{}", row.quantity);
+                match &row.comparison {
+                    Comparison::Relative { difference, .. } => {
+                        assert!(difference.is_finite(), "{}", row.quantity)
+                    }
+                    other => panic!("{}: a numeric row not compared: {other:?}", row.quantity),
+                }
             }
             if let Some(c) = &row.continuum
                 && let Some(value) = number(c)

@@ -1,7 +1,8 @@
 //! Every figure of `statics_b` in Quick mode: panels non-empty, numbers finite.
 
 use chain_paper::figures::{Params, statics_b};
-use chain_paper::{Chart, Quality};
+use chain_paper::render::missing_glyphs;
+use chain_paper::{Chart, Comparison, Quality};
 
 #[test]
 fn every_statics_b_figure_runs_in_quick_mode() {
@@ -12,6 +13,7 @@ fn every_statics_b_figure_runs_in_quick_mode() {
         eprintln!("{label}: {:.2?}", start.elapsed());
         assert_eq!(fig.label, label);
         assert!(!fig.caption.is_empty() && !fig.caption.contains('\n'), "{label}: caption");
+        assert_eq!(missing_glyphs(&fig), Vec::<char>::new(), "{label}: characters the font cannot draw");
         assert!(!fig.panels.is_empty(), "{label}: no panels");
         for chart in &fig.panels {
             match chart {
@@ -43,6 +45,11 @@ fn every_statics_b_figure_runs_in_quick_mode() {
                     );
                     assert!(map.values.iter().flatten().all(|v| v.is_finite()), "{label}: non-finite value");
                 }
+                Chart::Chain(d) => {
+                    assert_eq!(d.pivots.len(), d.tips.len(), "{label}: drawing");
+                    assert!(d.arrows.is_empty() || d.arrows.len() == d.tips.len(), "{label}: arrows");
+                    assert!(d.tensions.is_empty() || d.tensions.len() == d.stretch.len(), "{label}: bars");
+                }
             }
         }
         assert!(
@@ -60,8 +67,8 @@ fn every_statics_b_figure_runs_in_quick_mode() {
                 row.quantity
             );
             // A numeric row: both values parse and are finite.
-            if let Some(d) = row.relative_difference {
-                assert!(d.is_finite(), "{label}: {} relative difference", row.quantity);
+            if let Comparison::Relative { difference, .. } = row.comparison {
+                assert!(difference.is_finite(), "{label}: {} relative difference", row.quantity);
                 for text in [&row.paper, &row.ours] {
                     let x: f64 = text.parse().unwrap_or_else(|_| panic!("{label}: {text} is not a number"));
                     assert!(x.is_finite(), "{label}: {} = {text}", row.quantity);
@@ -72,4 +79,16 @@ fn every_statics_b_figure_runs_in_quick_mode() {
             }
         }
     }
+}
+
+/// The paper's soft-mode frequency, 7.7e-9, lies below what a double-precision omega^2 resolves:
+/// the summary says the two are not comparable instead of printing a relative difference.
+#[test]
+fn the_soft_mode_row_is_not_compared_below_the_resolution() {
+    let fig = statics_b::longbar(&Params::default(), Quality::Quick).unwrap();
+    let row = fig.rows.iter().find(|r| r.quantity.starts_with("soft-mode frequency")).unwrap();
+    let Comparison::NotComparable { reason } = &row.comparison else { panic!("{:?}", row.comparison) };
+    assert!(reason.starts_with("the paper's 7.7e-9 is at or below"), "{reason}");
+    let ours: f64 = row.ours.parse().unwrap();
+    assert!(ours > 1e-3, "ours {ours} is resolved");
 }

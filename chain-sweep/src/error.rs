@@ -42,6 +42,10 @@ pub enum SweepError {
     Parse { path: PathBuf, line: usize, reason: String },
     #[error("{} is in use by another sweep (it holds the file's lock)", path.display())]
     Locked { path: PathBuf },
+    /// The results path names something that is not a regular file (a directory, a FIFO, a
+    /// device such as /dev/null): reading it back could block or lose every point.
+    #[error("{} is {kind}, not a regular file: give a file path for the results", path.display())]
+    NotAFile { path: PathBuf, kind: &'static str },
     #[error("the record type's columns are unusable: {reason}")]
     InvalidRecord { reason: String },
     #[error("cannot start {threads} worker threads: {source}")]

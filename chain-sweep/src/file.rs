@@ -39,7 +39,8 @@ pub struct Point<R> {
     pub coords: (f64, f64),
     /// The record, or the error message of a point that failed.
     pub outcome: Result<R, String>,
-    /// The line of the file (1-based).
+    /// The line of the file (1-based; 0 for a point computed in memory by
+    /// [`crate::compute_grid`]).
     pub line: usize,
 }
 

@@ -24,8 +24,10 @@ pub enum GridError {
     NotFinite { value: f64 },
     #[error("a 1-point axis needs FROM = TO, got {from}:{to}:1 (write {from}:{from}:1)")]
     AmbiguousSinglePoint { from: f64, to: f64 },
-    #[error("`{text}` is not a range FROM:TO:COUNT: {reason}")]
+    #[error("`{text}` is not a range FROM:TO:COUNT or FROM:TO:COUNT:log: {reason}")]
     BadRange { text: String, reason: String },
+    #[error("a logarithmic axis needs FROM and TO > 0, got {from}:{to}")]
+    NotPositive { from: f64, to: f64 },
 }
 
 /// The sample values of one axis.
@@ -57,6 +59,36 @@ impl Axis {
         Ok(Self { values })
     }
 
+    /// `count` values from `from` to `to`, both included, evenly spaced in the logarithm (a
+    /// constant ratio between neighbours); both ends must be positive. A 1-point axis is `[from]`
+    /// and needs `from == to`.
+    pub fn geomspace(from: f64, to: f64, count: usize) -> Result<Self, GridError> {
+        check_count(count)?;
+        for value in [from, to] {
+            check_finite(value)?;
+        }
+        if !(from > 0.0 && to > 0.0) {
+            return Err(GridError::NotPositive { from, to });
+        }
+        if count == 1 {
+            return if from == to {
+                Ok(Self { values: vec![from] })
+            } else {
+                Err(GridError::AmbiguousSinglePoint { from, to })
+            };
+        }
+        let (a, b) = (from.ln(), to.ln());
+        let step = (b - a) / (count - 1) as f64;
+        let values = (0..count)
+            .map(|k| match k {
+                0 => from,
+                k if k + 1 == count => to,
+                k => (a + k as f64 * step).exp(),
+            })
+            .collect();
+        Ok(Self { values })
+    }
+
     /// An axis of explicit values (at least one, all finite).
     pub fn from_values(values: Vec<f64>) -> Result<Self, GridError> {
         check_count(values.len())?;
@@ -78,22 +110,26 @@ impl Axis {
     }
 }
 
-/// `FROM:TO:COUNT`, as on the command line (`--ki 0.01:1:40`).
+/// `FROM:TO:COUNT` (evenly spaced), or `FROM:TO:COUNT:log` (evenly spaced in the logarithm), as
+/// on the command line (`--ki 0.01:3:40:log`).
 impl FromStr for Axis {
     type Err = GridError;
 
     fn from_str(text: &str) -> Result<Self, GridError> {
         let bad = |reason: String| GridError::BadRange { text: text.to_owned(), reason };
         let parts: Vec<&str> = text.split(':').map(str::trim).collect();
-        let [from, to, count] = parts[..] else {
-            return Err(bad(format!("expected 3 parts separated by `:`, found {}", parts.len())));
+        let (from, to, count, log) = match parts[..] {
+            [from, to, count] => (from, to, count, false),
+            [from, to, count, "log"] => (from, to, count, true),
+            [_, _, _, other] => return Err(bad(format!("the fourth part must be `log`, found `{other}`"))),
+            _ => return Err(bad(format!("expected 3 or 4 parts separated by `:`, found {}", parts.len()))),
         };
         let number =
             |name: &str, s: &str| s.parse::<f64>().map_err(|_| bad(format!("{name} `{s}` is not a number")));
         let (from, to) = (number("FROM", from)?, number("TO", to)?);
         let count =
             count.parse::<usize>().map_err(|_| bad(format!("COUNT `{count}` is not a whole number >= 1")))?;
-        Self::linspace(from, to, count)
+        if log { Self::geomspace(from, to, count) } else { Self::linspace(from, to, count) }
     }
 }
 
@@ -204,6 +240,19 @@ mod tests {
     }
 
     #[test]
+    fn geomspace_has_a_constant_ratio_and_exact_ends() {
+        let axis = "0.01:3:40:log".parse::<Axis>().unwrap();
+        let v = axis.values();
+        assert_eq!((v[0], v[39], v.len()), (0.01, 3.0, 40));
+        let ratio = 300f64.powf(1.0 / 39.0);
+        for w in v.windows(2) {
+            assert!((w[1] / w[0] - ratio).abs() < 1e-12, "{w:?}");
+        }
+        assert_eq!(Axis::geomspace(2.0, 2.0, 1).unwrap().values(), [2.0]);
+        assert_eq!(Axis::geomspace(-1.0, 2.0, 3), Err(GridError::NotPositive { from: -1.0, to: 2.0 }));
+    }
+
+    #[test]
     fn parses_ranges() {
         assert_eq!("0.01:1:3".parse::<Axis>().unwrap().values(), [0.01, 0.505, 1.0]);
         assert_eq!(" 1e-2 : 1 : 2 ".parse::<Axis>().unwrap().values(), [0.01, 1.0]);
@@ -219,8 +268,11 @@ mod tests {
             matches!(err("0:1:2.5"), GridError::BadRange { reason, .. } if reason.contains("whole number"))
         );
         assert!(matches!(err("0:1"), GridError::BadRange { reason, .. } if reason.contains("found 2")));
+        assert!(matches!(err("0.1:1:3:lin"), GridError::BadRange { reason, .. } if reason.contains("`lin`")));
+        assert_eq!(err("0:1:3:log"), GridError::NotPositive { from: 0.0, to: 1.0 });
         assert!(matches!(err("a:1:3"), GridError::BadRange { reason, .. } if reason.contains("FROM `a`")));
         assert!(matches!(err("0:1:3:4"), GridError::BadRange { .. }));
+        assert!(matches!(err("0:1:3:log:x"), GridError::BadRange { .. }));
         assert!(matches!(err(""), GridError::BadRange { .. }));
         assert!(matches!(err("0:inf:3"), GridError::NotFinite { .. }));
         assert!(matches!(err("NaN:1:3"), GridError::NotFinite { .. }));

@@ -11,7 +11,7 @@
 //!
 //! ```
 //! use chain_sweep::{Axis, Grid, SweepOptions, read_results, run_sweep};
-//! use chain_sweep::scattering::{Outcome, PointRecord};
+//! use chain_sweep::scattering::{Outcome, PointRecord, fake_point};
 //!
 //! # fn main() -> Result<(), Box<dyn std::error::Error>> {
 //! # let dir = tempfile::tempdir()?;
@@ -20,7 +20,7 @@
 //! let options = SweepOptions::new("kink", "toy model");
 //! let compute = |ki: f64, v0: f64| -> Result<PointRecord, String> {
 //!     let outcome = if v0 > 5.0 * ki { Outcome::Split } else { Outcome::Transmitted };
-//!     Ok(PointRecord { outcome, t_decided: 1.0, kinks_final: 1, antikinks_final: 0, energy_error: 0.0 })
+//!     Ok(PointRecord { outcome, ..fake_point(ki, v0) })
 //! };
 //! let summary = run_sweep(&grid, &path, compute, &options)?;
 //! assert_eq!((summary.computed, summary.skipped, summary.failed), (20, 0, 0));
@@ -41,7 +41,7 @@
 //! | [`record`] | the [`Record`] trait and field helpers |
 //! | [`file`](mod@file) | the results file format, [`read_points`], [`read_results`] |
 //! | [`sweep`] | [`run_sweep`], [`SweepOptions`], [`Summary`]; the crash-safety rules |
-//! | [`scattering`] | [`scattering::PointRecord`], the phase diagram's record |
+//! | [`scattering`] | [`scattering::PhaseDiagram`]: one point of the scattering phase diagram, its energy budget, and [`scattering::PointRecord`], its record |
 
 pub mod error;
 pub mod file;
@@ -54,4 +54,4 @@ pub use error::SweepError;
 pub use file::{Point, ResultRow, read_points, read_results};
 pub use grid::{Axis, Grid, GridError};
 pub use record::{ParseError, Record};
-pub use sweep::{Summary, SweepOptions, run_sweep};
+pub use sweep::{Summary, SweepOptions, compute_grid, run_sweep};

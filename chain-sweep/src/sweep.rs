@@ -22,7 +22,9 @@ use indicatif::{ProgressBar, ProgressDrawTarget, ProgressState, ProgressStyle};
 use rayon::prelude::*;
 
 use crate::error::SweepError;
-use crate::file::{self, check_record_header, complete_lines, format_point, parse_point, read_preamble};
+use crate::file::{
+    self, Point, check_record_header, complete_lines, format_point, parse_point, read_preamble,
+};
 use crate::grid::Grid;
 use crate::record::Record;
 
@@ -152,6 +154,33 @@ where
     Ok(summary)
 }
 
+/// Compute `compute(x, y)` at every point of `grid` in parallel, in memory (no file): the points
+/// in grid order (`i` outer, `j` inner), each with its record or the error (or panic) of its
+/// computation. The same per-point machinery as [`run_sweep`], for callers that plot the result
+/// at once (the paper reproduction).
+pub fn compute_grid<R, E, F>(
+    grid: &Grid,
+    compute: F,
+    threads: Option<usize>,
+) -> Result<Vec<Point<R>>, SweepError>
+where
+    R: Send,
+    E: Display,
+    F: Fn(f64, f64) -> Result<R, E> + Sync,
+{
+    let pool = thread_pool(threads)?;
+    let indices: Vec<(usize, usize)> = grid.indices().collect();
+    Ok(pool.install(|| {
+        indices
+            .par_iter()
+            .map(|&(i, j)| {
+                let coords = (grid.xs()[i], grid.ys()[j]);
+                Point { index: (i, j), coords, outcome: compute_one(&compute, coords), line: 0 }
+            })
+            .collect()
+    }))
+}
+
 fn thread_pool(threads: Option<usize>) -> Result<rayon::ThreadPool, SweepError> {
     let mut builder = rayon::ThreadPoolBuilder::new().thread_name(|k| format!("sweep-{k}"));
     if let Some(threads) = threads {
@@ -251,14 +280,50 @@ fn resume<R: Record>(grid: &Grid, path: &Path, options: &SweepOptions) -> Result
     Ok(resumed)
 }
 
-/// Open for reading and appending, creating it if need be, and take the exclusive lock.
+/// What a path that is not a regular file is, for the error message.
+fn kind_of(file_type: std::fs::FileType) -> &'static str {
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::FileTypeExt;
+        if file_type.is_fifo() {
+            return "a FIFO";
+        }
+        if file_type.is_char_device() || file_type.is_block_device() {
+            return "a device";
+        }
+        if file_type.is_socket() {
+            return "a socket";
+        }
+    }
+    if file_type.is_dir() { "a directory" } else { "not a regular file" }
+}
+
+/// `Err(NotAFile)` if `path` exists (following links) and is not a regular file.
+pub(crate) fn check_regular(path: &Path) -> Result<(), SweepError> {
+    match std::fs::metadata(path) {
+        Ok(meta) if !meta.is_file() => {
+            Err(SweepError::NotAFile { path: path.to_owned(), kind: kind_of(meta.file_type()) })
+        }
+        _ => Ok(()),
+    }
+}
+
+/// Open for reading and appending, creating it if need be, and take the exclusive lock. A path
+/// that is not a regular file is refused before it is opened (opening a FIFO for reading can
+/// block forever, and reading /dev/null back would lose every point), and checked again once
+/// open, in case it was replaced meanwhile.
 fn open_locked(path: &Path) -> Result<File, SweepError> {
+    check_regular(path)?;
     let file = OpenOptions::new()
         .read(true)
         .append(true)
         .create(true)
         .open(path)
         .map_err(SweepError::io("open", path))?;
+    let meta = file.metadata().map_err(SweepError::io("inspect", path))?;
+    if !meta.is_file() {
+        return Err(SweepError::NotAFile { path: path.to_owned(), kind: kind_of(meta.file_type()) });
+    }
     match file.try_lock() {
         Ok(()) => Ok(file),
         Err(TryLockError::WouldBlock) => Err(SweepError::Locked { path: path.to_owned() }),

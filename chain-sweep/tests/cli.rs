@@ -1,7 +1,10 @@
-//! Bad input to `phase-diagram`: a clear message, a non-zero exit, and no file written.
+//! `phase-diagram` as a user runs it: exit statuses as documented (0 done, 1 the sweep could not
+//! run, 2 bad arguments or an invalid value, 3 some points failed), a clear message, no file
+//! written on bad input, and no hang on an output that is not a regular file.
 
 use std::fs;
 use std::process::{Command, Stdio};
+use std::time::{Duration, Instant};
 
 /// Run with the arguments of a valid fake sweep, `changes` replacing or adding options.
 fn phase_diagram(out: &str, changes: &[(&str, &str)]) -> (Option<i32>, String) {
@@ -18,71 +21,161 @@ fn phase_diagram(out: &str, changes: &[(&str, &str)]) -> (Option<i32>, String) {
             None => args.push((flag, value)),
         }
     }
-    let output = Command::new(env!("CARGO_BIN_EXE_phase-diagram"))
-        .args(args.iter().flat_map(|&(flag, value)| [flag, value]))
+    let mut flat: Vec<&str> = Vec::new();
+    for &(flag, value) in &args {
+        flat.push(flag);
+        if !value.is_empty() {
+            flat.push(value);
+        }
+    }
+    let mut child = Command::new(env!("CARGO_BIN_EXE_phase-diagram"))
+        .args(flat)
         .stdin(Stdio::null())
-        .output()
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
         .unwrap();
+    // A hang is a failure of the test, not of the suite: kill it after 60 s.
+    let start = Instant::now();
+    while child.try_wait().unwrap().is_none() {
+        if start.elapsed() > Duration::from_secs(60) {
+            child.kill().unwrap();
+            panic!("phase-diagram {changes:?} hung");
+        }
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    let output = child.wait_with_output().unwrap();
     (output.status.code(), String::from_utf8_lossy(&output.stderr).into_owned())
 }
 
 #[test]
-fn bad_arguments_are_refused_before_anything_is_written() {
+fn bad_arguments_exit_2_before_anything_is_written() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("r.csv");
     let out = out.to_str().unwrap();
     let cases: &[(&[(&str, &str)], &str)] = &[
+        // Malformed (clap and the range parser).
         (&[("--ki", "0.1:1:0")], "an axis needs at least 1 point, got count = 0"),
         (&[("--v0", "0.5:12:-4")], "COUNT `-4` is not a whole number >= 1"),
         (&[("--v0", "0.5-12-4")], "`0.5-12-4` is not a range FROM:TO:COUNT"),
         (&[("--ki", "0.1:x:3")], "TO `x` is not a number"),
         (&[("--ki", "0.1:inf:3")], "not a finite number"),
-        (&[("--ki", "0:1:3")], "every k_i/k must be > 0"),
-        (&[("--ki", "-1:1:3")], "every k_i/k must be > 0"),
+        (&[("--ki", "0:1:3:log")], "a logarithmic axis needs FROM and TO > 0"),
+        (&[("--ki", "0.1:1:3:lin")], "the fourth part must be `log`"),
         (&[("--defect", "soliton")], "invalid value 'soliton' for '--defect <DEFECT>'"),
+        (&[("--ends", "sticky")], "invalid value 'sticky' for '--ends <ENDS>'"),
+        (&[("--threads", "0")], "invalid value '0' for '--threads"),
+        (&[("--n", "many")], "invalid value 'many' for '--n <N>'"),
+        // Well formed, invalid values (our checks): the same status.
+        (&[("--ki", "0:1:3")], "must be > 0"),
+        (&[("--ki", "-1:1:3")], "must be > 0"),
+        (&[("--ki", "1e-3:1e305:3")], "k_i = k_i/k * k finite"),
+        (&[("--v0", "-1:1:3")], "every launch speed must be >= 0"),
         (&[("--theta-bar", "0.7")], "outside the flipper phase"),
         (&[("--n", "1")], "`n` must be at least 2"),
+        (&[("--n", "12")], "at least 20"),
         (&[("--k", "-5")], "`k` must be a finite number > 0"),
-        (&[("--threads", "0")], "invalid value '0' for '--threads"),
+        (&[("--r", "nan")], "`r` must be a finite number > 0"),
+        (&[("--dt", "0")], "dt: 0 must be positive and finite"),
+        (&[("--dt=-1e-3", "")], "dt: -0.001 must be positive and finite"),
+        (&[("--energy-tolerance", "0")], "energy tolerance: 0 must be positive and finite"),
+        (&[("--t-max", "inf")], "t_max: inf must be positive and finite"),
         (&[("--ki", "0.01:1:1000"), ("--v0", "0:1:100000")], "more than the limit"),
     ];
     for &(changes, expected) in cases {
         let (code, stderr) = phase_diagram(out, changes);
-        assert!(matches!(code, Some(c) if c != 0), "{changes:?}: exit {code:?}");
+        assert_eq!(code, Some(2), "{changes:?}: {stderr}");
         assert!(stderr.contains(expected), "{changes:?}: expected `{expected}` in:\n{stderr}");
         assert!(!dir.path().join("r.csv").exists(), "{changes:?} wrote the file");
     }
 }
 
 #[test]
-fn an_unwritable_output_is_refused() {
+fn an_output_that_is_not_a_regular_file_is_refused_at_once() {
+    let dir = tempfile::tempdir().unwrap();
+    // A directory.
+    let (code, stderr) = phase_diagram(dir.path().to_str().unwrap(), &[]);
+    assert_eq!(code, Some(2), "{stderr}");
+    assert!(stderr.contains("is a directory, not a regular file"), "{stderr}");
+    // A FIFO: opening it for reading would block until a writer came.
+    let fifo = dir.path().join("pipe");
+    let made = Command::new("mkfifo").arg(&fifo).status().map(|s| s.success()).unwrap_or(false);
+    if made {
+        let (code, stderr) = phase_diagram(fifo.to_str().unwrap(), &[]);
+        assert_eq!(code, Some(2), "{stderr}");
+        assert!(stderr.contains("is a FIFO, not a regular file"), "{stderr}");
+    }
+    // A device: reading /dev/null back would lose every point.
+    let (code, stderr) = phase_diagram("/dev/null", &[]);
+    assert_eq!(code, Some(2), "{stderr}");
+    assert!(stderr.contains("/dev/null is a device"), "{stderr}");
+    // A symbolic link to a directory.
+    let link = dir.path().join("link");
+    std::os::unix::fs::symlink(dir.path(), &link).unwrap();
+    let (code, stderr) = phase_diagram(link.to_str().unwrap(), &[]);
+    assert_eq!(code, Some(2), "{stderr}");
+}
+
+#[test]
+fn a_sweep_that_cannot_run_exits_1() {
     let dir = tempfile::tempdir().unwrap();
     let missing = dir.path().join("no-such-dir").join("r.csv");
     let (code, stderr) = phase_diagram(missing.to_str().unwrap(), &[]);
     assert_eq!(code, Some(1), "{stderr}");
     assert!(stderr.contains("cannot open") && stderr.contains("no-such-dir/r.csv"), "{stderr}");
     assert!(!dir.path().join("no-such-dir").exists());
-
-    let (code, stderr) = phase_diagram(dir.path().to_str().unwrap(), &[]);
+    // A results file of another sweep.
+    let out = dir.path().join("r.csv");
+    let (code, _) = phase_diagram(out.to_str().unwrap(), &[]);
+    assert_eq!(code, Some(0));
+    let before = fs::read(&out).unwrap();
+    let (code, stderr) = phase_diagram(out.to_str().unwrap(), &[("--theta-bar", "0.3")]);
     assert_eq!(code, Some(1), "{stderr}");
-    assert!(stderr.contains("cannot open"), "{stderr}");
-    assert_eq!(fs::read_dir(dir.path()).unwrap().count(), 0);
+    assert!(stderr.contains("belongs to another run"), "{stderr}");
+    assert_eq!(fs::read(&out).unwrap(), before, "the file is untouched");
 }
 
 #[test]
 fn a_good_fake_sweep_writes_the_phase_diagram_columns() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("r.csv");
-    let (code, stderr) = phase_diagram(out.to_str().unwrap(), &[("--v0", "-1:1:3")]);
+    let (code, stderr) = phase_diagram(out.to_str().unwrap(), &[("--v0", "0:1:3"), ("--ki", "0.01:3:3:log")]);
     assert_eq!(code, Some(0), "{stderr}");
     let text = fs::read_to_string(&out).unwrap();
     let mut lines = text.lines();
     let first = lines.next().unwrap();
-    assert!(first.starts_with("# chain-sweep v1; grid x=0.1:1.0:3 y=-1.0:1.0:3 fnv1a="), "{first}");
-    assert!(first.ends_with("; run defect=kink n=60 r=0.8 k=10000.0 theta_bar=0.28 physics=fake"), "{first}");
+    assert!(first.starts_with("# chain-sweep v1; grid x=0.01:3.0:3 y=0.0:1.0:3 fnv1a="), "{first}");
+    assert!(
+        first.contains("; run defect=kink n=60 r=0.8 k=10000.0 theta_bar=0.28 ends=free integrator=verlet"),
+        "{first}"
+    );
+    assert!(first.ends_with("physics=fake"), "{first}");
     assert_eq!(
         lines.next(),
-        Some("i,j,x,y,outcome,t_decided,kinks_final,antikinks_final,energy_error,error")
+        Some(
+            "i,j,x,y,outcome,t_decided,confirmed,later,t_later,kinks_final,antikinks_final,energy_error,integrator,error"
+        )
     );
     assert_eq!(lines.count(), 9);
+}
+
+#[test]
+fn real_points_come_with_their_energy_budget() {
+    // Two real points (the paper's trapped and transmitted antikinks) through the binary: each
+    // records its outcome, its energy error below the tolerance, and the integrator.
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("r.csv");
+    let args = [("--defect", "antikink"), ("--ki", "0.7:0.8:2"), ("--v0", "4:4:1"), ("--fake-delay-ms", "")];
+    let mut cmd = Command::new(env!("CARGO_BIN_EXE_phase-diagram"));
+    for (flag, value) in args.iter().filter(|(f, _)| *f != "--fake-delay-ms") {
+        cmd.args([*flag, *value]);
+    }
+    let output = cmd.args(["--out", out.to_str().unwrap()]).output().unwrap();
+    assert_eq!(output.status.code(), Some(0), "{}", String::from_utf8_lossy(&output.stderr));
+    let points = chain_sweep::read_results::<chain_sweep::scattering::PointRecord>(&out).unwrap();
+    let mut outcomes: Vec<(f64, &str, f64)> =
+        points.iter().map(|(_, (ki, _), r)| (*ki, r.outcome.name(), r.energy_error)).collect();
+    outcomes.sort_by(|a, b| a.0.total_cmp(&b.0));
+    assert_eq!(outcomes.iter().map(|o| o.1).collect::<Vec<_>>(), ["trapped", "transmitted"]);
+    assert!(outcomes.iter().all(|o| o.2 > 0.0 && o.2 < 1e-3), "{outcomes:?}");
 }

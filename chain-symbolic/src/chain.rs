@@ -12,7 +12,7 @@
 use std::fmt::Write;
 
 use crate::graph::{Graph, Id, Node};
-use crate::lower::lower;
+use crate::lower::{Expr, Operand, Program, lower, render_const};
 use crate::spring::{SpringLaw, SpringParams, SpringTerms};
 
 /// The parameters of spring `p` (a constant or a symbol each) for [`ChainOutputs::unrolled`].
@@ -129,38 +129,50 @@ pub struct Kernel {
 /// The kernel's argument, element by element.
 pub const KERNEL_ARGS: [&str; 9] = ["s1", "c1", "s2", "c2", "a", "r1", "r2", "k", "l0"];
 
-/// One rendered kernel function: its name, documentation, and what it returns.
+/// One rendered kernel: the type implementing `SpringFn<M>`, its documentation, and its `M`
+/// outputs.
 pub struct KernelFunction {
     pub name: &'static str,
     pub doc: &'static str,
     pub outputs: fn(&SpringTerms) -> Vec<Id>,
 }
 
-/// The kernel functions, each returning `[f64; len]` (energy, length and tension return `f64`).
-pub const KERNEL_FUNCTIONS: [KernelFunction; 8] = [
-    KernelFunction { name: "energy", doc: "The spring's stored energy.", outputs: |t| vec![t.energy] },
-    KernelFunction { name: "length", doc: "The spring's length.", outputs: |t| vec![t.length] },
-    KernelFunction { name: "tension", doc: "The spring's tension `dlaw/dl`.", outputs: |t| vec![t.tension] },
-    KernelFunction { name: "gradient", doc: "`[dE/dtheta1, dE/dtheta2]`.", outputs: |t| t.gradient.to_vec() },
+/// The kernels. The fused ones share every subexpression of their outputs (one square root per
+/// spring for energy, gradient and Hessian block together).
+pub const KERNEL_FUNCTIONS: [KernelFunction; 10] = [
+    KernelFunction { name: "Energy", doc: "The spring's stored energy.", outputs: |t| vec![t.energy] },
+    KernelFunction { name: "Length", doc: "The spring's length.", outputs: |t| vec![t.length] },
+    KernelFunction { name: "Tension", doc: "The spring's tension `dlaw/dl`.", outputs: |t| vec![t.tension] },
+    KernelFunction { name: "Gradient", doc: "`[dE/dtheta1, dE/dtheta2]`.", outputs: |t| t.gradient.to_vec() },
     KernelFunction {
-        name: "hessian",
+        name: "Hessian",
         doc: "The Hessian block `[11, 12, 22]` in the two angles.",
         outputs: |t| t.hessian.to_vec(),
     },
     KernelFunction {
-        name: "material",
+        name: "Material",
         doc: "The material part `g^ (dl/dtheta)(dl/dtheta)^T` of the block (paper Eq. `eq:prestress6`).",
         outputs: |t| t.material.to_vec(),
     },
     KernelFunction {
-        name: "stress",
+        name: "Stress",
         doc: "The stress-matrix part `t^ d2(l^2/2)/dtheta dtheta` of the block (paper Eq. `eq:prestress7`).",
         outputs: |t| t.stress.to_vec(),
     },
     KernelFunction {
-        name: "compatibility",
+        name: "Compatibility",
         doc: "The compatibility-matrix row `[dl/d(r1 theta1), dl/d(r2 theta2)]`.",
         outputs: |t| t.compatibility.to_vec(),
+    },
+    KernelFunction {
+        name: "EnergyGradient",
+        doc: "Energy and gradient in one pass: `[E, dE/dtheta1, dE/dtheta2]`.",
+        outputs: |t| vec![t.energy, t.gradient[0], t.gradient[1]],
+    },
+    KernelFunction {
+        name: "EnergyGradientHessian",
+        doc: "Energy, gradient and Hessian block in one pass: `[E, dE/dtheta1, dE/dtheta2, 11, 12, 22]`.",
+        outputs: |t| [[t.energy].as_slice(), &t.gradient, &t.hessian].concat(),
     },
 ];
 
@@ -182,9 +194,12 @@ impl Kernel {
         Self { graph: g, terms }
     }
 
-    /// Rust source of the kernel functions. Transcendentals are called as `{math}sqrt(x)`;
-    /// each function is `#[inline(always)]` so that constant arguments fold at the call site.
-    pub fn render(&self, math: &str) -> Result<String, String> {
+    /// Rust source of the kernels: for each of [`KERNEL_FUNCTIONS`] a unit struct implementing
+    /// `SpringFn<M>`, whose `eval<L: Lane>(x: [L; 9]) -> [L; M]` is generic over the lane type
+    /// (`f64`, or the vector types of `chain_core::simd`). The caller puts `Lane` and `SpringFn`
+    /// in scope. `eval` is `#[inline(always)]`, so it is compiled into each driver at each lane
+    /// width, and constant arguments fold at the call site.
+    pub fn render(&self) -> Result<String, String> {
         let g = &self.graph;
         let [s1, c1, s2, c2] = self.terms.trig;
         let leaf = |id: Id| -> Option<String> {
@@ -202,22 +217,64 @@ impl Kernel {
         for f in &KERNEL_FUNCTIONS {
             let outputs = (f.outputs)(&self.terms);
             let program = lower(g, &outputs, &leaf)?;
-            let (ret, value) = if outputs.len() == 1 {
-                ("f64".to_owned(), program.render_output(0, "t"))
-            } else {
-                let all: Vec<String> = (0..outputs.len()).map(|k| program.render_output(k, "t")).collect();
-                (format!("[f64; {}]", outputs.len()), format!("[{}]", all.join(", ")))
-            };
+            let m = outputs.len();
             let _ = writeln!(out, "/// {}", f.doc);
+            let _ = writeln!(out, "pub struct {};\n", f.name);
+            let _ = writeln!(out, "impl SpringFn<{m}> for {} {{", f.name);
             let _ = writeln!(out, "#[inline(always)]");
             let _ = writeln!(out, "#[allow(unused_variables, clippy::let_and_return)]");
-            let _ = writeln!(out, "pub fn {}(x: [f64; 9]) -> {ret} {{", f.name);
+            let _ = writeln!(out, "fn eval<L: Lane>(x: [L; 9]) -> [L; {m}] {{");
             let _ = writeln!(out, "{destructure}");
-            out.push_str(&program.render("t", math));
-            let _ = writeln!(out, "{value}\n}}\n");
+            out.push_str(&render_lanes(&program));
+            let _ = writeln!(out, "}}\n}}\n");
         }
         Ok(out)
     }
+}
+
+/// The steps and the output array of `program` over a lane type `L`.
+///
+/// Why not `Program::render`: that prints `f64` source (constants as `f64` literals, functions as
+/// free `math` calls) for the unrolled code; here constants are `L::splat(..)` and functions are
+/// `Lane` methods. Integer powers are written as `Program::render` writes them (products for
+/// small exponents), so a kernel computes exactly what the unrolled code computes.
+fn render_lanes(program: &Program) -> String {
+    let op = |o: &Operand| match o {
+        Operand::Temp(i) => format!("t{i}"),
+        Operand::Leaf(name) => name.clone(),
+        Operand::Const(c) if c.is_finite() => format!("L::splat({c:?}f64)"),
+        Operand::Const(c) => format!("L::splat({})", render_const(*c)),
+    };
+    let mut out = String::new();
+    for (i, step) in program.steps.iter().enumerate() {
+        let rhs = match step {
+            Expr::Add(a, b) => format!("{} + {}", op(a), op(b)),
+            Expr::Sub(a, b) => format!("{} - {}", op(a), op(b)),
+            Expr::Mul(a, b) => format!("{} * {}", op(a), op(b)),
+            Expr::Div(a, b) => format!("{} / {}", op(a), op(b)),
+            Expr::Neg(a) => format!("-{}", op(a)),
+            Expr::Powi(a, n) => {
+                let x = op(a);
+                match n {
+                    2 => format!("{x} * {x}"),
+                    3 => format!("{x} * {x} * {x}"),
+                    4 => format!("({x} * {x}) * ({x} * {x})"),
+                    -1 => format!("L::splat(1.0) / {x}"),
+                    -2 => format!("L::splat(1.0) / ({x} * {x})"),
+                    _ => format!("L::powi({x}, {n})"),
+                }
+            }
+            Expr::Sqrt(a) => format!("L::sqrt({})", op(a)),
+            Expr::Sin(a) => format!("L::sin({})", op(a)),
+            Expr::Cos(a) => format!("L::cos({})", op(a)),
+            Expr::Exp(a) => format!("L::exp({})", op(a)),
+            Expr::Ln(a) => format!("L::ln({})", op(a)),
+        };
+        let _ = writeln!(out, "let t{i} = {rhs};");
+    }
+    let outputs: Vec<String> = program.outputs.iter().map(op).collect();
+    let _ = writeln!(out, "[{}]", outputs.join(", "));
+    out
 }
 
 #[cfg(test)]
@@ -251,11 +308,17 @@ mod tests {
     #[test]
     fn kernel_renders_every_function_and_names_only_its_arguments() {
         let k = Kernel::new(&SpringLaw::harmonic);
-        let src = k.render("m::").unwrap();
+        let src = k.render().unwrap();
         for f in &KERNEL_FUNCTIONS {
-            assert!(src.contains(&format!("pub fn {}(", f.name)));
+            assert!(src.contains(&format!("pub struct {};", f.name)));
+            assert!(src.contains(&format!("for {} {{", f.name)));
         }
-        assert_eq!(src.matches("m::sqrt(").count(), KERNEL_FUNCTIONS.len(), "one sqrt per function");
+        assert_eq!(
+            src.matches("L::sqrt(").count(),
+            KERNEL_FUNCTIONS.len(),
+            "one sqrt per kernel, fused ones too"
+        );
         assert!(!src.contains("sin("), "angles enter only through the s1, c1, s2, c2 arguments");
+        assert!(!src.contains("f64 *") && !src.contains("* 0."), "constants are splat into lanes");
     }
 }

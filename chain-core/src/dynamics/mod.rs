@@ -34,4 +34,10 @@ pub enum DynamicsError {
     /// A launch speed that is negative or not finite.
     #[error("launch speed v0 = {v0} must be finite and >= 0")]
     BadSpeed { v0: f64 },
+    /// A scattering setup naming a spring the chain does not have.
+    #[error("spring {spring} does not exist: the chain has {springs} springs")]
+    NoSuchSpring { spring: usize, springs: usize },
+    /// A number of a scattering setup outside its range.
+    #[error("{name} = {value} is invalid: it must be {rule}")]
+    InvalidSetup { name: &'static str, value: f64, rule: &'static str },
 }

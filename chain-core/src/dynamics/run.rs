@@ -1,12 +1,36 @@
 //! Propagating a launched defect: the integrator, the wall tracker, the kinetic-energy series and
 //! the space-time image, with an early stop once the caller has seen enough.
+//!
+//! Every run is bounded by its inputs: the number of outputs by [`RunOptions::max_outputs`], the
+//! number of steps by [`RunOptions::max_steps`] (Verlet) or [`AdaptiveOptions::max_steps`]
+//! (DOP853), and a run whose energy leaves [`RunOptions::energy_limit`] stops with an error.
 
 use alloc::vec::Vec;
 
 use super::DynamicsError;
-use super::integrate::{Flow, Report, State, VerletOptions, kinetic_energy, verlet};
+use super::integrate::{
+    AdaptiveOptions, DEFAULT_ENERGY_LIMIT, Flow, IntegrateError, Integrator, Report, Schedule, Sponge, State,
+    VerletOptions, kinetic_energy,
+};
 use super::track::{Snapshot, SpaceTime, Tracker};
 use crate::model::ChainModel;
+
+/// Which integrator a run uses.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Method {
+    /// Velocity Verlet with the step [`RunOptions::dt`]: symplectic, one gradient per step.
+    Verlet,
+    /// DOP853 with these tolerances (the run's damping, sponge and energy limit apply).
+    Dop853 { rtol: f64, atol: f64 },
+}
+
+impl Method {
+    /// DOP853 at its default tolerances (`rtol = 1e-10`, `atol = 1e-11`).
+    pub fn dop853() -> Self {
+        let d = AdaptiveOptions::default();
+        Method::Dop853 { rtol: d.rtol, atol: d.atol }
+    }
+}
 
 /// Settings of a run.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -15,18 +39,120 @@ pub struct RunOptions {
     pub t_max: f64,
     /// Time between outputs (tracking, energies). Default 0.01.
     pub output_interval: f64,
-    /// Verlet step; `None` picks a tenth of the stability limit from the tangent stiffness
-    /// ([`VerletOptions::DEFAULT_SAFETY`]).
+    /// The integrator. Default [`Method::Verlet`].
+    pub method: Method,
+    /// Verlet step, positive and finite; `None` picks a tenth of the stability limit from the
+    /// tangent stiffness ([`VerletOptions::DEFAULT_SAFETY`]). It is shortened to divide the
+    /// output interval. Ignored by DOP853.
     pub dt: Option<f64>,
-    /// Viscous damping `gamma` (0: conservative). Default 0.
+    /// Viscous damping `gamma` of every rotor, `>= 0` (0: conservative). Default 0.
     pub damping: f64,
+    /// Absorbing ends: a damping sponge on the last rotors at each end ([`Sponge`]). Default
+    /// `None` (the paper's free ends).
+    pub absorbing_ends: Option<Sponge>,
     /// Keep the angles at every output for a space-time image. Default `false`.
     pub space_time: bool,
+    /// The most outputs a run may have (its span divided by the output interval). Default
+    /// 1 000 000 (the paper's runs have 2000).
+    pub max_outputs: usize,
+    /// The most Verlet steps a run may take. Default [`VerletOptions::DEFAULT_MAX_STEPS`].
+    pub max_steps: u64,
+    /// The largest relative energy change before the run stops with an error. Default
+    /// [`DEFAULT_ENERGY_LIMIT`] (10 %).
+    pub energy_limit: f64,
 }
 
 impl Default for RunOptions {
     fn default() -> Self {
-        Self { t_max: 20.0, output_interval: 0.01, dt: None, damping: 0.0, space_time: false }
+        Self {
+            t_max: 20.0,
+            output_interval: 0.01,
+            method: Method::Verlet,
+            dt: None,
+            damping: 0.0,
+            absorbing_ends: None,
+            space_time: false,
+            max_outputs: 1_000_000,
+            max_steps: VerletOptions::DEFAULT_MAX_STEPS,
+            energy_limit: DEFAULT_ENERGY_LIMIT,
+        }
+    }
+}
+
+/// The sponge of [`RunOptions::absorbing_ends`] that the docs measure: 10 rotors at each end, a
+/// rate of 30 / t at the end rotor. It absorbs the phonons that would otherwise flip a free end
+/// of an antikink's domain (docs/dynamics.md §5).
+pub const ABSORBING_ENDS: Sponge = Sponge { width: 10, strength: 30.0 };
+
+/// The integrator [`RunOptions`] asks for, with its step and damping: either kind, behind
+/// [`Integrator`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum RunIntegrator {
+    Verlet(VerletOptions),
+    Dop853(AdaptiveOptions),
+}
+
+impl Integrator for RunIntegrator {
+    fn name(&self) -> &'static str {
+        match self {
+            RunIntegrator::Verlet(v) => v.name(),
+            RunIntegrator::Dop853(a) => a.name(),
+        }
+    }
+
+    fn integrate<M: ChainModel + ?Sized>(
+        &self,
+        model: &M,
+        state: &mut State,
+        schedule: &Schedule,
+        observer: &mut dyn FnMut(&State) -> Flow,
+    ) -> Result<Report, IntegrateError> {
+        match self {
+            RunIntegrator::Verlet(v) => v.integrate(model, state, schedule, observer),
+            RunIntegrator::Dop853(a) => a.integrate(model, state, schedule, observer),
+        }
+    }
+}
+
+impl RunOptions {
+    /// The integrator of these options for `model` starting from `theta` (Verlet's default step
+    /// comes from the tangent stiffness there).
+    pub fn integrator<M: ChainModel + ?Sized>(
+        &self,
+        model: &M,
+        theta: &[f64],
+    ) -> Result<RunIntegrator, DynamicsError> {
+        Ok(match self.method {
+            Method::Verlet => {
+                let dt = match self.dt {
+                    Some(dt) if dt > 0.0 && dt.is_finite() => dt,
+                    Some(dt) => {
+                        return Err(IntegrateError::InvalidOption {
+                            name: "dt",
+                            value: dt,
+                            rule: "positive and finite",
+                        }
+                        .into());
+                    }
+                    None => VerletOptions::stable_for(model, theta, VerletOptions::DEFAULT_SAFETY)?.dt,
+                };
+                RunIntegrator::Verlet(VerletOptions {
+                    dt,
+                    damping: self.damping,
+                    sponge: self.absorbing_ends,
+                    max_steps: self.max_steps,
+                    energy_limit: self.energy_limit,
+                })
+            }
+            Method::Dop853 { rtol, atol } => RunIntegrator::Dop853(AdaptiveOptions {
+                rtol,
+                atol,
+                damping: self.damping,
+                sponge: self.absorbing_ends,
+                energy_limit: self.energy_limit,
+                ..AdaptiveOptions::default()
+            }),
+        })
     }
 }
 
@@ -39,37 +165,44 @@ pub struct Run {
     pub space_time: SpaceTime,
     pub report: Report,
     pub final_state: State,
+    /// Which integrator ran: `verlet` or `dop853`.
+    pub integrator: &'static str,
 }
 
-/// Runs `state` with velocity Verlet, recording at every output and asking `stop` after each
-/// snapshot whether to end the run.
+/// Runs `state` with the integrator of `options`, recording at every output and asking `stop`
+/// after each snapshot whether to end the run.
 pub fn propagate<M: ChainModel + ?Sized>(
     model: &M,
-    mut state: State,
+    state: State,
     options: &RunOptions,
     stop: &mut dyn FnMut(&Snapshot) -> bool,
 ) -> Result<Run, DynamicsError> {
-    let dt = match options.dt {
-        Some(dt) => dt,
-        None => VerletOptions::stable_for(model, &state.theta, VerletOptions::DEFAULT_SAFETY)?.dt,
-    };
-    // A whole number of steps per output, and a whole number of outputs up to the end, so every
-    // output lands on a multiple of the output interval.
-    let every = libm::ceil(options.output_interval / dt).max(1.0) as usize;
-    let dt = options.output_interval / every as f64;
-    let t_end = state.time
-        + libm::ceil((options.t_max - state.time) / options.output_interval) * options.output_interval;
+    state.check(model)?;
+    let integrator = options.integrator(model, &state.theta)?;
+    propagate_with(model, state, &integrator, options, stop)
+}
+
+/// [`propagate`] with any [`Integrator`]: it carries its own step, damping and budgets, and
+/// `options` gives the span, the output interval, the output budget and the space-time image.
+pub fn propagate_with<M: ChainModel + ?Sized, I: Integrator + ?Sized>(
+    model: &M,
+    mut state: State,
+    integrator: &I,
+    options: &RunOptions,
+    stop: &mut dyn FnMut(&Snapshot) -> bool,
+) -> Result<Run, DynamicsError> {
+    state.check(model)?;
+    let schedule =
+        Schedule::covering(state.time, options.t_max, options.output_interval, options.max_outputs)?;
     let mut tracker = Tracker::new(&state.theta);
-    let mut kinetic = Vec::new();
+    let mut kinetic = Vec::with_capacity(schedule.count.min(1 << 16) + 1);
     let mut space_time = SpaceTime::default();
-    // Verlet calls the observer on the initial state and after every `every` steps.
-    let report =
-        verlet(model, &mut state, t_end, &VerletOptions { dt, damping: options.damping }, every, &mut |s| {
-            kinetic.push((s.time, kinetic_energy(model, &s.omega)));
-            if options.space_time {
-                space_time.push(s.time, &s.theta);
-            }
-            if stop(tracker.record(s.time, &s.theta)) { Flow::Stop } else { Flow::Continue }
-        })?;
-    Ok(Run { tracker, kinetic, space_time, report, final_state: state })
+    let report = integrator.integrate(model, &mut state, &schedule, &mut |s| {
+        kinetic.push((s.time, kinetic_energy(model, &s.omega)));
+        if options.space_time {
+            space_time.push(s.time, &s.theta);
+        }
+        if stop(tracker.record(s.time, &s.theta)) { Flow::Stop } else { Flow::Continue }
+    })?;
+    Ok(Run { tracker, kinetic, space_time, report, final_state: state, integrator: integrator.name() })
 }

@@ -308,59 +308,53 @@ pub fn newton<M: ChainModel + ?Sized>(
 
 /// Dissipative Newtonian dynamics from rest at `theta` (paper Sec. II), until the forces fall
 /// below the tolerance. Returns the relaxed angles and the number of time steps taken.
+///
+/// The steps are those of the dynamics' damped velocity Verlet
+/// ([`Stepper`](crate::dynamics::integrate::verlet::Stepper): the damping applied as an exact
+/// decay of the velocities), with the end rotors held if asked.
 pub fn relax<M: ChainModel + ?Sized>(
     model: &M,
     theta: &[f64],
     options: &RelaxOptions,
 ) -> Result<(Vec<f64>, usize), StaticsError> {
+    use crate::dynamics::integrate::State;
+    use crate::dynamics::integrate::verlet::Stepper;
     validate::angles(model, theta)?;
     options.check()?;
     let n = model.rotor_count();
-    let inertia: Vec<f64> = (0..n).map(|i| model.inertia(i)).collect();
     let (diag, off) = stiffness(model, theta);
     let scale = norm(&diag, &off).max(f64::MIN_POSITIVE);
-    let min_inertia = inertia.iter().fold(f64::INFINITY, |m, &x| m.min(x));
+    let min_inertia = (0..n).map(|i| model.inertia(i)).fold(f64::INFINITY, f64::min);
     // Gershgorin: every eigenvalue of K is at most ||K||, so omega_max <= sqrt(||K|| / I_min).
     let omega_max = crate::math::sqrt(scale / min_inertia);
     let dt = options.time_step / omega_max;
     let gamma = options.damping * omega_max;
-    let mut theta = theta.to_vec();
-    let mut velocity = vec![0.0; n];
-    let mut g = vec![0.0; n];
     let range = moving(n, options.hold_ends);
-    model.gradient_into(&theta, &mut g);
-    let mut residual = max_abs(&g[range.clone()]) / scale;
-    for step in 0..options.max_steps {
-        if residual <= options.tolerance {
-            return Ok((theta, step));
-        }
-        // Velocity Verlet with the damping applied as an exact decay of the velocity.
-        let decay = libm::exp(-0.5 * gamma * dt);
-        for i in range.clone() {
-            velocity[i] = velocity[i] * decay - 0.5 * dt * g[i] / inertia[i];
-            theta[i] += dt * velocity[i];
-        }
-        model.gradient_into(&theta, &mut g);
-        for i in range.clone() {
-            velocity[i] = (velocity[i] - 0.5 * dt * g[i] / inertia[i]) * decay;
-        }
-        residual = max_abs(&g[range.clone()]) / scale;
-        if !residual.is_finite() {
-            return Err(StaticsError::NoConvergence {
-                method: "dissipative dynamics",
-                iterations: step,
-                residual,
-                tolerance: options.tolerance,
-            });
-        }
-    }
-    if residual <= options.tolerance {
-        return Ok((theta, options.max_steps));
-    }
-    Err(StaticsError::NoConvergence {
+    let no_convergence = |iterations: usize, residual: f64| StaticsError::NoConvergence {
         method: "dissipative dynamics",
-        iterations: options.max_steps,
+        iterations,
         residual,
         tolerance: options.tolerance,
-    })
+    };
+    let mut state = State::at_rest(theta.to_vec());
+    let rates = vec![gamma; n];
+    let mut stepper = Stepper::new(model, &mut state, dt, &rates).map_err(|_| no_convergence(0, f64::NAN))?;
+    for i in (0..n).filter(|i| !range.contains(i)) {
+        stepper.hold(i);
+    }
+    let mut step = 0;
+    loop {
+        let residual = max_abs(&stepper.gradient()[range.clone()]) / scale;
+        if residual <= options.tolerance {
+            return Ok((stepper.state().theta.clone(), step));
+        }
+        if !residual.is_finite() || step == options.max_steps {
+            return Err(no_convergence(step, residual));
+        }
+        step += 1;
+        // Verlet counts its own time; relaxation only needs the configuration.
+        if stepper.step(step as f64 * dt).is_err() {
+            return Err(no_convergence(step, f64::NAN));
+        }
+    }
 }

@@ -10,28 +10,43 @@
 //! beside ours. Every file is written atomically. Then prints one line on stdout:
 //! `paper: F figures, R summary rows, X failed, T s -> DIR`.
 //!
-//! Exit status: 0 every figure written; 3 some figures failed (each is reported with its label
-//! on stderr and in `summary.md`; the others are written); 1 nothing could be written (the
-//! message says why); 2 bad arguments. On bad arguments or an unwritable `DIR` nothing is
-//! computed or written.
+//! Exit status ([`EXIT_STATUS`], also in `--help` and docs/paper.md): 0 every figure written;
+//! 1 the output folder could not be prepared or written (nothing computed, or no summary);
+//! 2 bad arguments (nothing computed or written); 3 some figures failed (each reported with its
+//! label on stderr and in `summary.md`, the others written); 128 + the signal's number when
+//! interrupted by SIGHUP (129), SIGINT (130, Ctrl-C) or SIGTERM (143): the writes in flight are
+//! finished, no temporary file is left, the files written so far are complete.
 
 use std::io::IsTerminal as _;
 use std::panic::{AssertUnwindSafe, catch_unwind};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
-use std::sync::Mutex;
+use std::sync::{Mutex, OnceLock};
 use std::time::{Duration, Instant};
 
-use chain_paper::figures::{self, FigureFn, Params};
+use chain_paper::figures::{self, Cause, FigureError, FigureFn, Params};
+use chain_paper::output::{self, WriteError};
+use chain_paper::render::RenderError;
 use chain_paper::{Figure, Quality, Row, data, render, summary};
 use clap::Parser;
 use indicatif::{ProgressBar, ProgressStyle};
 use rayon::prelude::*;
 
+/// The exit codes, as `--help` prints them.
+const EXIT_STATUS: &str = "\
+Exit status:
+  0    every figure written
+  1    the output folder could not be prepared or written (nothing computed, or no summary)
+  2    bad arguments (nothing computed or written)
+  3    some figures failed (each named on stderr and in summary.md; the others written)
+  129  interrupted by SIGHUP   (writes in flight finished, no temporary file left)
+  130  interrupted by SIGINT   (Ctrl-C; likewise)
+  143  interrupted by SIGTERM  (likewise)";
+
 /// Reproduce the paper's figures: PNG and SVG per figure, the data of every panel as CSV, and
-/// summary.md with the paper's numbers beside ours. Exit status 3 means some figures failed.
+/// summary.md with the paper's numbers beside ours.
 #[derive(Debug, Parser)]
-#[command(name = "paper", version)]
+#[command(name = "paper", version, after_help = EXIT_STATUS)]
 struct Cli {
     /// Output directory (created if missing)
     #[arg(long, value_name = "DIR", default_value = "paper-output")]
@@ -48,6 +63,9 @@ struct Cli {
     /// FOR TESTING ONLY: synthetic figures instead of the paper's (`fig:demo-fails` fails)
     #[arg(long, hide = true)]
     demo: bool,
+    /// FOR TESTING ONLY: every file write pauses this many milliseconds before its rename
+    #[arg(long, hide = true, value_name = "MS", requires = "demo")]
+    demo_pause_writes: Option<u64>,
 }
 
 /// One figure written: what goes into the summary and the report.
@@ -59,13 +77,51 @@ struct Written {
     written: Duration,
 }
 
+/// Why one figure is missing from the output.
+#[derive(Debug, thiserror::Error)]
+enum Failure {
+    #[error("{0}")]
+    Compute(#[from] FigureError),
+    /// The payload of a panic inside a figure function (text, when it is text).
+    #[error("{label}: panicked: {message}")]
+    Panicked { label: &'static str, message: String },
+    #[error("{0}")]
+    Render(#[from] RenderError),
+    #[error("{0}")]
+    Data(#[from] WriteError),
+}
+
 /// One figure that could not be computed, rendered or written.
 struct Failed {
     label: &'static str,
-    message: String,
+    failure: Box<Failure>,
 }
 
+impl Failed {
+    /// What went wrong, without the figure's label in front.
+    fn detail(&self) -> String {
+        let text = self.failure.to_string();
+        match text.strip_prefix(self.label) {
+            Some(rest) => rest.trim_start_matches(':').trim_start().to_owned(),
+            None => text,
+        }
+    }
+}
+
+/// The progress bar, for the signal handler to leave the terminal tidy.
+static BAR: OnceLock<ProgressBar> = OnceLock::new();
+
 fn main() -> ExitCode {
+    let code = run();
+    // Interrupted: the signal handler is finishing the writes in flight and exits with the
+    // signal's status; the main thread must not end the process first with its own.
+    while output::stopping() {
+        std::thread::park();
+    }
+    code
+}
+
+fn run() -> ExitCode {
     let cli = Cli::parse();
     let all = if cli.demo { demo::figures() } else { figures::all() };
     if cli.list {
@@ -81,6 +137,13 @@ fn main() -> ExitCode {
             return ExitCode::from(2);
         }
     };
+    if let Some(ms) = cli.demo_pause_writes {
+        output::pause_writes_for_tests(Duration::from_millis(ms));
+    }
+    if let Err(e) = stop_on_signals() {
+        eprintln!("paper: error: cannot install the signal handlers: {e}");
+        return ExitCode::FAILURE;
+    }
     if let Err(message) = prepare_output(&cli.out) {
         eprintln!("paper: error: {message}");
         return ExitCode::FAILURE;
@@ -90,7 +153,7 @@ fn main() -> ExitCode {
     let (written, failed) = produce_all(&selected, quality, &cli.out);
     let rows: Vec<(&'static str, Row)> =
         written.iter().flat_map(|w| w.rows.iter().map(|row| (w.label, row.clone()))).collect();
-    let failures: Vec<(&str, String)> = failed.iter().map(|f| (f.label, f.message.clone())).collect();
+    let failures: Vec<(&str, String)> = failed.iter().map(|f| (f.label, f.detail())).collect();
     if let Err(e) = summary::write_summary(&cli.out, &rows, quality, &failures) {
         eprintln!("paper: error: {e}");
         return ExitCode::FAILURE;
@@ -104,6 +167,40 @@ fn main() -> ExitCode {
         cli.out.display()
     );
     if failed.is_empty() { ExitCode::SUCCESS } else { ExitCode::from(3) }
+}
+
+/// On SIGINT, SIGTERM or SIGHUP: refuse new writes, let the writes in flight finish (at most 5 s),
+/// say so, and exit with 128 + the signal's number.
+#[cfg(unix)]
+fn stop_on_signals() -> std::io::Result<()> {
+    use signal_hook::consts::{SIGHUP, SIGINT, SIGTERM};
+    let mut signals = signal_hook::iterator::Signals::new([SIGINT, SIGTERM, SIGHUP])?;
+    std::thread::spawn(move || {
+        if let Some(signal) = signals.forever().next() {
+            let finished = output::stop_writes(Duration::from_secs(5));
+            if let Some(bar) = BAR.get() {
+                bar.abandon();
+            }
+            let name = match signal {
+                SIGINT => "SIGINT",
+                SIGTERM => "SIGTERM",
+                _ => "SIGHUP",
+            };
+            let state = if finished.is_some() {
+                "the files written so far are complete and no temporary file is left"
+            } else {
+                "writes still in flight after 5 s may leave temporary files; the next run removes them"
+            };
+            eprintln!("paper: interrupted by {name}: {state}");
+            std::process::exit(128 + signal);
+        }
+    });
+    Ok(())
+}
+
+#[cfg(not(unix))]
+fn stop_on_signals() -> std::io::Result<()> {
+    Ok(())
 }
 
 /// The figures named by `--only` (all of them without it), in the order of `all`. An unknown
@@ -154,12 +251,25 @@ fn edit_distance(a: &str, b: &str) -> usize {
     row[b.len()]
 }
 
-/// Create the output directory and its `data/`, and prove it writable with a probe file, before
-/// any figure is computed.
+/// Create the output directory and its `data/`, remove the temporary files earlier runs left
+/// there when killed outright, and prove both folders writable with a probe file, before any
+/// figure is computed.
 fn prepare_output(dir: &Path) -> Result<(), String> {
     let data = dir.join("data");
     std::fs::create_dir_all(&data)
         .map_err(|e| format!("cannot create the output directory {}: {e}", data.display()))?;
+    for dir in [dir, &data] {
+        let removed = output::clean_stale_temporaries(dir).map_err(|e| {
+            format!("cannot clean the temporary files of earlier runs in {}: {e}", dir.display())
+        })?;
+        if !removed.is_empty() {
+            eprintln!(
+                "paper: removed {} temporary file(s) left in {} by an interrupted earlier run",
+                removed.len(),
+                dir.display()
+            );
+        }
+    }
     for dir in [dir, &data] {
         let probe = dir.join(format!(".paper-probe-{}", std::process::id()));
         std::fs::write(&probe, b"probe")
@@ -176,17 +286,20 @@ fn produce_all(
     quality: Quality,
     out: &Path,
 ) -> (Vec<Written>, Vec<Failed>) {
-    let bar = if std::io::stderr().is_terminal() {
-        let bar = ProgressBar::new(selected.len() as u64);
-        bar.set_style(
-            ProgressStyle::with_template("{spinner} [{elapsed_precise}] {bar:30} {pos}/{len} {wide_msg}")
-                .expect("a valid template"),
-        );
-        bar.enable_steady_tick(Duration::from_millis(120));
-        bar
-    } else {
-        ProgressBar::hidden()
-    };
+    let bar = BAR.get_or_init(|| {
+        if std::io::stderr().is_terminal() {
+            let bar = ProgressBar::new(selected.len() as u64);
+            bar.set_style(
+                ProgressStyle::with_template("{spinner} [{elapsed_precise}] {bar:30} {pos}/{len} {wide_msg}")
+                    .expect("a valid template"),
+            );
+            bar.enable_steady_tick(Duration::from_millis(120));
+            bar
+        } else {
+            ProgressBar::hidden()
+        }
+    });
+    bar.set_length(selected.len() as u64);
     let running = Mutex::new(Vec::<&str>::new());
     let show_running = |update: &dyn Fn(&mut Vec<&'static str>)| {
         let mut running = running.lock().unwrap_or_else(|e| e.into_inner());
@@ -213,7 +326,7 @@ fn produce_all(
                     eprintln!(
                         "paper: {label}: FAILED after {:.1} s: {}",
                         start.elapsed().as_secs_f64(),
-                        f.message
+                        f.detail()
                     )
                 }
             });
@@ -240,32 +353,34 @@ fn produce(
     quality: Quality,
     out: &Path,
 ) -> Result<Written, Failed> {
-    let fail = |message: String| Failed { label, message };
+    let fail = |failure: Failure| Failed { label, failure: Box::new(failure) };
     let start = Instant::now();
     let figure: Figure = match catch_unwind(AssertUnwindSafe(|| compute(params, quality))) {
         Ok(Ok(figure)) => figure,
-        Ok(Err(e)) => return Err(fail(e.message)),
+        Ok(Err(e)) => return Err(fail(e.into())),
         Err(panic) => {
             let what = panic
                 .downcast_ref::<&str>()
                 .map(|s| s.to_string())
                 .or_else(|| panic.downcast_ref::<String>().cloned());
-            return Err(fail(format!("panicked: {}", what.unwrap_or_else(|| "(no message)".into()))));
+            let message = what.unwrap_or_else(|| "(no message)".into());
+            return Err(fail(Failure::Panicked { label, message }));
         }
     };
     if figure.label != label {
-        return Err(fail(format!("the figure function returned a figure labelled `{}`", figure.label)));
+        let wrong = FigureError::new(label, Cause::WrongLabel { returned: figure.label });
+        return Err(fail(wrong.into()));
     }
     let computed = start.elapsed();
-    render::render(&figure, out).map_err(|e| fail(e.to_string()))?;
-    data::write_csv(&figure, &out.join("data")).map_err(|e| fail(e.to_string()))?;
+    render::render(&figure, out).map_err(|e| fail(e.into()))?;
+    data::write_csv(&figure, &out.join("data")).map_err(|e| fail(e.into()))?;
     Ok(Written { label, rows: figure.rows, computed, written: start.elapsed() - computed })
 }
 
 /// Synthetic figures exercising every kind of panel, for the command-line tests (`--demo`).
 mod demo {
-    use chain_paper::figures::{FigureError, FigureFn, Params};
-    use chain_paper::{Chart, Figure, Heatmap, Panel, Quality, Row, Series, Style};
+    use chain_paper::figures::{Cause, FigureError, FigureFn, Params};
+    use chain_paper::{ChainDrawing, Chart, Figure, Heatmap, Panel, Quality, Quantity, Row, Series, Style};
 
     pub fn figures() -> Vec<(&'static str, FigureFn)> {
         vec![("fig:demo-lines", lines), ("fig:demo-maps", maps), ("fig:demo-fails", fails)]
@@ -280,14 +395,16 @@ mod demo {
             x_label: "rotor index i".into(),
             y_label: "theta_i (rad)".into(),
             series: vec![
-                Series::new("sin x", curve(f64::sin), Style::Line),
-                Series::new("cos x (dashed)", curve(f64::cos), Style::Dashed),
+                Series::new(Quantity::Rotor, "sin x", curve(f64::sin), Style::Line),
+                Series::new(Quantity::Spring, "cos x (dashed)", curve(f64::cos), Style::Dashed),
                 Series::new(
+                    Quantity::Mode,
                     "samples",
                     curve(|x| 0.5 * (x / 2.0).sin()).into_iter().step_by(4).collect(),
                     Style::Points,
                 ),
                 Series::new(
+                    Quantity::Lattice,
                     "line with points",
                     curve(|x| 0.1 * x - 0.5).into_iter().step_by(6).collect(),
                     Style::LinePoints,
@@ -300,8 +417,14 @@ mod demo {
             x_label: "time t (sqrt(M/k))".into(),
             y_label: "energy error |dE/E|".into(),
             series: vec![
-                Series::new("exp(-x)", curve(|x| (-x).exp()), Style::Line),
-                Series::new("x^2 sin x", curve(|x| x * x * x.sin()), Style::Dashed),
+                Series::new(Quantity::Continuum, "exp(-x)", curve(|x| (-x).exp()), Style::Line),
+                Series::new(Quantity::Fit, "x^2 sin x", curve(|x| x * x * x.sin()), Style::Dashed),
+                Series::new(
+                    Quantity::Mode,
+                    "open points",
+                    curve(|x| (-0.5 * x).exp()).into_iter().step_by(8).collect(),
+                    Style::OpenPoints,
+                ),
             ],
             log_y: true,
         };
@@ -319,13 +442,13 @@ mod demo {
         })
     }
 
-    fn maps(_: &Params, q: Quality) -> Result<Figure, FigureError> {
+    fn maps(p: &Params, q: Quality) -> Result<Figure, FigureError> {
         let (nx, ny) = (q.pick(120, 30), q.pick(300, 40));
         let x: Vec<f64> = (0..nx).map(|i| i as f64).collect();
         let y: Vec<f64> = (0..ny).map(|j| 0.1 * j as f64).collect();
         let values = y
             .iter()
-            .map(|&t| x.iter().map(|&i| (-(i - nx as f64 / 2.0 - 5.0 * t).powi(2) / 20.0).exp()).collect())
+            .map(|&t| x.iter().map(|&i| ((i - nx as f64 / 2.0 - 5.0 * t) / 4.0).tanh()).collect())
             .collect();
         let space_time = Heatmap {
             title: "Space-time image".into(),
@@ -335,9 +458,18 @@ mod demo {
             y: y.clone(),
             values,
             categories: Vec::new(),
-            value_label: "kinetic energy (k a^2)".into(),
+            value_label: "θ (rad)".into(),
         };
         let outcomes = ["transmitted", "reflected", "trapped"];
+        let model = rotor_chain::RuntimeChain::builder(12, p.r, p.k, 0.5)
+            .spring(5, None, Some(1.8))
+            .build()
+            .map_err(FigureError::on("fig:demo-maps"))?;
+        let theta: Vec<f64> = (0..12).map(|i| 0.5 * (0.6 * (i as f64 - 5.5)).tanh()).collect();
+        let shape: Vec<f64> = (0..12).map(|i| (-(i as f64 - 5.5).powi(2) / 8.0).exp()).collect();
+        let drawing = ChainDrawing::new("A chain with a mode", &model, &theta, 0..12)
+            .and_then(|d| d.with_mode(&shape))
+            .map_err(FigureError::on("fig:demo-maps"))?;
         let phases = Heatmap {
             title: "Phase diagram".into(),
             x_label: "impurity stiffness k_i/k".into(),
@@ -350,15 +482,20 @@ mod demo {
         };
         Ok(Figure {
             label: "fig:demo-maps",
-            caption: "Synthetic heat maps: a continuous space-time image and a categorical phase diagram."
+            caption: "Synthetic heat maps: a continuous space-time image and a categorical phase diagram; a \
+                      drawing of a chain."
                 .into(),
-            panels: vec![Chart::Heat(space_time), Chart::Heat(phases)],
+            panels: vec![Chart::Heat(space_time), Chart::Heat(phases), drawing.into()],
             rows: vec![Row::number("critical speed", 2.0, 2.5, None, "")],
         })
     }
 
     fn fails(_: &Params, _: Quality) -> Result<Figure, FigureError> {
-        Err(FigureError::new("fig:demo-fails", "the synthetic solver diverged (on purpose)"))
+        // On purpose: a synthetic computation that resolves too few points.
+        Err(FigureError::new(
+            "fig:demo-fails",
+            Cause::TooFewPoints { what: "synthetic points", found: 0, needed: 2 },
+        ))
     }
 }
 

@@ -1,6 +1,14 @@
 //! One function per figure of the paper, each taking the chain's parameters and a [`Quality`],
 //! returning a [`crate::Figure`] (data and summary rows). Grouped by the paper's sections.
 
+use rotor_chain::RuntimeChain;
+use rotor_chain::dynamics::DynamicsError;
+use rotor_chain::prelude::{BranchError, ParameterError};
+use rotor_chain::statics::StaticsError;
+use rotor_chain::statics::continuum::{ContinuumChain, ContinuumError};
+use rotor_chain::statics::linkage::LinkageError;
+
+use crate::drawing::DrawingError;
 use crate::model::{Figure, Quality};
 
 pub mod dynamics;
@@ -22,22 +30,78 @@ impl Default for Params {
     }
 }
 
-/// An error while computing a figure, with the label and what failed.
+/// A figure that could not be computed: its label, the parameters of the point that failed
+/// (e.g. `θ̄ = 0.3`, or `v0 = 4`, `k_i/k = 0.8`; empty when the whole figure failed) and the cause.
 #[derive(Debug, thiserror::Error)]
-#[error("{label}: {message}")]
+#[error("{label}{}: {cause}", at_text(.at))]
 pub struct FigureError {
     pub label: &'static str,
-    pub message: String,
+    pub at: Vec<(&'static str, f64)>,
+    #[source]
+    pub cause: Cause,
+}
+
+fn at_text(at: &[(&'static str, f64)]) -> String {
+    if at.is_empty() {
+        return String::new();
+    }
+    let pairs: Vec<String> = at.iter().map(|(name, value)| format!("{name} = {value}")).collect();
+    format!(" ({})", pairs.join(", "))
+}
+
+/// Why a figure failed: an error of the library, or a figure's own check.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum Cause {
+    #[error(transparent)]
+    Parameter(#[from] ParameterError),
+    #[error("branch solve: {0}")]
+    Branch(#[from] BranchError),
+    #[error(transparent)]
+    Statics(#[from] StaticsError),
+    #[error(transparent)]
+    Continuum(#[from] ContinuumError),
+    #[error("linkage limit: {0}")]
+    Linkage(#[from] LinkageError),
+    #[error(transparent)]
+    Dynamics(#[from] DynamicsError),
+    #[error("chain drawing: {0}")]
+    Drawing(#[from] DrawingError),
+    /// A phase diagram's settings (chain-sweep).
+    #[error("phase diagram: {0}")]
+    PhaseDiagram(#[from] chain_sweep::scattering::ConfigError),
+    /// A grid of chain-sweep.
+    #[error(transparent)]
+    Grid(#[from] chain_sweep::GridError),
+    /// The sweep machinery (thread pool).
+    #[error(transparent)]
+    Sweep(#[from] chain_sweep::SweepError),
+    /// A fit or a figure needs more resolved points than the computation gave.
+    #[error("{what}: {found} resolved, at least {needed} needed")]
+    TooFewPoints { what: &'static str, found: usize, needed: usize },
+    /// A mode the figure shows was not found among the lowest modes.
+    #[error("no {kind} mode of the {defect} among the lowest {searched} modes")]
+    NoSuchMode { defect: &'static str, kind: &'static str, searched: usize },
+    /// A figure function returned a figure with another label (a bug in the figure list).
+    #[error("the figure function returned a figure labelled `{returned}`")]
+    WrongLabel { returned: &'static str },
 }
 
 impl FigureError {
-    pub fn new(label: &'static str, err: impl std::fmt::Display) -> Self {
-        Self { label, message: err.to_string() }
+    /// `cause` while computing figure `label`.
+    pub fn new(label: &'static str, cause: impl Into<Cause>) -> Self {
+        Self { label, at: Vec::new(), cause: cause.into() }
     }
 
-    /// Maps any displayable error to a `FigureError` of `label`: `.map_err(FigureError::on(LABEL))`.
-    pub fn on<E: std::fmt::Display>(label: &'static str) -> impl Fn(E) -> FigureError {
+    /// Maps any error of the library to a `FigureError` of `label`: `.map_err(FigureError::on(LABEL))`.
+    pub fn on<E: Into<Cause>>(label: &'static str) -> impl Fn(E) -> FigureError {
         move |e| FigureError::new(label, e)
+    }
+
+    /// The same error at the point `name = value` of the figure (added in order).
+    pub fn at(mut self, name: &'static str, value: f64) -> Self {
+        self.at.push((name, value));
+        self
     }
 }
 
@@ -50,4 +114,55 @@ pub fn all() -> Vec<(&'static str, FigureFn)> {
     all.extend(statics_b::figures());
     all.extend(dynamics::figures());
     all
+}
+
+/// `count` evenly spaced values from `from` to `to`, both included (`[from]` for a count of 1,
+/// nothing for 0). The one grid of every figure.
+pub fn grid(from: f64, to: f64, count: usize) -> Vec<f64> {
+    match count {
+        0 => Vec::new(),
+        1 => vec![from],
+        _ => {
+            let last = (count - 1) as f64;
+            // `to` exactly at the end, not `from + (count - 1) * step` with its rounding.
+            (0..count)
+                .map(|j| if j + 1 == count { to } else { from + (to - from) * j as f64 / last })
+                .collect()
+        }
+    }
+}
+
+/// The paper's chain with `n` rotors at `theta_bar` (`a = 1`).
+pub fn chain(p: &Params, n: usize, theta_bar: f64) -> Result<RuntimeChain, ParameterError> {
+    RuntimeChain::builder(n, p.r, p.k, theta_bar).mass(p.mass).build()
+}
+
+/// The continuum theory of the same chain.
+pub fn continuum(p: &Params, theta_bar: f64) -> Result<ContinuumChain, ParameterError> {
+    ContinuumChain::new(1.0, p.r, theta_bar, p.k, p.mass)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_grid_holds_both_ends_for_every_count() {
+        assert_eq!(grid(0.0, 1.0, 0), Vec::<f64>::new());
+        assert_eq!(grid(0.5, 1.0, 1), vec![0.5]);
+        assert_eq!(grid(0.5, 1.0, 2), vec![0.5, 1.0]);
+        let g = grid(0.05, 0.65, 25);
+        assert_eq!((g.len(), g[0], g[24]), (25, 0.05, 0.65));
+        assert!((g[1] - 0.075).abs() < 1e-15);
+        assert!(g.windows(2).all(|w| w[1] > w[0]));
+    }
+
+    #[test]
+    fn errors_name_the_figure_and_the_point() {
+        let e =
+            FigureError::new("fig:x", Cause::TooFewPoints { what: "fit", found: 1, needed: 2 }).at("θ̄", 0.3);
+        assert_eq!(e.to_string(), "fig:x (θ̄ = 0.3): fit: 1 resolved, at least 2 needed");
+        let e = FigureError::new("fig:y", chain(&Params::default(), 1, 0.5).unwrap_err());
+        assert!(e.to_string().starts_with("fig:y: "), "{e}");
+    }
 }

@@ -33,8 +33,9 @@ use alloc::vec::Vec;
 
 use super::tableau::{A, B, BHH, D, E5};
 use super::{
-    Flow, IntegrateError, Monitor, Report, State, check_non_negative, check_option, check_positive,
-    inverse_inertia, not_finite,
+    DEFAULT_ENERGY_LIMIT, Flow, IntegrateError, Integrator, Monitor, Report, Schedule, Sponge, State,
+    check_energy_limit, check_non_negative, check_option, check_positive, damping_rates, inverse_inertia,
+    not_finite,
 };
 use crate::model::ChainModel;
 
@@ -65,8 +66,14 @@ pub struct AdaptiveOptions {
     /// Give up after this many steps, accepted and rejected. Default 100 000 (Hairer's default):
     /// a paper-length run of 60 rotors at `k = 1e4` takes about 5000.
     pub max_steps: usize,
-    /// Damping rate `gamma >= 0` in `1 / t`. Default 0 (Newtonian dynamics).
+    /// Damping rate `gamma >= 0` of every rotor, in `1 / t`. Default 0 (Newtonian dynamics).
     pub damping: f64,
+    /// Absorbing ends: extra damping on the last rotors at each end. Default `None`.
+    pub sponge: Option<Sponge>,
+    /// The largest relative energy change before the run stops with
+    /// [`IntegrateError::EnergyNotConserved`] (checked at every output). Default
+    /// [`DEFAULT_ENERGY_LIMIT`](super::DEFAULT_ENERGY_LIMIT); infinite switches it off.
+    pub energy_limit: f64,
 }
 
 impl Default for AdaptiveOptions {
@@ -79,6 +86,8 @@ impl Default for AdaptiveOptions {
             min_step: 0.0,
             max_steps: 100_000,
             damping: 0.0,
+            sponge: None,
+            energy_limit: DEFAULT_ENERGY_LIMIT,
         }
     }
 }
@@ -94,9 +103,15 @@ impl AdaptiveOptions {
         let ok = self.min_step >= 0.0 && self.min_step.is_finite() && self.min_step <= self.max_step;
         check_option("min_step", self.min_step, ok, "non-negative, finite and at most max_step")?;
         check_option("max_steps", self.max_steps as f64, self.max_steps > 0, "at least 1")?;
-        check_non_negative("damping", self.damping)
+        check_non_negative("damping", self.damping)?;
+        check_energy_limit(self.energy_limit)
     }
 }
+
+/// A generous bound on `h omega` for DOP853 to be stable on an oscillation (its stability region
+/// reaches about 4-6 along the imaginary axis): used only to refuse runs that cannot fit their
+/// step budget.
+const STABILITY_LIMIT: f64 = 6.0;
 
 /// Safety factor on the predicted step (Hairer's default).
 const SAFETY: f64 = 0.9;
@@ -125,18 +140,47 @@ pub fn adaptive<M: ChainModel + ?Sized>(
     state.check(model)?;
     options.check()?;
     check_outputs(state.time, outputs)?;
-    let mut monitor = Monitor::new(model, state);
-    let f = EquationsOfMotion { model, inverse_inertia: inverse_inertia(model)?, damping: options.damping };
+    run(model, state, &|k| outputs[k], outputs.len(), options, observer)
+}
+
+/// [`adaptive`] with the output times given by `output(k)`, `k < count` (checked by the caller).
+fn run<M: ChainModel + ?Sized>(
+    model: &M,
+    state: &mut State,
+    output: &dyn Fn(usize) -> f64,
+    count: usize,
+    options: &AdaptiveOptions,
+    observer: &mut dyn FnMut(&State) -> Flow,
+) -> Result<Report, IntegrateError> {
+    let rates = damping_rates(model.rotor_count(), options.damping, options.sponge)?;
+    let damped = rates.iter().any(|&r| r > 0.0);
+    let mut monitor = Monitor::new(model, state, damped, options.energy_limit)?;
+    let f = EquationsOfMotion { model, inverse_inertia: inverse_inertia(model)?, damping: rates };
     let mut next = 0;
-    while next < outputs.len() && outputs[next] <= state.time {
-        if monitor.output(model, state, observer) {
+    while next < count && output(next) <= state.time {
+        if monitor.output(model, state, observer)? {
             return Ok(monitor.report);
         }
         next += 1;
     }
-    let (Some(&t_end), true) = (outputs.last(), next < outputs.len()) else {
+    if next == count {
         return Ok(monitor.report);
-    };
+    }
+    let t_end = output(count - 1);
+    // An explicit Runge-Kutta method needs h omega_max below its stability limit (about 6 for
+    // DOP853 on oscillations, generously): a run that would need more steps than its budget at
+    // that step is refused before it starts, instead of after max_steps.
+    if let Ok(omega) = super::verlet::omega_bound(model, &state.theta, 1.0) {
+        let needed = (t_end - state.time) * omega / STABILITY_LIMIT;
+        if needed > options.max_steps as f64 {
+            return Err(IntegrateError::StepBudget {
+                steps: needed,
+                dt: STABILITY_LIMIT / omega,
+                span: t_end - state.time,
+                budget: options.max_steps as u64,
+            });
+        }
+    }
 
     let mut w = Stepper::new(state);
     let mut t = state.time;
@@ -183,8 +227,8 @@ pub fn adaptive<M: ChainModel + ?Sized>(
         }
         monitor.report.steps += 1;
         let mut dense_ready = false;
-        while next < outputs.len() && outputs[next] <= t_new {
-            let time = outputs[next];
+        while next < count && output(next) <= t_new {
+            let time = output(next);
             if time == t_new {
                 w.unpack_y_new(time, state);
             } else {
@@ -194,7 +238,7 @@ pub fn adaptive<M: ChainModel + ?Sized>(
                 }
                 w.interpolate((time - t) / h, time, state);
             }
-            if monitor.output(model, state, observer) {
+            if monitor.output(model, state, observer)? {
                 return Ok(monitor.report);
             }
             next += 1;
@@ -212,6 +256,38 @@ pub fn adaptive<M: ChainModel + ?Sized>(
         t = t_new;
         w.advance();
         h *= ratio;
+    }
+}
+
+impl Integrator for AdaptiveOptions {
+    fn name(&self) -> &'static str {
+        "dop853"
+    }
+
+    /// The outputs come from the dense output; they never shorten the steps.
+    fn integrate<M: ChainModel + ?Sized>(
+        &self,
+        model: &M,
+        state: &mut State,
+        schedule: &Schedule,
+        observer: &mut dyn FnMut(&State) -> Flow,
+    ) -> Result<Report, IntegrateError> {
+        state.check(model)?;
+        self.check()?;
+        check_positive("output_interval", schedule.interval)?;
+        let start = state.time;
+        let last = schedule.time(start, schedule.count);
+        if !last.is_finite() {
+            return Err(IntegrateError::NotFinite {
+                what: "outputs",
+                time: start,
+                index: schedule.count,
+                value: last,
+            });
+        }
+        // The last output exactly at the schedule's end, the others at their multiples.
+        let output = |k: usize| if k == schedule.count { last } else { schedule.time(start, k) };
+        run(model, state, &output, schedule.count + 1, self, observer)
     }
 }
 
@@ -234,7 +310,8 @@ fn check_outputs(start: f64, outputs: &[f64]) -> Result<(), IntegrateError> {
 struct EquationsOfMotion<'a, M: ?Sized> {
     model: &'a M,
     inverse_inertia: Vec<f64>,
-    damping: f64,
+    /// The damping rate of each rotor.
+    damping: Vec<f64>,
 }
 
 impl<M: ChainModel + ?Sized> EquationsOfMotion<'_, M> {
@@ -245,8 +322,10 @@ impl<M: ChainModel + ?Sized> EquationsOfMotion<'_, M> {
         let (velocity, acceleration) = dy.split_at_mut(n);
         velocity.copy_from_slice(omega);
         self.model.gradient_into(theta, acceleration);
-        for ((a, w), c) in acceleration.iter_mut().zip(omega).zip(&self.inverse_inertia) {
-            *a = -*a * c - self.damping * w;
+        for (((a, w), c), g) in
+            acceleration.iter_mut().zip(omega).zip(&self.inverse_inertia).zip(&self.damping)
+        {
+            *a = -*a * c - g * w;
         }
     }
 

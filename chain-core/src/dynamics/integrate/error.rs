@@ -19,6 +19,27 @@ pub enum IntegrateError {
     /// The step budget ran out before the last output time.
     #[error("gave up at t = {time} after {steps} steps (accepted and rejected): raise max_steps")]
     TooManySteps { time: f64, steps: usize },
+    /// A fixed-step run would need more steps than its budget (`max_steps`): the step is far
+    /// shorter than the span (a very stiff chain, or an output interval far below the step).
+    /// Refused before the first step.
+    #[error(
+        "the run needs {steps:e} steps of {dt:e} to cover {span:e}, more than the budget of {budget}: raise max_steps, \
+         or shorten the run"
+    )]
+    StepBudget { steps: f64, dt: f64, span: f64, budget: u64 },
+    /// A run would report at more output times than its budget (`max_outputs`).
+    #[error(
+        "the run needs {outputs:e} outputs, more than the budget of {budget}: lengthen the output interval"
+    )]
+    OutputBudget { outputs: f64, budget: usize },
+    /// The energy left its limit: `|E - E0|` (or, with damping, the rise `E - E0`) exceeded
+    /// `limit * |E0|`. A fixed step past the stability limit, or forces that are not the
+    /// energy's gradient; the state is the one that broke the limit.
+    #[error(
+        "the energy changed from {initial} to {energy} at t = {time}: {relative:e} of |E0|, beyond the \
+         limit {limit:e} (a step past the stability limit, or forces that are not the energy's gradient)"
+    )]
+    EnergyNotConserved { time: f64, energy: f64, initial: f64, relative: f64, limit: f64 },
     /// An option outside its range.
     #[error("{name} = {value} is invalid: it must be {rule}")]
     InvalidOption { name: &'static str, value: f64, rule: &'static str },

@@ -118,8 +118,8 @@ pub enum Flow {
 }
 
 /// What a run did, with an energy monitor: `E = T + V` at the start, at the end, and the largest
-/// `|E - E0|` seen at the outputs (a conservation check when `damping = 0`; with damping it is
-/// just the energy lost so far).
+/// change seen at the outputs (a conservation check when the run has no damping; with damping
+/// the energy falls, and only a rise is an error).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Report {
     /// Accepted steps.
@@ -128,9 +128,47 @@ pub struct Report {
     pub rejected: usize,
     pub energy_initial: f64,
     pub energy_final: f64,
+    /// The largest `|E - E0|` seen at the outputs.
     pub max_energy_error: f64,
+    /// The largest `E - E0` seen at the outputs: the energy error of a damped run, whose energy
+    /// may only fall.
+    pub max_energy_rise: f64,
     /// The observer returned [`Flow::Stop`].
     pub stopped_early: bool,
+    /// Whether the equations of motion had any damping.
+    pub damped: bool,
+    /// The smallest energy scale of the chain: `1e-12 k_max a^2`, the energy of a spring
+    /// stretched by a millionth of the lattice spacing. A chain whose energy `E0` is below it (a
+    /// zero-energy kink at rest has `E0 ~ 1e-27`, rounding) measures errors against it instead.
+    pub energy_floor: f64,
+}
+
+impl Report {
+    /// What relative energy errors are measured against: `max(|E0|, energy_floor)`, or 1 (the
+    /// model's energy unit) if both are 0.
+    pub fn energy_scale(&self) -> f64 {
+        energy_scale(self.energy_initial, self.energy_floor)
+    }
+
+    /// The largest relative energy error of the run: `max |E - E0| / scale` without damping,
+    /// `max (E - E0) / scale` (the rise; 0 if the energy only fell) with damping.
+    pub fn relative_energy_error(&self) -> f64 {
+        let error = if self.damped { self.max_energy_rise.max(0.0) } else { self.max_energy_error };
+        error / self.energy_scale()
+    }
+}
+
+fn energy_scale(e0: f64, floor: f64) -> f64 {
+    let scale = e0.abs().max(floor);
+    if scale > 0.0 { scale } else { 1.0 }
+}
+
+/// `1e-12 k_max a^2` (see [`Report::energy_floor`]), 0 if not finite.
+fn energy_floor<M: ChainModel + ?Sized>(model: &M) -> f64 {
+    let k = (0..model.spring_count()).map(|p| model.stiffness(p).abs()).fold(0.0, f64::max);
+    let a = model.lattice_spacing();
+    let floor = 1e-12 * k * a * a;
+    if floor.is_finite() { floor } else { 0.0 }
 }
 
 /// `T = sum_i I_i omega_i^2 / 2`.
@@ -149,6 +187,104 @@ pub fn kinetic_energy<M: ChainModel + ?Sized>(model: &M, omega: &[f64]) -> f64 {
 /// As [`kinetic_energy`], and as [`ChainModel::energy`] if `theta` has the wrong length.
 pub fn total_energy<M: ChainModel + ?Sized>(model: &M, state: &State) -> f64 {
     kinetic_energy(model, &state.omega) + model.energy(&state.theta)
+}
+
+/// A damping sponge on the last `width` rotors at each end: absorbing ends (the standard device
+/// of soliton-scattering studies for a finite chain that should behave like an infinite one).
+///
+/// Rotor `i` at distance `d_i` from the nearer end (`d = 0` for the end rotor) gets the damping
+/// rate `strength * ((width - d_i) / width)^2` for `d_i < width`, 0 inside. The quadratic ramp
+/// reflects little of what enters it: a wave meets a rate that grows smoothly from 0.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Sponge {
+    /// Rotors in each end's sponge.
+    pub width: usize,
+    /// The damping rate at the end rotor, in `1 / t`.
+    pub strength: f64,
+}
+
+impl Sponge {
+    /// The rate of rotor `i` of `n`.
+    pub fn rate(&self, i: usize, n: usize) -> f64 {
+        let d = i.min(n.saturating_sub(1).saturating_sub(i));
+        if self.width == 0 || d >= self.width {
+            return 0.0;
+        }
+        let x = (self.width - d) as f64 / self.width as f64;
+        self.strength * x * x
+    }
+}
+
+/// The damping rate of each of `n` rotors: `uniform` everywhere plus the sponge's, checked.
+pub fn damping_rates(n: usize, uniform: f64, sponge: Option<Sponge>) -> Result<Vec<f64>, IntegrateError> {
+    check_non_negative("damping", uniform)?;
+    if let Some(s) = sponge {
+        check_non_negative("sponge strength", s.strength)?;
+    }
+    Ok((0..n).map(|i| uniform + sponge.map_or(0.0, |s| s.rate(i, n))).collect())
+}
+
+/// The largest relative energy change a run may show before it is stopped with
+/// [`IntegrateError::EnergyNotConserved`]: 10 %. A run that far off is wrong whatever it is used
+/// for (the step is past the stability limit, or the forces are not the energy's gradient);
+/// the much smaller tolerances that decide whether a result is accurate enough belong to the
+/// caller (the sweep's energy budget, for example).
+pub const DEFAULT_ENERGY_LIMIT: f64 = 0.1;
+
+/// When an integrator reports: the initial state and every `interval` after it, `count` times
+/// (the last output at `start + count * interval`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Schedule {
+    pub interval: f64,
+    pub count: usize,
+}
+
+impl Schedule {
+    /// The outputs every `interval` from `start` that cover `[start, t_max]` (the last one at or
+    /// just past `t_max`), refusing more than `max_outputs` of them.
+    pub fn covering(
+        start: f64,
+        t_max: f64,
+        interval: f64,
+        max_outputs: usize,
+    ) -> Result<Self, IntegrateError> {
+        if !t_max.is_finite() {
+            return Err(IntegrateError::NotFinite { what: "t_max", time: start, index: 0, value: t_max });
+        }
+        if t_max < start {
+            return Err(IntegrateError::EndBeforeStart { start, end: t_max });
+        }
+        check_positive("output_interval", interval)?;
+        let needed = libm::ceil((t_max - start) / interval - 1e-9).max(0.0);
+        if needed > max_outputs as f64 {
+            return Err(IntegrateError::OutputBudget { outputs: needed, budget: max_outputs });
+        }
+        Ok(Self { interval, count: needed as usize })
+    }
+
+    /// The time of output `k` (0: the start).
+    pub fn time(&self, start: f64, k: usize) -> f64 {
+        start + k as f64 * self.interval
+    }
+}
+
+/// A time integrator of the equations of motion: [`VerletOptions`] (fixed step, symplectic) and
+/// [`AdaptiveOptions`] (DOP853) implement it, so a run, a scattering experiment or a sweep takes
+/// either alike.
+pub trait Integrator {
+    /// A short name for reports: `verlet`, `dop853`.
+    fn name(&self) -> &'static str;
+
+    /// Integrates `state` over `schedule`, calling `observer` with the state at its start and at
+    /// every output time, and stopping early when it answers [`Flow::Stop`]. On return `state`
+    /// holds the last state the observer saw.
+    fn integrate<M: ChainModel + ?Sized>(
+        &self,
+        model: &M,
+        state: &mut State,
+        schedule: &Schedule,
+        observer: &mut dyn FnMut(&State) -> Flow,
+    ) -> Result<Report, IntegrateError>;
 }
 
 /// `Err(NotFinite)` naming the first non-finite entry of `v`.
@@ -188,38 +324,74 @@ fn check_non_negative(name: &'static str, value: f64) -> Result<(), IntegrateErr
     check_option(name, value, value >= 0.0 && value.is_finite(), "non-negative and finite")
 }
 
-/// Hands a state to the observer after recording its energy in the report.
+/// The energy limit: positive (infinite switches the check off).
+fn check_energy_limit(limit: f64) -> Result<(), IntegrateError> {
+    check_option("energy_limit", limit, limit > 0.0, "positive (infinite: no check)")
+}
+
+/// Hands a state to the observer after recording its energy in the report, and stops a run
+/// whose energy left the limit.
 struct Monitor {
     report: Report,
+    limit: f64,
 }
 
 impl Monitor {
-    fn new<M: ChainModel + ?Sized>(model: &M, state: &State) -> Self {
+    /// Starts the report from `state`; its energy must be finite.
+    fn new<M: ChainModel + ?Sized>(
+        model: &M,
+        state: &State,
+        damped: bool,
+        limit: f64,
+    ) -> Result<Self, IntegrateError> {
+        check_energy_limit(limit)?;
         let e = total_energy(model, state);
+        if !e.is_finite() {
+            return Err(IntegrateError::NotFinite { what: "energy", time: state.time, index: 0, value: e });
+        }
         let report = Report {
             steps: 0,
             rejected: 0,
             energy_initial: e,
             energy_final: e,
             max_energy_error: 0.0,
+            max_energy_rise: 0.0,
             stopped_early: false,
+            damped,
+            energy_floor: energy_floor(model),
         };
-        Self { report }
+        Ok(Self { report, limit })
     }
 
-    /// Records the energy of `state` and asks the observer; `true` if it said stop.
+    /// Records the energy of `state`, checks it, and asks the observer; `Ok(true)` if it said
+    /// stop.
     fn output<M: ChainModel + ?Sized>(
         &mut self,
         model: &M,
         state: &State,
         observer: &mut dyn FnMut(&State) -> Flow,
-    ) -> bool {
+    ) -> Result<bool, IntegrateError> {
         let e = total_energy(model, state);
-        self.report.energy_final = e;
-        self.report.max_energy_error =
-            self.report.max_energy_error.max((e - self.report.energy_initial).abs());
+        if !e.is_finite() {
+            return Err(IntegrateError::NotFinite { what: "energy", time: state.time, index: 0, value: e });
+        }
+        let r = &mut self.report;
+        r.energy_final = e;
+        let change = e - r.energy_initial;
+        r.max_energy_error = r.max_energy_error.max(change.abs());
+        r.max_energy_rise = r.max_energy_rise.max(change);
+        let relative = if r.damped { change } else { change.abs() } / r.energy_scale();
+        if relative > self.limit {
+            return Err(IntegrateError::EnergyNotConserved {
+                time: state.time,
+                energy: e,
+                initial: r.energy_initial,
+                relative,
+                limit: self.limit,
+            });
+        }
         let stop = observer(state) == Flow::Stop;
-        self.report.stopped_early = stop;
-        stop
+        r.stopped_early = stop;
+        Ok(stop)
     }
 }

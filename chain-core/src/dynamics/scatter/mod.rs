@@ -1,0 +1,306 @@
+//! Scattering of a kink or an antikink on a stiffness impurity (paper Sec. VI, Figs.
+//! `fig:scheme-scattering`, `fig:k-scatter`, `fig:ak-scatter`, `fig:phasediagram`).
+//!
+//! The impurity is spring `p` (the model carries its stiffness `k_i`); its centre is at
+//! `x_imp = p + 1/2`. A defect launched from one side ([`super::launch`]) is tracked
+//! ([`super::track`]), every wall is followed with its origin ([`follow`]), and the run stops once
+//! the outcome is decided, confirmed, and watched for as long as asked ([`rules`]).
+//!
+//! **What an outcome means.** It answers the paper's question: what did the impurity do to the
+//! incoming defect? [`Outcome::Transmitted`], [`Outcome::Reflected`], [`Outcome::Trapped`] and,
+//! for a kink, [`Outcome::Split`] are the paper's regimes. Free ends add one more: phonons
+//! radiated in the collision flip an end of an antikink's domain, and a kink walks in from it
+//! (docs/dynamics.md §5). If such a wall annihilates the defect *after* its outcome was settled,
+//! the outcome stands and the annihilation is recorded as [`Scattering::later`]; only if it comes
+//! before anything was settled is the outcome [`Outcome::Annihilated`]. A defect that breaks up
+//! before reaching the impurity is [`Outcome::Disintegrated`], pairs left at the impurity are
+//! [`Outcome::PairCreation`], and [`Outcome::Undecided`] means only that the run ended before
+//! anything was settled.
+
+mod follow;
+mod rules;
+
+use super::DynamicsError;
+use super::launch::{Direction, launch};
+use super::run::{Run, RunOptions, propagate};
+use crate::model::ChainModel;
+use crate::statics::walls::Charge;
+
+pub use follow::{Followed, Follower, Origin, Vanished};
+
+/// What the impurity did to the incoming defect.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Outcome {
+    /// One wall, of the incoming charge, moved clear of the impurity on the far side and kept
+    /// going.
+    Transmitted,
+    /// One wall, of the incoming charge, came back from the impurity and kept going.
+    Reflected,
+    /// One wall, of the incoming charge, stayed at the impurity.
+    Trapped,
+    /// A kink split into a transmitted kink, an antikink at the impurity and a reflected kink.
+    Split,
+    /// Before anything was settled, the defect was annihilated by a wall that entered from a
+    /// free end.
+    Annihilated,
+    /// The defect broke up into several walls before reaching the impurity.
+    Disintegrated,
+    /// Several walls (not a kink's split) left after the collision: pairs made at the impurity.
+    PairCreation,
+    /// The run ended before anything was settled.
+    Undecided,
+}
+
+impl Outcome {
+    /// Every outcome: the paper's regimes, the others, undecided last.
+    pub const ALL: [Outcome; 8] = [
+        Outcome::Transmitted,
+        Outcome::Reflected,
+        Outcome::Trapped,
+        Outcome::Split,
+        Outcome::Annihilated,
+        Outcome::Disintegrated,
+        Outcome::PairCreation,
+        Outcome::Undecided,
+    ];
+
+    /// Lower-case name, for files and tables.
+    pub fn name(self) -> &'static str {
+        match self {
+            Outcome::Transmitted => "transmitted",
+            Outcome::Reflected => "reflected",
+            Outcome::Trapped => "trapped",
+            Outcome::Split => "split",
+            Outcome::Annihilated => "annihilated",
+            Outcome::Disintegrated => "disintegrated",
+            Outcome::PairCreation => "pair-creation",
+            Outcome::Undecided => "undecided",
+        }
+    }
+}
+
+impl core::fmt::Display for Outcome {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+/// A name that is not one of [`Outcome::ALL`]'s.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[error(
+    "unknown outcome `{0}`: expected transmitted, reflected, trapped, split, annihilated, disintegrated, \
+     pair-creation or undecided"
+)]
+pub struct UnknownOutcome(pub alloc::string::String);
+
+impl core::str::FromStr for Outcome {
+    type Err = UnknownOutcome;
+
+    fn from_str(name: &str) -> Result<Self, UnknownOutcome> {
+        Outcome::ALL.into_iter().find(|o| o.name() == name).ok_or_else(|| UnknownOutcome(name.into()))
+    }
+}
+
+/// Something that happened to the defect after its outcome was settled.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum LaterEvent {
+    /// A wall that entered from a free end annihilated it.
+    Annihilated,
+    /// The trapped wall left the impurity.
+    Escaped,
+}
+
+impl LaterEvent {
+    /// Lower-case name, for files and tables.
+    pub fn name(self) -> &'static str {
+        match self {
+            LaterEvent::Annihilated => "annihilated",
+            LaterEvent::Escaped => "escaped",
+        }
+    }
+}
+
+impl core::str::FromStr for LaterEvent {
+    type Err = UnknownOutcome;
+
+    fn from_str(name: &str) -> Result<Self, UnknownOutcome> {
+        [LaterEvent::Annihilated, LaterEvent::Escaped]
+            .into_iter()
+            .find(|o| o.name() == name)
+            .ok_or_else(|| UnknownOutcome(name.into()))
+    }
+}
+
+/// One scattering experiment and the numbers of its rules (docs/dynamics.md §5 says why each
+/// default was chosen). Times in the unit `t` of Appendix B, distances in sites.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ScatterSetup {
+    pub charge: Charge,
+    /// Launch speed amplitude (Appendix B).
+    pub v0: f64,
+    /// The impurity spring `p`.
+    pub impurity: usize,
+    /// Where the defect starts (rotor index, fractional allowed).
+    pub start: f64,
+    pub direction: Direction,
+    /// The impurity's range: a wall within `reach` of its centre is at the impurity. Default 4
+    /// (1.8 wall widths at `theta_bar = 0.28`).
+    pub reach: f64,
+    /// A wall farther than `clear` from the impurity's centre has left it; between `reach` and
+    /// `clear` it may still be orbiting in the impurity's basin. Default 8.
+    pub clear: f64,
+    /// The end zones: a wall born within `edge_margin + 1` of a free end came from it, and a wall
+    /// within `edge_margin` of an end has reached it. Default 3.
+    pub edge_margin: f64,
+    /// How long a transmitted, reflected, split, broken or annihilated pattern must hold to
+    /// decide. Default 0.5.
+    pub persistence: f64,
+    /// How far a transmitted or reflected wall must move on while its pattern holds. Default 1.
+    pub progress: f64,
+    /// The shortest time a wall must stay at the impurity to count as trapped. Default 1.
+    pub trap_time: f64,
+    /// A wall at the impurity counts as trapped after `trap_crossings` times the time it would
+    /// need to cross the impurity's range (`2 reach`) at the speed it came in with. Default 2.
+    pub trap_crossings: f64,
+    /// ...or after [`ScatterSetup::trap_time`] once it has turned round this often at the
+    /// impurity: it oscillates in the impurity's well. Default 2.
+    pub turns: usize,
+    /// A turn counts when the wall has come back this far from its farthest point, in sites.
+    /// Default 0.3.
+    pub turn_band: f64,
+    /// Over how long before it reached the impurity the entry speed is measured. Default 0.2.
+    pub entry_window: f64,
+    /// Walls of the defect closer than this are one group, which counts by its net charge.
+    /// Default 2.
+    pub cluster_gap: f64,
+    /// Walls born inside the chain less than this long ago do not count yet if their charges
+    /// add up to 0 and they lie within [`ScatterSetup::pair_extent`]. Default 1.
+    pub pair_age: f64,
+    /// See [`ScatterSetup::pair_age`]. Default 8 (twice `reach`).
+    pub pair_extent: f64,
+    /// A defect that has had three walls or more for this long before reaching the impurity has
+    /// disintegrated. Default 0.1.
+    pub break_time: f64,
+    /// A wall unseen for this long has vanished (shorter: two walls overlapping, or a wall
+    /// passing through another's core). Default 0.25.
+    pub grace: f64,
+    /// The farthest a wall may move between two outputs and still be the same wall. Default 3.
+    pub max_jump: f64,
+    /// After a decision, the run goes on this long; if the pattern breaks meanwhile (other than
+    /// by an end-born wall), the decision is withdrawn. Default 1.
+    pub confirm: f64,
+    /// After the confirmation, the run goes on this long to record a later event. Default 0.
+    pub watch: f64,
+    pub run: RunOptions,
+}
+
+impl ScatterSetup {
+    /// The paper's experiment (Sec. VI): the defect starts 15 sites from the impurity on the
+    /// right and moves left.
+    pub fn from_the_right(charge: Charge, v0: f64, impurity: usize) -> Self {
+        Self {
+            charge,
+            v0,
+            impurity,
+            start: impurity as f64 + 0.5 + 15.0,
+            direction: Direction::Left,
+            reach: 4.0,
+            clear: 8.0,
+            edge_margin: 3.0,
+            persistence: 0.5,
+            progress: 1.0,
+            trap_time: 1.0,
+            trap_crossings: 2.0,
+            turns: 2,
+            turn_band: 0.3,
+            entry_window: 0.2,
+            cluster_gap: 2.0,
+            pair_age: 1.0,
+            pair_extent: 8.0,
+            break_time: 0.1,
+            grace: 0.25,
+            max_jump: 3.0,
+            confirm: 1.0,
+            watch: 0.0,
+            run: RunOptions::default(),
+        }
+    }
+}
+
+/// The result of [`scatter`].
+#[derive(Clone, Debug, PartialEq)]
+pub struct Scattering {
+    pub outcome: Outcome,
+    /// When the outcome was decided (the run's end time if undecided).
+    pub decided_at: f64,
+    /// Whether the confirmation window closed before the run ended.
+    pub confirmed: bool,
+    /// An event after the outcome was settled, and when.
+    pub later: Option<(LaterEvent, f64)>,
+    pub run: Run,
+}
+
+/// A setup whose numbers cannot describe an experiment.
+fn check_setup<M: ChainModel + ?Sized>(model: &M, setup: &ScatterSetup) -> Result<(), DynamicsError> {
+    let n = model.rotor_count();
+    if setup.impurity >= n.saturating_sub(1) {
+        return Err(DynamicsError::NoSuchSpring { spring: setup.impurity, springs: n.saturating_sub(1) });
+    }
+    let times = [
+        ("persistence", setup.persistence),
+        ("progress", setup.progress),
+        ("trap_time", setup.trap_time),
+        ("trap_crossings", setup.trap_crossings),
+        ("turn_band", setup.turn_band),
+        ("entry_window", setup.entry_window),
+        ("pair_age", setup.pair_age),
+        ("pair_extent", setup.pair_extent),
+        ("grace", setup.grace),
+        ("break_time", setup.break_time),
+        ("confirm", setup.confirm),
+        ("watch", setup.watch),
+        ("edge_margin", setup.edge_margin),
+    ];
+    for (name, value) in times {
+        if !(value >= 0.0 && value.is_finite()) {
+            return Err(DynamicsError::InvalidSetup { name, value, rule: "non-negative and finite" });
+        }
+    }
+    for (name, value) in
+        [("reach", setup.reach), ("max_jump", setup.max_jump), ("cluster_gap", setup.cluster_gap)]
+    {
+        if !(value > 0.0 && value.is_finite()) {
+            return Err(DynamicsError::InvalidSetup { name, value, rule: "positive and finite" });
+        }
+    }
+    if !(setup.start.is_finite() && setup.start >= 0.0 && setup.start <= (n - 1) as f64) {
+        return Err(DynamicsError::InvalidSetup {
+            name: "start",
+            value: setup.start,
+            rule: "a position on the chain",
+        });
+    }
+    Ok(())
+}
+
+/// Launches the defect of `setup` towards the impurity and runs until the outcome is decided,
+/// confirmed and watched ([`rules`]), or until `setup.run.t_max`.
+pub fn scatter<M: ChainModel + ?Sized>(model: &M, setup: &ScatterSetup) -> Result<Scattering, DynamicsError> {
+    check_setup(model, setup)?;
+    let launched = launch(model, setup.charge, setup.start, setup.v0, setup.direction)?;
+    let mut classifier = rules::Classifier::new(setup, model.rotor_count());
+    let run = propagate(model, launched.state, &setup.run, &mut |s| classifier.observe(s))?;
+    let end = run.final_state.time;
+    Ok(match classifier.verdict {
+        Some(v) => Scattering {
+            outcome: v.outcome,
+            decided_at: v.decided_at,
+            confirmed: v.confirmed_at.is_some(),
+            later: v.later,
+            run,
+        },
+        None => {
+            Scattering { outcome: Outcome::Undecided, decided_at: end, confirmed: false, later: None, run }
+        }
+    })
+}

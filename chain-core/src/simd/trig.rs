@@ -1,0 +1,122 @@
+//! `sin_cos` over vector lanes: Cody-Waite reduction by `pi/2` into a double-double remainder,
+//! then fdlibm's kernel polynomials on `[-pi/4, pi/4]`.
+//!
+//! Written here because no well-kept crate does it on stable Rust with run-time dispatch: the
+//! SLEEF port (`sleef`) needs nightly `portable_simd`, `pulp` and `wide` have no trigonometry
+//! (and `wide` picks its instructions at compile time), and the f32 SIMD crates do not help.
+//!
+//! **Reduction.** `k = round(x 2/pi)` (by the `1.5 * 2^52` trick, which also leaves `k mod 4` in
+//! the low mantissa bits), then `r = x - k pi/2` with `pi/2 = P1 + P2 + P3` (three doubles, 159
+//! bits): `x - k P1` is exact with one fused multiply-add (both terms are multiples of
+//! `min(ulp(x), 2^-52)` and the result is below 1), `k P2` is split exactly by a second one, and
+//! the difference is carried as `hi + lo` by TwoSum. The error left is about `|k| 2^-159`, far
+//! below an ulp of the smallest remainder a double below [`LIMIT`] can have, so the reduction
+//! adds nothing measurable. Past `LIMIT` (and for NaN and the infinities) a lane is recomputed by
+//! the scalar `crate::math::sin_cos`, so those angles give exactly what the scalar path gives.
+//!
+//! **Polynomials.** The minimax polynomials of fdlibm's `__kernel_sin` / `__kernel_cos`
+//! (coefficients as in the `libm` crate), with the `lo` correction `sin(hi + lo) = sin hi + lo
+//! cos hi`, `cos(hi + lo) = cos hi - lo sin hi` to first order. fdlibm bounds them below 1 ulp.
+//!
+//! **Measured** against correctly rounded `sin` and `cos` (`dashu-float`, Ziv's method):
+//! `cargo run --release -p chain-core --example sin_cos_ulp` (1.02e7 points over three ranges;
+//! numbers in `docs/benchmarks.md`); `chain-core/tests/sin_cos.rs` repeats it on 1e5 points.
+
+use super::Vector;
+
+/// The largest `|x|` reduced in the lanes: `k` stays below `2^24`, where the reduction's error
+/// (`|k| 2^-159`) is negligible and the rounding trick (`|x 2/pi| < 2^51`) holds with room.
+pub(crate) const LIMIT: f64 = 16_777_216.0; // 2^24
+
+/// Vector operations the polynomial needs beyond [`Vector`]: fused multiply-add and the few
+/// bit manipulations on the quadrant.
+pub(crate) trait Trig: Vector {
+    /// `self * b + c` with one rounding.
+    fn mul_add(self, b: Self, c: Self) -> Self;
+    /// Applies the quadrant `k mod 4` (low bits of `t = x 2/pi + 1.5 * 2^52`) to the sine and
+    /// cosine of the remainder: `(s, c)`, `(c, -s)`, `(-s, -c)` or `(-c, s)`.
+    fn quadrant(t: Self, s: Self, c: Self) -> (Self, Self);
+    /// `x` in the lanes where `x == 0`, `s` elsewhere (so `sin(-0) = -0`).
+    fn keep_zero(x: Self, s: Self) -> Self;
+    /// Whether any lane is NaN, infinite or beyond [`LIMIT`].
+    fn any_outside(x: Self) -> bool;
+}
+
+/// `1.5 * 2^52`: adding it rounds a number below `2^51` to an integer in the low mantissa bits.
+const ROUND: f64 = 6_755_399_441_055_744.0;
+const FRAC_2_PI: f64 = core::f64::consts::FRAC_2_PI;
+/// `pi/2 = P1 + P2 + P3` to 159 bits (each the nearest double to what the previous ones leave).
+const P1: f64 = f64::from_bits(0x3FF9_21FB_5444_2D18);
+const P2: f64 = f64::from_bits(0x3C91_A626_3314_5C07);
+const P3: f64 = f64::from_bits(0xB91F_1976_B7ED_8FBC);
+
+const S1: f64 = f64::from_bits(0xBFC5_5555_5555_5549);
+const S2: f64 = f64::from_bits(0x3F81_1111_1110_F8A6);
+const S3: f64 = f64::from_bits(0xBF2A_01A0_19C1_61D5);
+const S4: f64 = f64::from_bits(0x3EC7_1DE3_57B1_FE7D);
+const S5: f64 = f64::from_bits(0xBE5A_E5E6_8A2B_9CEB);
+const S6: f64 = f64::from_bits(0x3DE5_D93A_5ACF_D57C);
+const C1: f64 = f64::from_bits(0x3FA5_5555_5555_554C);
+const C2: f64 = f64::from_bits(0xBF56_C16C_16C1_5177);
+const C3: f64 = f64::from_bits(0x3EFA_01A0_19CB_1590);
+const C4: f64 = f64::from_bits(0xBE92_7E4F_809C_52AD);
+const C5: f64 = f64::from_bits(0x3E21_EE9E_BDB4_B1C4);
+const C6: f64 = f64::from_bits(0xBDA8_FAE9_BE88_38D4);
+
+/// Sine and cosine of every lane of `x`.
+#[inline(always)]
+pub(crate) fn sin_cos<V: Trig>(x: V) -> (V, V) {
+    let (s, c) = reduced(x);
+    if V::any_outside(x) { scalar_lanes(x, s, c) } else { (s, c) }
+}
+
+/// The polynomial result for lanes inside the limit, assuming every lane is.
+#[inline(always)]
+fn reduced<V: Trig>(x: V) -> (V, V) {
+    let sp = V::splat;
+    let t = x.mul_add(sp(FRAC_2_PI), sp(ROUND));
+    let k = t - sp(ROUND);
+    // r = x - k (P1 + P2 + P3) as hi + lo.
+    let r1 = (-k).mul_add(sp(P1), x);
+    let p2 = k * sp(P2);
+    let p2_err = k.mul_add(sp(P2), -p2);
+    let s = r1 - p2;
+    let b = s - r1;
+    let s_err = (r1 - (s - b)) - (p2 + b);
+    let lo = (-k).mul_add(sp(P3), s_err - p2_err);
+    let hi = s + lo;
+    let lo = lo - (hi - s);
+
+    let z = hi * hi;
+    let w = z * z;
+    // sin(hi + lo)
+    let r = z.mul_add(z.mul_add(sp(S4), sp(S3)), sp(S2)) + z * w * z.mul_add(sp(S6), sp(S5));
+    let v = z * hi;
+    let sin = hi - ((z * (sp(0.5) * lo - v * r) - lo) - v * sp(S1));
+    // cos(hi + lo)
+    let r = z * z.mul_add(z.mul_add(sp(C3), sp(C2)), sp(C1))
+        + w * w * z.mul_add(z.mul_add(sp(C6), sp(C5)), sp(C4));
+    let hz = sp(0.5) * z;
+    let one_hz = sp(1.0) - hz;
+    let cos = one_hz + (((sp(1.0) - one_hz) - hz) + (z * r - hi * lo));
+
+    let (sin, cos) = V::quadrant(t, sin, cos);
+    (V::keep_zero(x, sin), cos)
+}
+
+/// Replaces the lanes outside the polynomial's range by the scalar `sin_cos` (cold: the dynamics
+/// never gets there, but a NaN or a huge angle must give what the scalar path gives).
+#[cold]
+#[inline(never)]
+fn scalar_lanes<V: Trig>(x: V, s: V, c: V) -> (V, V) {
+    let (mut xs, mut ss, mut cs) = ([0.0; 8], [0.0; 8], [0.0; 8]);
+    x.store(&mut xs);
+    s.store(&mut ss);
+    c.store(&mut cs);
+    for j in 0..V::LANES {
+        if !(-LIMIT..=LIMIT).contains(&xs[j]) {
+            (ss[j], cs[j]) = crate::math::sin_cos(xs[j]);
+        }
+    }
+    (V::load(&ss), V::load(&cs))
+}

@@ -1,0 +1,2 @@
+//! Helpers shared by the integration tests (and, through `#[path]`, the examples).
+pub mod ulp;
