@@ -110,12 +110,16 @@ impl Chain {
         springs: Option<&Bound<'_, PyDict>>,
         rotors: Option<&Bound<'_, PyDict>>,
     ) -> PyResult<Self> {
-        let (law_name, law) =
-            choice("law", law, &[("harmonic", ("harmonic", Law::Harmonic)), ("quartic", ("quartic", Law::Quartic))])?;
+        let (law_name, law) = choice(
+            "law",
+            law,
+            &[("harmonic", ("harmonic", Law::Harmonic)), ("quartic", ("quartic", Law::Quartic))],
+        )?;
         let n = usize::try_from(n).map_err(|_| {
             let fields = PyDict::new(py);
             let _ = fields.set_item("n", n);
-            let message = format!("`n` must be at least 2 (a chain needs two rotors and one spring), got {n}");
+            let message =
+                format!("`n` must be at least 2 (a chain needs two rotors and one spring), got {n}");
             raise_parameter(py, message, "TooFewRotors", fields)
         })?;
         let mut spring_list = Vec::new();
@@ -154,7 +158,8 @@ impl Chain {
             builder = builder.rotor(i, ri);
         }
         let chain = builder.build().map_err(|e| errors::parameter(py, &e))?;
-        let spec = Spec { n, r, k, theta_bar, a, mass, law: law_name, springs: spring_list, rotors: rotor_list };
+        let spec =
+            Spec { n, r, k, theta_bar, a, mass, law: law_name, springs: spring_list, rotors: rotor_list };
         Ok(Self { chain, spec })
     }
 
@@ -226,7 +231,11 @@ impl Chain {
 
     /// Gradient ``dV/dtheta_i`` (length ``n``; the torques are its negative), in units of
     /// ``k a^2`` per radian.
-    fn gradient(&self, py: Python<'_>, theta: PyArrayLike1<'_, f64, AllowTypeChange>) -> PyResult<Py<PyArray1<f64>>> {
+    fn gradient(
+        &self,
+        py: Python<'_>,
+        theta: PyArrayLike1<'_, f64, AllowTypeChange>,
+    ) -> PyResult<Py<PyArray1<f64>>> {
         let theta = self.theta(theta)?;
         let out = py.detach(|| {
             let mut out = vec![0.0; theta.len()];
@@ -258,7 +267,7 @@ impl Chain {
         &self,
         py: Python<'_>,
         theta: PyArrayLike1<'_, f64, AllowTypeChange>,
-    ) -> PyResult<(Py<PyArray1<f64>>, Py<PyArray1<f64>>)> {
+    ) -> PyResult<Banded> {
         self.banded(py, theta, |c, t, d, o| c.tangent_stiffness_into(t, d, o))
     }
 
@@ -267,7 +276,7 @@ impl Chain {
         &self,
         py: Python<'_>,
         theta: PyArrayLike1<'_, f64, AllowTypeChange>,
-    ) -> PyResult<(Py<PyArray1<f64>>, Py<PyArray1<f64>>)> {
+    ) -> PyResult<Banded> {
         self.banded(py, theta, |c, t, d, o| c.material_stiffness_into(t, d, o))
     }
 
@@ -277,12 +286,16 @@ impl Chain {
         &self,
         py: Python<'_>,
         theta: PyArrayLike1<'_, f64, AllowTypeChange>,
-    ) -> PyResult<(Py<PyArray1<f64>>, Py<PyArray1<f64>>)> {
+    ) -> PyResult<Banded> {
         self.banded(py, theta, |c, t, d, o| c.stress_matrix_into(t, d, o))
     }
 
     /// The tangent stiffness as a dense symmetric ``n x n`` array.
-    fn hessian(&self, py: Python<'_>, theta: PyArrayLike1<'_, f64, AllowTypeChange>) -> PyResult<Py<PyArray2<f64>>> {
+    fn hessian(
+        &self,
+        py: Python<'_>,
+        theta: PyArrayLike1<'_, f64, AllowTypeChange>,
+    ) -> PyResult<Py<PyArray2<f64>>> {
         let theta = self.theta(theta)?;
         let n = theta.len();
         let dense = py.detach(|| {
@@ -312,7 +325,11 @@ impl Chain {
 
     /// Spring tensions ``t_p = dlaw/dl`` at the current lengths (length ``n - 1``), in units of
     /// ``k a``.
-    fn tensions(&self, py: Python<'_>, theta: PyArrayLike1<'_, f64, AllowTypeChange>) -> PyResult<Py<PyArray1<f64>>> {
+    fn tensions(
+        &self,
+        py: Python<'_>,
+        theta: PyArrayLike1<'_, f64, AllowTypeChange>,
+    ) -> PyResult<Py<PyArray1<f64>>> {
         self.per_spring(py, theta, |c, t, o| c.tensions_into(t, o))
     }
 
@@ -379,7 +396,8 @@ impl Chain {
     /// ``r``, ``theta_bar``, ``k`` and ``M`` (per-spring and per-rotor overrides are not part of it).
     fn continuum(&self, py: Python<'_>) -> PyResult<Continuum> {
         let s = &self.spec;
-        let c = ContinuumChain::new(s.a, s.r, s.theta_bar, s.k, s.mass).map_err(|e| errors::parameter(py, &e))?;
+        let c =
+            ContinuumChain::new(s.a, s.r, s.theta_bar, s.k, s.mass).map_err(|e| errors::parameter(py, &e))?;
         Ok(Continuum { c })
     }
 

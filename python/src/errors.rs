@@ -61,9 +61,7 @@ impl<'py> Details<'py> {
 
 fn errors_module(py: Python<'_>) -> PyResult<&Bound<'_, PyModule>> {
     static MODULE: PyOnceLock<Py<PyModule>> = PyOnceLock::new();
-    MODULE
-        .get_or_try_init(py, || py.import("rotor_chain.errors").map(Bound::unbind))
-        .map(|m| m.bind(py))
+    MODULE.get_or_try_init(py, || py.import("rotor_chain.errors").map(Bound::unbind)).map(|m| m.bind(py))
 }
 
 pub fn parameter(py: Python<'_>, e: &ParameterError) -> PyErr {
@@ -88,9 +86,10 @@ pub fn parameter(py: Python<'_>, e: &ParameterError) -> PyErr {
                 .f("r", r)
                 .f("max", max)
         }
-        ParameterError::IndexOutOfRange { kind, index, count } => {
-            Details { variant: "IndexOutOfRange", ..d }.f("kind", kind.to_string()).f("index", index).f("count", count)
-        }
+        ParameterError::IndexOutOfRange { kind, index, count } => Details { variant: "IndexOutOfRange", ..d }
+            .f("kind", kind.to_string())
+            .f("index", index)
+            .f("count", count),
         _ => Details { variant: "Other", ..d },
     };
     d.raise("ParameterError", e.to_string())
@@ -152,9 +151,10 @@ pub fn statics(py: Python<'_>, e: &StaticsError) -> PyErr {
                 .f("residual", residual)
                 .f("tolerance", tolerance)
         }
-        &StaticsError::DefectLost { expected, kinks, antikinks } => {
-            Details { variant: "DefectLost", ..d }.f("expected", expected).f("kinks", kinks).f("antikinks", antikinks)
-        }
+        &StaticsError::DefectLost { expected, kinks, antikinks } => Details { variant: "DefectLost", ..d }
+            .f("expected", expected)
+            .f("kinks", kinks)
+            .f("antikinks", antikinks),
         &StaticsError::NoZeroEnergyState { spring, rest_length, min, max } => {
             Details { variant: "NoZeroEnergyState", ..d }
                 .f("spring", spring)
@@ -179,18 +179,22 @@ pub fn integrate(py: Python<'_>, e: &IntegrateError) -> PyErr {
         IntegrateError::WrongLength { what, len, expected } => {
             Details { variant: "WrongLength", ..d }.f("what", what).f("len", len).f("expected", expected)
         }
-        IntegrateError::NotFinite { what, time, index, value } => {
-            Details { variant: "NotFinite", ..d }.f("what", what).f("time", time).f("index", index).f("value", value)
-        }
+        IntegrateError::NotFinite { what, time, index, value } => Details { variant: "NotFinite", ..d }
+            .f("what", what)
+            .f("time", time)
+            .f("index", index)
+            .f("value", value),
         IntegrateError::StepSizeTooSmall { time, step } => {
             Details { variant: "StepSizeTooSmall", ..d }.f("time", time).f("step", step)
         }
         IntegrateError::TooManySteps { time, steps } => {
             Details { variant: "TooManySteps", ..d }.f("time", time).f("steps", steps)
         }
-        IntegrateError::StepBudget { steps, dt, span, budget } => {
-            Details { variant: "StepBudget", ..d }.f("steps", steps).f("dt", dt).f("span", span).f("budget", budget)
-        }
+        IntegrateError::StepBudget { steps, dt, span, budget } => Details { variant: "StepBudget", ..d }
+            .f("steps", steps)
+            .f("dt", dt)
+            .f("span", span)
+            .f("budget", budget),
         IntegrateError::OutputBudget { outputs, budget } => {
             Details { variant: "OutputBudget", ..d }.f("outputs", outputs).f("budget", budget)
         }
@@ -209,7 +213,10 @@ pub fn integrate(py: Python<'_>, e: &IntegrateError) -> PyErr {
             Details { variant: "EndBeforeStart", ..d }.f("start", start).f("end", end)
         }
         IntegrateError::OutputsOutOfOrder { index, time, previous } => {
-            Details { variant: "OutputsOutOfOrder", ..d }.f("index", index).f("time", time).f("previous", previous)
+            Details { variant: "OutputsOutOfOrder", ..d }
+                .f("index", index)
+                .f("time", time)
+                .f("previous", previous)
         }
         IntegrateError::BadInertia { index, inertia } => {
             Details { variant: "BadInertia", ..d }.f("index", index).f("inertia", inertia)
@@ -299,7 +306,9 @@ pub fn grid(py: Python<'_>, e: &GridError) -> PyErr {
         GridError::BadRange { text, reason } => {
             Details { variant: "BadRange", ..d }.f("text", text.as_str()).f("reason", reason.as_str())
         }
-        &GridError::NotPositive { from, to } => Details { variant: "NotPositive", ..d }.f("from_", from).f("to", to),
+        &GridError::NotPositive { from, to } => {
+            Details { variant: "NotPositive", ..d }.f("from_", from).f("to", to)
+        }
         _ => Details { variant: "Other", ..d },
     };
     d.raise("GridError", e.to_string())

@@ -57,7 +57,10 @@ impl Antikink {
     }
 
     fn __repr__(&self) -> String {
-        format!("Antikink(energy={:?}, centre={:?}, kind='{}', index={})", self.energy, self.centre, self.kind, self.index)
+        format!(
+            "Antikink(energy={:?}, centre={:?}, kind='{}', index={})",
+            self.energy, self.centre, self.kind, self.index
+        )
     }
 }
 
@@ -146,14 +149,16 @@ impl PeierlsNabarro {
 
 pub fn peierls_nabarro(chain: &Chain, py: Python<'_>, ends_name: &str) -> PyResult<PeierlsNabarro> {
     let options = AntikinkOptions { ends: ends(ends_name)?, ..AntikinkOptions::default() };
-    let pn = py
-        .detach(|| ak::peierls_nabarro(&chain.chain, &options))
-        .map_err(|e| errors::statics(py, &e))?;
+    let pn =
+        py.detach(|| ak::peierls_nabarro(&chain.chain, &options)).map_err(|e| errors::statics(py, &e))?;
     let rotor = Py::new(py, antikink_of(py, &pn.rotor_centred))?;
     let spring = Py::new(py, antikink_of(py, &pn.spring_centred))?;
     let rotor_is_minimum = pn.rotor_centred.energy <= pn.spring_centred.energy;
-    let (minimum, saddle) =
-        if rotor_is_minimum { (rotor.clone_ref(py), spring.clone_ref(py)) } else { (spring.clone_ref(py), rotor.clone_ref(py)) };
+    let (minimum, saddle) = if rotor_is_minimum {
+        (rotor.clone_ref(py), spring.clone_ref(py))
+    } else {
+        (spring.clone_ref(py), rotor.clone_ref(py))
+    };
     Ok(PeierlsNabarro {
         minimum,
         saddle,
@@ -191,7 +196,11 @@ impl Modes {
     }
 
     fn __repr__(&self) -> String {
-        format!("Modes(count={}, kinds=[{}])", self.kinds.len(), self.kinds.iter().map(|k| format!("'{k}'")).collect::<Vec<_>>().join(", "))
+        format!(
+            "Modes(count={}, kinds=[{}])",
+            self.kinds.len(),
+            self.kinds.iter().map(|k| format!("'{k}'")).collect::<Vec<_>>().join(", ")
+        )
     }
 }
 
@@ -204,7 +213,8 @@ pub fn modes(
 ) -> PyResult<Modes> {
     let theta = chain.theta(theta)?;
     let options = ModeOptions { count, hold_ends, ..ModeOptions::default() };
-    let found = py.detach(|| md::modes(&chain.chain, &theta, &options)).map_err(|e| errors::statics(py, &e))?;
+    let found =
+        py.detach(|| md::modes(&chain.chain, &theta, &options)).map_err(|e| errors::statics(py, &e))?;
     let n = chain.n();
     let shapes: Vec<Vec<f64>> = found.iter().map(|m| m.shape.clone()).collect();
     Ok(Modes {

@@ -11,7 +11,9 @@ use std::panic::{AssertUnwindSafe, catch_unwind};
 use std::path::PathBuf;
 use std::str::FromStr;
 
-use chain_sweep::scattering::{Defect, Ends, Integrator, LaterEvent, Outcome, PhaseDiagram as Diagram, PointRecord, Recomputed};
+use chain_sweep::scattering::{
+    Defect, Ends, Integrator, LaterEvent, Outcome, PhaseDiagram as Diagram, PointRecord, Recomputed,
+};
 use chain_sweep::{Axis, Grid, Point, ResultsFile as File, SweepOptions};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyString};
@@ -55,8 +57,11 @@ impl PhaseDiagram {
     ) -> PyResult<Self> {
         let defect = choice("defect", defect, &[("kink", Defect::Kink), ("antikink", Defect::Antikink)])?;
         let ends = choice("ends", ends, &[("free", Ends::Free), ("absorbing", Ends::Absorbing)])?;
-        let integrator =
-            choice("integrator", integrator, &[("verlet", Integrator::Verlet), ("dop853", Integrator::Dop853)])?;
+        let integrator = choice(
+            "integrator",
+            integrator,
+            &[("verlet", Integrator::Verlet), ("dop853", Integrator::Dop853)],
+        )?;
         let mut d = Diagram::new(n, r, k, theta_bar, defect).map_err(|e| errors::config(py, &e))?;
         d.mass = mass;
         d.ends = ends;
@@ -105,19 +110,21 @@ impl PhaseDiagram {
         if threads == Some(0) {
             return Err(value_error("threads must be at least 1"));
         }
-        let results = py.detach(|| -> Result<Vec<Result<PointRecord, String>>, rayon::ThreadPoolBuildError> {
-            let one = |&(_, _, ki, v0): &GridPoint| compute_one(&self.d, ki, v0);
-            if threads == Some(1) {
-                return Ok(points.iter().map(one).collect());
-            }
-            let mut builder = rayon::ThreadPoolBuilder::new();
-            if let Some(t) = threads {
-                builder = builder.num_threads(t);
-            }
-            let pool = builder.build()?;
-            Ok(pool.install(|| points.par_iter().map(one).collect()))
-        });
-        let results = results.map_err(|e| pyo3::exceptions::PyRuntimeError::new_err(format!("cannot start threads: {e}")))?;
+        let results =
+            py.detach(|| -> Result<Vec<Result<PointRecord, String>>, rayon::ThreadPoolBuildError> {
+                let one = |&(_, _, ki, v0): &GridPoint| compute_one(&self.d, ki, v0);
+                if threads == Some(1) {
+                    return Ok(points.iter().map(one).collect());
+                }
+                let mut builder = rayon::ThreadPoolBuilder::new();
+                if let Some(t) = threads {
+                    builder = builder.num_threads(t);
+                }
+                let pool = builder.build()?;
+                Ok(pool.install(|| points.par_iter().map(one).collect()))
+            });
+        let results = results
+            .map_err(|e| pyo3::exceptions::PyRuntimeError::new_err(format!("cannot start threads: {e}")))?;
         points.iter().zip(&results).map(|(p, r)| record_dict(py, *p, r)).collect()
     }
 
@@ -263,7 +270,14 @@ impl ResultsFile {
 impl ResultsFile {
     #[new]
     #[pyo3(signature = (xs, ys, path, run, *, retry_failed = false))]
-    fn new(py: Python<'_>, xs: Vec<f64>, ys: Vec<f64>, path: PathBuf, run: String, retry_failed: bool) -> PyResult<Self> {
+    fn new(
+        py: Python<'_>,
+        xs: Vec<f64>,
+        ys: Vec<f64>,
+        path: PathBuf,
+        run: String,
+        retry_failed: bool,
+    ) -> PyResult<Self> {
         let grid = grid(py, xs, ys)?;
         let mut options = SweepOptions::new("phase diagram", run);
         options.retry_failed = retry_failed;

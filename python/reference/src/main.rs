@@ -71,17 +71,50 @@ fn float<'de, D: serde::Deserializer<'de>>(d: D) -> Result<f64, D::Error> {
 #[serde(tag = "op", rename_all = "snake_case")]
 enum Op {
     Build,
-    Evaluate { theta: Vec<f64> },
-    NextAngles { p: usize, theta_p: f64 },
-    Kink { centre: f64 },
-    Antikink { centre: f64, relaxed: bool },
+    Evaluate {
+        theta: Vec<f64>,
+    },
+    NextAngles {
+        p: usize,
+        theta_p: f64,
+    },
+    Kink {
+        centre: f64,
+    },
+    Antikink {
+        centre: f64,
+        relaxed: bool,
+    },
     PeierlsNabarro,
-    Modes { theta: Vec<f64>, count: Option<usize> },
-    MaxwellCalladine { theta: Vec<f64> },
+    Modes {
+        theta: Vec<f64>,
+        count: Option<usize>,
+    },
+    MaxwellCalladine {
+        theta: Vec<f64>,
+    },
     Continuum,
-    Launch { defect: String, position: f64, v0: f64, direction: String },
-    Propagate { theta: Vec<f64>, omega: Vec<f64>, t_max: f64, method: String, damping: f64, absorbing_ends: bool },
-    Scatter { defect: String, v0: f64, impurity: usize, method: String, absorbing_ends: bool },
+    Launch {
+        defect: String,
+        position: f64,
+        v0: f64,
+        direction: String,
+    },
+    Propagate {
+        theta: Vec<f64>,
+        omega: Vec<f64>,
+        t_max: f64,
+        method: String,
+        damping: f64,
+        absorbing_ends: bool,
+    },
+    Scatter {
+        defect: String,
+        v0: f64,
+        impurity: usize,
+        method: String,
+        absorbing_ends: bool,
+    },
 }
 
 #[derive(Deserialize)]
@@ -122,7 +155,11 @@ fn method(name: &str) -> Method {
     if name == "dop853" { Method::dop853() } else { Method::Verlet }
 }
 
-fn banded(c: &RuntimeChain, theta: &[f64], f: impl Fn(&RuntimeChain, &[f64], &mut [f64], &mut [f64])) -> Value {
+fn banded(
+    c: &RuntimeChain,
+    theta: &[f64],
+    f: impl Fn(&RuntimeChain, &[f64], &mut [f64], &mut [f64]),
+) -> Value {
     let n = c.rotor_count();
     let (mut d, mut o) = (vec![0.0; n], vec![0.0; n - 1]);
     f(c, theta, &mut d, &mut o);
@@ -204,7 +241,8 @@ fn compute(case: &Case) -> Result<Value, String> {
             })
         }
         Op::Modes { theta, count } => {
-            let found = modes(&c, theta, &ModeOptions { count: *count, ..ModeOptions::default() }).map_err(|e| s(&e))?;
+            let found = modes(&c, theta, &ModeOptions { count: *count, ..ModeOptions::default() })
+                .map_err(|e| s(&e))?;
             json!({
                 "frequencies": found.iter().map(|m| m.frequency).collect::<Vec<_>>(),
                 "omega_squared": found.iter().map(|m| m.omega_squared).collect::<Vec<_>>(),
