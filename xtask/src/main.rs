@@ -90,12 +90,26 @@ fn test(pytest_args: &[OsString]) -> Step {
         run("cargo test --workspace", Command::new(cargo()).current_dir(&root).args(["test", "--workspace"]));
     let venv = venv.join().map_err(|_| Failure("preparing the Python environment panicked".to_owned()))?;
     rust?;
+    // `cargo test --workspace` has built both reference programs (their integration tests need
+    // them), with the workspace's features; building them again with `cargo build -p` would
+    // compile their dependencies anew with other features.
     python_tests(&root, &venv?, pytest_args)
 }
 
 fn python_only(pytest_args: &[OsString]) -> Step {
     let root = root();
     let venv = prepare_venv(&root)?;
+    run(
+        "cargo build (the Rust references of the Python tests)",
+        Command::new(cargo()).current_dir(&root).args([
+            "build",
+            "--package",
+            "rotor-chain-reference",
+            "--package",
+            "chain-sweep",
+            "--bins",
+        ]),
+    )?;
     python_tests(&root, &venv, pytest_args)
 }
 
@@ -148,19 +162,17 @@ fn prepare_venv(root: &Path) -> Step<PathBuf> {
     Ok(venv)
 }
 
-/// Build the reference programs and the extension (debug), then run pytest.
+/// Build the extension (debug), then run pytest with the reference programs of `target/debug`.
 fn python_tests(root: &Path, venv: &Path, pytest_args: &[OsString]) -> Step {
-    run(
-        "cargo build (the Rust references of the Python tests)",
-        Command::new(cargo()).current_dir(root).args([
-            "build",
-            "--package",
-            "rotor-chain-reference",
-            "--package",
-            "chain-sweep",
-            "--bins",
-        ]),
-    )?;
+    let debug = target_dir(root).join("debug");
+    for program in ["rotor-chain-reference", "phase-diagram"] {
+        if !debug.join(program).is_file() {
+            return Err(Failure(format!(
+                "{} is missing: the Rust build did not make it",
+                debug.join(program).display()
+            )));
+        }
+    }
     let bin = venv.join("bin");
     let mut path = OsString::from(&bin);
     if let Some(old) = env::var_os("PATH") {
@@ -176,7 +188,6 @@ fn python_tests(root: &Path, venv: &Path, pytest_args: &[OsString]) -> Step {
             .env("PATH", &path)
             .env_remove("CONDA_PREFIX"),
     )?;
-    let debug = target_dir(root).join("debug");
     let status = Command::new(bin.join("python"))
         .current_dir(root.join("python"))
         .args(["-m", "pytest", "tests", "-q", "-p", "no:cacheprovider"])
