@@ -106,3 +106,40 @@ def test_a_worker_killed_mid_sweep_costs_only_its_chunk(client, expected):
     while len(client.nthreads()) < 2 and time.monotonic() < deadline:
         time.sleep(0.1)
     assert len(client.nthreads()) == 2
+
+
+def test_a_chunk_dask_gives_up_on_is_submitted_again(expected):
+    """With ``allowed-failures: 0`` the scheduler raises KilledWorker at the first death instead of
+    rescheduling; phase_diagram then submits the chunk again itself (key ``...-try-1``)."""
+    import dask
+
+    with dask.config.set({"distributed.scheduler.allowed-failures": 0}):
+        with LocalCluster(
+            n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None, silence_logs=logging.CRITICAL
+        ) as cluster, Client(cluster) as client:
+            pids = client.run(os.getpid)
+            progressed, result = threading.Event(), {}
+
+            def run():
+                try:
+                    result["records"] = sweep.phase_diagram(
+                        *GRID, client=client, chunk_size=2, progress=lambda done, total: done >= 4 and progressed.set()
+                    )
+                except BaseException as e:
+                    result["error"] = e
+
+            thread = threading.Thread(target=run)
+            thread.start()
+            assert progressed.wait(120)
+            killed, deadline = None, time.monotonic() + 60
+            while killed is None and time.monotonic() < deadline and thread.is_alive():
+                killed = client.run_on_scheduler(_kill_a_busy_worker, prefix=PREFIX, pids=pids)
+                time.sleep(0.005)
+            assert killed is not None, "the sweep ended before a worker could be killed mid-chunk"
+            thread.join(300)
+            assert "error" not in result, result.get("error")
+            assert result["records"] == expected
+            tag = killed[1][0].split("-chunk-")[0]
+            counts = client.run_on_scheduler(_processing_counts, prefix=tag)
+            resubmitted = {k.split("-try-")[0] for k in counts if k.endswith("-try-1")}
+            assert resubmitted and resubmitted <= {k.split("-try-")[0] for k in killed[1] + killed[2]}, (counts, killed)
