@@ -34,7 +34,7 @@ def main():
     local, t_local = timed("one process, threads", lambda: sweep.phase_diagram("antikink", ki, v0, threads=args.workers))
     cluster, _ = timed(
         f"LocalCluster start ({args.workers} worker processes, 1 thread each)",
-        lambda: LocalCluster(n_workers=args.workers, threads_per_worker=1, dashboard_address=None),
+        lambda: LocalCluster(n_workers=args.workers, threads_per_worker=1, dashboard_address=":0"),
     )
     with cluster, Client(cluster) as client:
         timed("first task on each worker (imports rotor_chain)", lambda: client.run(lambda: __import__("rotor_chain")))

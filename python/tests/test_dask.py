@@ -25,7 +25,7 @@ PREFIX = "phase-diagram-"
 @pytest.fixture(scope="module")
 def client():
     with LocalCluster(
-        n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None, silence_logs=logging.CRITICAL
+        n_workers=2, threads_per_worker=1, processes=True, dashboard_address=":0", silence_logs=logging.CRITICAL
     ) as cluster, Client(cluster) as client:
         yield client
 
@@ -115,7 +115,7 @@ def test_a_chunk_dask_gives_up_on_is_submitted_again(expected):
 
     with dask.config.set({"distributed.scheduler.allowed-failures": 0}):
         with LocalCluster(
-            n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None, silence_logs=logging.CRITICAL
+            n_workers=2, threads_per_worker=1, processes=True, dashboard_address=":0", silence_logs=logging.CRITICAL
         ) as cluster, Client(cluster) as client:
             pids = client.run(os.getpid)
             progressed, result = threading.Event(), {}
