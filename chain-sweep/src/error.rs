@@ -38,8 +38,44 @@ pub enum SweepError {
         path.display()
     )]
     RunMismatch { path: PathBuf, expected: String, found: String },
+    #[error(
+        "{} belongs to another part of the sweep: it holds {found}, this sweep computes {expected}; \
+         use another output file or the same --shard",
+        path.display()
+    )]
+    ShardMismatch { path: PathBuf, expected: String, found: String },
     #[error("{} line {line}: {reason}", path.display())]
     Parse { path: PathBuf, line: usize, reason: String },
+    /// A point appended to a [`crate::ResultsFile`] that is not one of its sweep's.
+    #[error(
+        "point {index:?} is not part of the sweep of {} ({sweep} of a {nx} x {ny} grid)",
+        path.display()
+    )]
+    NotInSweep { path: PathBuf, index: (usize, usize), sweep: String, nx: usize, ny: usize },
+    /// A point appended to a [`crate::ResultsFile`] that already holds it.
+    #[error("point {index:?} is already in {}: a point is written once", path.display())]
+    AlreadyDone { path: PathBuf, index: (usize, usize) },
+    /// [`crate::merge_shards`] was given no shard files, or found none.
+    #[error("no shard files to merge: {reason}")]
+    NoShards { reason: String },
+    /// A file given to [`crate::merge_shards`] is the results file of a whole sweep.
+    #[error("{} is not the file of a shard (its first line has no `; shard I/N`)", path.display())]
+    NotAShard { path: PathBuf },
+    /// The shard files do not make up one split sweep.
+    #[error("the shard files do not make up one sweep: {reason}")]
+    ShardSet { reason: String },
+    /// A grid point is in two shard files (or twice in one).
+    #[error("point {index:?} appears twice: in {} and in {}", first.display(), second.display())]
+    DuplicatePoint { index: (usize, usize), first: PathBuf, second: PathBuf },
+    /// Grid points are in no shard file: those shards have not finished.
+    #[error(
+        "{missing} of the {total} grid points are in no shard file, first {first:?}; unfinished shards: {unfinished}. \
+         Run those shards again (each resumes where it stopped), then merge"
+    )]
+    MissingPoints { missing: usize, total: usize, first: (usize, usize), unfinished: String },
+    /// The merged file would replace a file that is not the results file of the same sweep.
+    #[error("will not replace {}: {reason}", path.display())]
+    WouldOverwrite { path: PathBuf, reason: String },
     #[error("{} is in use by another sweep (it holds the file's lock)", path.display())]
     Locked { path: PathBuf },
     /// The results path names something that is not a regular file (a directory, a FIFO, a

@@ -7,8 +7,10 @@
 //! 0,1,0.01,0.7948717948717949,,,,,,physics not wired yet
 //! ```
 //!
-//! - Line 1, the *preamble*: [`FORMAT_TAG`], the grid's [`Grid::signature`] and the caller's run
-//!   label ([`crate::SweepOptions::run`]). A resumed sweep refuses a file whose grid or run differs.
+//! - Line 1, the *preamble*: [`FORMAT_TAG`], the grid's [`Grid::signature`], the caller's run
+//!   label ([`crate::SweepOptions::run`]) and, in the file of one shard of a split sweep
+//!   ([`crate::Shard`]), `; shard I/N`. A resumed sweep refuses a file whose grid, run or shard
+//!   differs.
 //! - Line 2, the header: `i,j,x,y`, the record's columns, `error`.
 //! - One line per finished point, in the order points finished (not grid order). A point that
 //!   failed has empty record fields and its message in `error`; a point that succeeded has an
@@ -21,11 +23,13 @@ use std::path::Path;
 use crate::error::SweepError;
 use crate::grid::Grid;
 use crate::record::{ParseError, Record, format_f64, parse_field, push_field, split_fields};
+use crate::shard::Shard;
 
 /// How line 1 of every results file starts (the `v1` is the version of this format).
 pub const FORMAT_TAG: &str = "# chain-sweep v1";
 const GRID_KEY: &str = "; grid ";
 const RUN_KEY: &str = "; run ";
+const SHARD_KEY: &str = "; shard ";
 /// The leading columns of every results file, before the record's.
 const INDEX_COLUMNS: [&str; 4] = ["i", "j", "x", "y"];
 /// The trailing column: empty, or the point's error message.
@@ -48,11 +52,23 @@ pub struct Point<R> {
 pub(crate) struct Preamble<'a> {
     pub grid: &'a str,
     pub run: &'a str,
+    pub shard: Option<Shard>,
 }
 
 /// The two lines that start a results file, each ending in `\n`.
-pub(crate) fn preamble<R: Record>(grid: &Grid, run: &str) -> String {
-    format!("{FORMAT_TAG}{GRID_KEY}{}{RUN_KEY}{}\n{}\n", grid.signature(), one_line(run), header_line::<R>())
+pub(crate) fn preamble<R: Record>(grid: &Grid, run: &str, shard: Option<Shard>) -> String {
+    let shard = shard.map_or(String::new(), |s| format!("{SHARD_KEY}{s}"));
+    format!(
+        "{FORMAT_TAG}{GRID_KEY}{}{RUN_KEY}{}{shard}\n{}\n",
+        grid.signature(),
+        one_line(run),
+        header_line::<R>()
+    )
+}
+
+/// How a file's shard is named in messages.
+pub(crate) fn shard_name(shard: Option<Shard>) -> String {
+    shard.map_or("the whole grid".to_owned(), |s| format!("shard {s}"))
 }
 
 /// The run label as it is stored: one line, so control characters become spaces.
@@ -147,6 +163,10 @@ pub(crate) fn read_preamble<'a, R: Record>(
         || SweepError::NotAResultsFile { path: path.to_owned(), found: first.chars().take(120).collect() };
     let rest = first.strip_prefix(FORMAT_TAG).and_then(|r| r.strip_prefix(GRID_KEY)).ok_or_else(not_ours)?;
     let (grid, run) = rest.split_once(RUN_KEY).ok_or_else(not_ours)?;
+    let (run, shard) = match run.rsplit_once(SHARD_KEY).map(|(run, s)| (run, s.parse::<Shard>())) {
+        Some((run, Ok(shard))) => (run, Some(shard)),
+        _ => (run, None),
+    };
     let expected = header_line::<R>();
     let found = match line2 {
         Some(bytes) => text(path, 2, bytes)?,
@@ -155,16 +175,17 @@ pub(crate) fn read_preamble<'a, R: Record>(
     if found != expected {
         return Err(SweepError::HeaderMismatch { path: path.to_owned(), expected, found: found.to_owned() });
     }
-    Ok(Preamble { grid, run })
+    Ok(Preamble { grid, run, shard })
 }
 
-/// Read one point line. With a `grid`, the index must be inside it and the coordinates must be
-/// exactly the grid's.
+/// Read one point line. With a `grid`, the index must be inside it (and inside `shard`) and the
+/// coordinates must be exactly the grid's.
 pub(crate) fn parse_point<R: Record>(
     path: &Path,
     line: usize,
     bytes: &[u8],
     grid: Option<&Grid>,
+    shard: Option<Shard>,
 ) -> Result<Point<R>, SweepError> {
     let fail = |reason: String| SweepError::Parse { path: path.to_owned(), line, reason };
     let fields = split_fields(text(path, line, bytes)?).map_err(|e| fail(e.to_string()))?;
@@ -189,6 +210,9 @@ pub(crate) fn parse_point<R: Record>(
                 coords.0, coords.1, expected.0, expected.1
             )));
         }
+        if let Some(shard) = shard.filter(|s| !s.contains(grid, index)) {
+            return Err(fail(format!("point ({i}, {j}) does not belong to shard {shard}")));
+        }
     }
     let error = fields[expected - 1];
     let outcome = if error.is_empty() {
@@ -209,7 +233,7 @@ pub fn read_points<R: Record>(path: impl AsRef<Path>) -> Result<Vec<Point<R>>, S
     read_preamble::<R>(path, lines.next().map(|l| l.1), lines.next().map(|l| l.1))?;
     lines
         .filter(|(_, bytes)| !bytes.is_empty())
-        .map(|(line, bytes)| parse_point(path, line, bytes, None))
+        .map(|(line, bytes)| parse_point(path, line, bytes, None, None))
         .collect()
 }
 

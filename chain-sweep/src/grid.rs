@@ -198,6 +198,15 @@ impl Grid {
     }
 }
 
+/// The point counts `(nx, ny)` that a [`Grid::signature`] states.
+pub(crate) fn signature_dims(signature: &str) -> Option<(usize, usize)> {
+    let count = |key: &str| -> Option<usize> {
+        let part = signature.split(' ').find_map(|p| p.strip_prefix(key))?;
+        part.rsplit(':').next()?.parse().ok()
+    };
+    Some((count("x=")?, count("y=")?))
+}
+
 /// 64-bit FNV-1a: a tiny, stable, dependency-free hash (std's `DefaultHasher` may change between
 /// Rust releases, and the signature must not).
 struct Fnv1a(u64);

@@ -40,18 +40,24 @@
 //! | [`grid`] | [`Axis`] (`FROM:TO:COUNT`), [`Grid`] and its signature |
 //! | [`record`] | the [`Record`] trait and field helpers |
 //! | [`file`](mod@file) | the results file format, [`read_points`], [`read_results`] |
-//! | [`sweep`] | [`run_sweep`], [`SweepOptions`], [`Summary`]; the crash-safety rules |
+//! | [`sweep`] | [`run_sweep`], [`SweepOptions`], [`Summary`], [`ResultsFile`]; the crash-safety rules |
+//! | [`shard`] | [`Shard`]: one of `N` interleaved parts of a grid, for job arrays; `--shard slurm` |
+//! | [`merge`] | [`merge_shards`]: the shard files of a split sweep joined into the whole diagram |
 //! | [`scattering`] | [`scattering::PhaseDiagram`]: one point of the scattering phase diagram, its energy budget, and [`scattering::PointRecord`], its record |
 
 pub mod error;
 pub mod file;
 pub mod grid;
+pub mod merge;
 pub mod record;
 pub mod scattering;
+pub mod shard;
 pub mod sweep;
 
 pub use error::SweepError;
 pub use file::{Point, ResultRow, read_points, read_results};
 pub use grid::{Axis, Grid, GridError};
+pub use merge::{MergeSummary, find_shards, merge_shards};
 pub use record::{ParseError, Record};
-pub use sweep::{Summary, SweepOptions, compute_grid, run_sweep};
+pub use shard::{Shard, ShardError};
+pub use sweep::{ResultsFile, Summary, SweepOptions, compute_grid, run_sweep};

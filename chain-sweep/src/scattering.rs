@@ -14,10 +14,11 @@
 use std::fmt;
 use std::str::FromStr;
 
-use rotor_chain::RuntimeChain;
+use rotor_chain::dynamics::DynamicsError;
 use rotor_chain::dynamics::run::{ABSORBING_ENDS, Method, RunOptions};
 use rotor_chain::dynamics::scatter::{ScatterSetup, Scattering, scatter};
 use rotor_chain::statics::walls::Charge;
+use rotor_chain::{ParameterError, RuntimeChain};
 
 use crate::record::{ParseError, Record, expect_fields, format_f64, parse_field};
 
@@ -47,6 +48,12 @@ impl Defect {
             Defect::Kink => Charge::Kink,
             Defect::Antikink => Charge::Antikink,
         }
+    }
+}
+
+impl fmt::Display for Defect {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
     }
 }
 
@@ -88,12 +95,18 @@ impl Integrator {
     }
 }
 
+impl fmt::Display for Integrator {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
 /// A phase-diagram configuration that cannot be computed.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 #[non_exhaustive]
 pub enum ConfigError {
     #[error("invalid chain: {0}")]
-    Chain(String),
+    Chain(#[from] ParameterError),
     #[error("invalid {name}: {value} must be {rule}")]
     Value { name: &'static str, value: f64, rule: &'static str },
 }
@@ -136,7 +149,7 @@ impl PhaseDiagram {
     /// The paper's chain of Sec. VI with these parameters, checked: free ends, Verlet, the
     /// default energy tolerance, `t_max = 20`.
     pub fn new(n: usize, r: f64, k: f64, theta_bar: f64, defect: Defect) -> Result<Self, ConfigError> {
-        RuntimeChain::builder(n, r, k, theta_bar).build().map_err(|e| ConfigError::Chain(e.to_string()))?;
+        RuntimeChain::builder(n, r, k, theta_bar).build()?;
         Ok(Self {
             n,
             r,
@@ -220,13 +233,12 @@ impl PhaseDiagram {
     }
 
     /// The chain with the impurity `k_i = ki_ratio * k` on the middle spring.
-    pub fn chain(&self, ki_ratio: f64) -> Result<RuntimeChain, String> {
-        self.check_ki(ki_ratio).map_err(|e| e.to_string())?;
-        RuntimeChain::builder(self.n, self.r, self.k, self.theta_bar)
+    pub fn chain(&self, ki_ratio: f64) -> Result<RuntimeChain, PointError> {
+        self.check_ki(ki_ratio)?;
+        Ok(RuntimeChain::builder(self.n, self.r, self.k, self.theta_bar)
             .mass(self.mass)
             .spring(self.impurity(), Some(ki_ratio * self.k), None)
-            .build()
-            .map_err(|e| e.to_string())
+            .build()?)
     }
 
     /// The paper's experiment (Sec. VI) for this point: the defect 15 sites to the right of the
@@ -246,48 +258,51 @@ impl PhaseDiagram {
     }
 
     /// One point of the diagram (module doc): the run, its energy budget, and the record.
-    pub fn compute_point(&self, ki_ratio: f64, v0: f64) -> Result<PointRecord, String> {
+    pub fn compute_point(&self, ki_ratio: f64, v0: f64) -> Result<PointRecord, PointError> {
         let model = self.chain(ki_ratio)?;
-        let run = |integrator: Integrator| -> Result<Scattering, String> {
-            scatter(&model, &self.setup(v0, integrator)).map_err(|e| format!("{}: {e}", integrator.name()))
+        let run = |integrator: Integrator| -> Result<Scattering, PointError> {
+            scatter(&model, &self.setup(v0, integrator))
+                .map_err(|source| PointError::Run { integrator, source })
         };
-        let first = run(self.integrator);
-        let over = |s: &Scattering| s.run.report.relative_energy_error() > self.energy_tolerance;
-        let (result, recomputed) = match first {
-            Ok(s) if !over(&s) => (s, None),
+        let error_of = |s: &Scattering| s.run.report.relative_energy_error();
+        let (result, integrator) = match run(self.integrator) {
+            Ok(s) if error_of(&s) <= self.energy_tolerance => (s, Recomputed::No(self.integrator)),
             first if self.recompute && self.integrator == Integrator::Verlet => {
-                let why = match &first {
-                    Ok(s) => format!("energy error {:.3e}", s.run.report.relative_energy_error()),
-                    Err(e) => e.clone(),
+                let verlet = match first {
+                    Ok(s) => VerletBreach::EnergyError { error: error_of(&s) },
+                    Err(PointError::Run { source, .. }) => VerletBreach::Failed { source },
+                    Err(other) => return Err(other),
                 };
-                let again = run(Integrator::Dop853).map_err(|e| format!("{why}; {e}"))?;
-                (again, Some(why))
+                let over = |s: Scattering| {
+                    let error = error_of(&s);
+                    if error <= self.energy_tolerance {
+                        Ok(s)
+                    } else {
+                        Err(PointError::EnergyBudget {
+                            error,
+                            tolerance: self.energy_tolerance,
+                            integrator: Integrator::Dop853,
+                        })
+                    }
+                };
+                match run(Integrator::Dop853).and_then(over) {
+                    Ok(s) => (s, Recomputed::Dop853),
+                    Err(dop853) => return Err(PointError::Recomputed { verlet, dop853: Box::new(dop853) }),
+                }
             }
             Ok(s) => {
-                return Err(format!(
-                    "energy error {:.3e} above the tolerance {:.1e} ({})",
-                    s.run.report.relative_energy_error(),
-                    self.energy_tolerance,
-                    s.run.integrator
-                ));
+                return Err(PointError::EnergyBudget {
+                    error: error_of(&s),
+                    tolerance: self.energy_tolerance,
+                    integrator: self.integrator,
+                });
             }
             Err(e) => return Err(e),
         };
-        let error = result.run.report.relative_energy_error();
-        if over(&result) {
-            let before = recomputed.map_or(String::new(), |why| format!("verlet: {why}; "));
-            return Err(format!(
-                "{before}energy error {error:.3e} above the tolerance {:.1e} ({})",
-                self.energy_tolerance, result.run.integrator
-            ));
+        if let Some(&time) = result.run.tracker.violations.first() {
+            return Err(PointError::SpunThroughPi { time, outputs: result.run.tracker.violations.len() });
         }
-        if let Some(&t) = result.run.tracker.violations.first() {
-            return Err(format!(
-                "the rotors spun through |theta| = pi at t = {t} ({} outputs): walls cannot be read from signs",
-                result.run.tracker.violations.len()
-            ));
-        }
-        let last = result.run.tracker.snapshots.last().ok_or("the run recorded nothing")?;
+        let last = result.run.tracker.snapshots.last().ok_or(PointError::NothingRecorded)?;
         let (kinks_final, antikinks_final) = last.counts();
         Ok(PointRecord {
             outcome: result.outcome,
@@ -296,13 +311,74 @@ impl PhaseDiagram {
             later: result.later,
             kinks_final,
             antikinks_final,
-            energy_error: error,
-            integrator: if recomputed.is_some() {
-                Recomputed::Dop853
-            } else {
-                Recomputed::No(self.integrator)
-            },
+            energy_error: error_of(&result),
+            integrator,
         })
+    }
+}
+
+/// Why a phase-diagram point has no record. Its `Display` is the text of the results file's
+/// `error` column.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum PointError {
+    /// The impurity stiffness ratio is outside its range ([`PhaseDiagram::check_ki`]).
+    #[error(transparent)]
+    Config(#[from] ConfigError),
+    /// The chain with the impurity breaks a parameter rule.
+    #[error(transparent)]
+    Chain(#[from] ParameterError),
+    /// The scattering run of `integrator` failed: the launch, or the integration (for example its
+    /// own 10 % energy limit, or a state that is not finite).
+    #[error("{integrator}: {source}")]
+    Run {
+        integrator: Integrator,
+        #[source]
+        source: DynamicsError,
+    },
+    /// The run's largest relative energy error is above the tolerance.
+    #[error("energy error {error:.3e} above the tolerance {tolerance:.1e} ({integrator})")]
+    EnergyBudget { error: f64, tolerance: f64, integrator: Integrator },
+    /// The Verlet run broke the energy budget (or failed), and its DOP853 recomputation did not
+    /// succeed either: `dop853` is a [`PointError::Run`] or a [`PointError::EnergyBudget`].
+    #[error("{}", recomputed_message(verlet, dop853))]
+    Recomputed { verlet: VerletBreach, dop853: Box<PointError> },
+    /// The tracker's charge check failed: rotors spun through `|theta| = pi`, so the walls
+    /// cannot be read from the signs of the angles. `time` is the first output where it failed.
+    #[error(
+        "the rotors spun through |theta| = pi at t = {time} ({outputs} outputs): walls cannot be read from signs"
+    )]
+    SpunThroughPi { time: f64, outputs: usize },
+    /// The run ended before its first output.
+    #[error("the run recorded nothing")]
+    NothingRecorded,
+}
+
+/// Why the Verlet run of a point was recomputed with DOP853.
+#[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
+pub enum VerletBreach {
+    /// Its largest relative energy error, above the tolerance.
+    EnergyError { error: f64 },
+    /// It stopped with an error.
+    Failed { source: DynamicsError },
+}
+
+impl fmt::Display for VerletBreach {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            VerletBreach::EnergyError { error } => write!(f, "energy error {error:.3e}"),
+            VerletBreach::Failed { source } => write!(f, "verlet: {source}"),
+        }
+    }
+}
+
+/// The text of [`PointError::Recomputed`]: `verlet: <why>; energy error ... (dop853)` when
+/// DOP853 broke the budget too, `<why>; dop853: <error>` when it failed.
+fn recomputed_message(verlet: &VerletBreach, dop853: &PointError) -> String {
+    match dop853 {
+        PointError::EnergyBudget { .. } => format!("verlet: {verlet}; {dop853}"),
+        _ => format!("{verlet}; {dop853}"),
     }
 }
 

@@ -6,12 +6,17 @@
 //! the middle of that call can leave one unfinished last line. (2) A restart cuts that line off
 //! and computes exactly the points the file lacks, so no point is ever written twice. (3) The
 //! file is locked while a sweep runs, so two sweeps cannot append to it at once.
+//!
+//! [`ResultsFile`] is that file, opened and resumed; [`run_sweep`] computes its missing points on
+//! a thread pool, and callers that compute points elsewhere (other processes, a Dask cluster)
+//! append them to it themselves.
 
 use std::collections::HashMap;
 use std::collections::hash_map::Entry;
 use std::fmt::Display;
 use std::fs::{File, OpenOptions, TryLockError};
 use std::io::{IsTerminal, Read, Write};
+use std::marker::PhantomData;
 use std::panic::{AssertUnwindSafe, catch_unwind};
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;
@@ -27,6 +32,7 @@ use crate::file::{
 };
 use crate::grid::Grid;
 use crate::record::Record;
+use crate::shard::Shard;
 
 /// How a sweep runs. Build with [`SweepOptions::new`] and change fields as needed.
 #[derive(Clone, Debug)]
@@ -49,6 +55,9 @@ pub struct SweepOptions {
     pub sync_interval: Duration,
     /// Draw a progress bar on stderr if stderr is a terminal (it never is in CI).
     pub progress: bool,
+    /// Compute only this shard's points (its file says so: `; shard I/N` on line 1); `None`:
+    /// the whole grid.
+    pub shard: Option<Shard>,
 }
 
 impl SweepOptions {
@@ -60,6 +69,7 @@ impl SweepOptions {
             retry_failed: false,
             sync_interval: Duration::from_millis(500),
             progress: true,
+            shard: None,
         }
     }
 }
@@ -68,7 +78,7 @@ impl SweepOptions {
 #[derive(Clone, Debug, Default, PartialEq)]
 #[non_exhaustive]
 pub struct Summary {
-    /// Points in the grid.
+    /// Points in the grid (in the shard, for a shard's sweep).
     pub total: usize,
     /// Points the file already had, so not computed again.
     pub skipped: usize,
@@ -109,42 +119,30 @@ where
     F: Fn(f64, f64) -> Result<R, E> + Sync,
 {
     let start = Instant::now();
-    let path = path.as_ref();
-    check_record_header::<R>()?;
     let pool = thread_pool(options.threads)?;
-    let resumed = resume::<R>(grid, path, options)?;
-    let mut summary = Summary {
-        total: grid.len(),
-        skipped: resumed.done.len(),
-        failed_before: resumed.done.values().filter(|&&failed| failed).count(),
-        retried: resumed.retried,
-        duplicates: resumed.duplicates,
-        repaired_bytes: resumed.repaired_bytes,
-        ..Summary::default()
-    };
-    let todo: Vec<(usize, usize)> = grid.indices().filter(|ij| !resumed.done.contains_key(ij)).collect();
+    let file = ResultsFile::<R>::open(grid, path, options)?;
+    let mut summary = file.summary.clone();
+    let todo = file.missing();
 
     let bar = progress_bar(&options.name, summary.total, summary.skipped, todo.len(), options.progress);
-    let appender = Mutex::new(Appender::new(resumed.file, path, options.sync_interval));
+    let file = Mutex::new(file);
     let failed = AtomicUsize::new(0);
     let outcome = pool.install(|| {
         todo.par_iter().try_for_each(|&(i, j)| {
             let coords = (grid.xs()[i], grid.ys()[j]);
             let result = compute_one(&compute, coords);
-            let line = format_point((i, j), coords, &result);
             if result.is_err() {
                 let failed = failed.fetch_add(1, Ordering::Relaxed) + 1;
                 bar.set_message(format!("{} ({failed} failed)", options.name));
             }
             // A thread that panicked while holding the lock cannot have left a half line in the
             // file (`append` does not panic), so a poisoned lock is still usable.
-            appender.lock().unwrap_or_else(|e| e.into_inner()).append(&line)?;
+            file.lock().unwrap_or_else(|e| e.into_inner()).append((i, j), &result)?;
             bar.inc(1);
             Ok::<_, SweepError>(())
         })
     });
-    let mut appender = appender.into_inner().unwrap_or_else(|e| e.into_inner());
-    let synced = appender.sync();
+    let synced = file.into_inner().unwrap_or_else(|e| e.into_inner()).finish();
     bar.finish();
     outcome?;
     synced?;
@@ -152,6 +150,106 @@ where
     summary.failed = failed.into_inner();
     summary.elapsed = start.elapsed();
     Ok(summary)
+}
+
+/// A results file opened by one sweep: locked, checked against the sweep's grid, run label and
+/// shard, its unfinished last line cut off, with the points it already holds (see the module
+/// doc for the rules). Append each computed point with [`ResultsFile::append`]; it reaches the
+/// file as one whole line at once.
+pub struct ResultsFile<R> {
+    grid: Grid,
+    shard: Option<Shard>,
+    appender: Appender,
+    /// Finished points, and whether each failed.
+    done: HashMap<(usize, usize), bool>,
+    summary: Summary,
+    record: PhantomData<fn() -> R>,
+}
+
+impl<R: Record> ResultsFile<R> {
+    /// Open (or create) the results file of the sweep of `grid` described by `options` (its
+    /// `run`, `shard`, `retry_failed` and `sync_interval`): the same checks and repairs as
+    /// [`run_sweep`], which is built on it.
+    pub fn open(grid: &Grid, path: impl AsRef<Path>, options: &SweepOptions) -> Result<Self, SweepError> {
+        let path = path.as_ref();
+        check_record_header::<R>()?;
+        let resumed = resume::<R>(grid, path, options)?;
+        let total = match options.shard {
+            Some(shard) => grid.indices().filter(|&ij| shard.contains(grid, ij)).count(),
+            None => grid.len(),
+        };
+        let summary = Summary {
+            total,
+            skipped: resumed.done.len(),
+            failed_before: resumed.done.values().filter(|&&failed| failed).count(),
+            retried: resumed.retried,
+            duplicates: resumed.duplicates,
+            repaired_bytes: resumed.repaired_bytes,
+            ..Summary::default()
+        };
+        Ok(Self {
+            grid: grid.clone(),
+            shard: options.shard,
+            appender: Appender::new(resumed.file, path, options.sync_interval),
+            done: resumed.done,
+            summary,
+            record: PhantomData,
+        })
+    }
+
+    pub fn path(&self) -> &Path {
+        &self.appender.path
+    }
+
+    pub fn grid(&self) -> &Grid {
+        &self.grid
+    }
+
+    /// What the file held when it was opened ([`Summary::skipped`], [`Summary::failed_before`],
+    /// repairs); the counts of this run are the caller's.
+    pub fn summary(&self) -> &Summary {
+        &self.summary
+    }
+
+    /// The points of the sweep (of its shard) that the file lacks, in grid order.
+    pub fn missing(&self) -> Vec<(usize, usize)> {
+        self.grid
+            .indices()
+            .filter(|ij| {
+                self.shard.is_none_or(|s| s.contains(&self.grid, *ij)) && !self.done.contains_key(ij)
+            })
+            .collect()
+    }
+
+    /// Append point `index` with its record or its error message. A point outside the sweep
+    /// (the grid, or the shard) or already in the file is refused, and nothing is written.
+    pub fn append(&mut self, index: (usize, usize), outcome: &Result<R, String>) -> Result<(), SweepError> {
+        let (i, j) = index;
+        let coords =
+            self.grid.point(i, j).filter(|_| self.shard.is_none_or(|s| s.contains(&self.grid, index)));
+        let Some(coords) = coords else {
+            return Err(SweepError::NotInSweep {
+                path: self.appender.path.clone(),
+                index,
+                sweep: crate::file::shard_name(self.shard),
+                nx: self.grid.xs().len(),
+                ny: self.grid.ys().len(),
+            });
+        };
+        if self.done.contains_key(&index) {
+            return Err(SweepError::AlreadyDone { path: self.appender.path.clone(), index });
+        }
+        self.appender.append(&format_point(index, coords, outcome))?;
+        self.done.insert(index, outcome.is_err());
+        Ok(())
+    }
+
+    /// Sync the file to disk and close it (dropping it closes it too, syncing at most what the
+    /// kernel already holds).
+    pub fn finish(mut self) -> Result<Summary, SweepError> {
+        self.appender.sync()?;
+        Ok(self.summary)
+    }
 }
 
 /// Compute `compute(x, y)` at every point of `grid` in parallel, in memory (no file): the points
@@ -223,7 +321,7 @@ fn resume<R: Record>(grid: &Grid, path: &Path, options: &SweepOptions) -> Result
     let mut file = open_locked(path)?;
     let mut bytes = Vec::new();
     file.read_to_end(&mut bytes).map_err(SweepError::io("read", path))?;
-    let preamble = file::preamble::<R>(grid, &options.run);
+    let preamble = file::preamble::<R>(grid, &options.run, options.shard);
     let mut resumed =
         Resumed { file, done: HashMap::new(), duplicates: Vec::new(), repaired_bytes: 0, retried: 0 };
 
@@ -246,9 +344,13 @@ fn resume<R: Record>(grid: &Grid, path: &Path, options: &SweepOptions) -> Result
     if let Some((path, expected, found)) = mismatch(file::one_line(&options.run), found.run) {
         return Err(SweepError::RunMismatch { path, expected, found });
     }
+    if found.shard != options.shard {
+        let (expected, found) = (file::shard_name(options.shard), file::shard_name(found.shard));
+        return Err(SweepError::ShardMismatch { path: path.to_owned(), expected, found });
+    }
     let mut failed_lines = Vec::new();
     for (line, text) in lines.filter(|(_, text)| !text.is_empty()) {
-        let point = parse_point::<R>(path, line, text, Some(grid))?;
+        let point = parse_point::<R>(path, line, text, Some(grid), options.shard)?;
         let failed = point.outcome.is_err();
         if failed {
             failed_lines.push(point.line);

@@ -7,10 +7,20 @@
 //! phase-diagram --defect antikink --ki 0.01:3:40:log --v0 0.5:12:40 --out antikink.csv
 //! ```
 //!
-//! Exit status: 0 every point computed; 1 the sweep could not run or stopped (a file of another
-//! sweep, a locked file, an I/O error: the message says why); 2 bad arguments or an invalid
-//! value, nothing written; 3 the sweep finished but some points failed (their errors are in the
-//! file's `error` column; `--retry-failed` computes them again).
+//! Split over the tasks of a job array, each task computes one shard into its own file
+//! (`--shard I/N`, or `--shard slurm` in a SLURM array), and `merge` joins them:
+//!
+//! ```text
+//! phase-diagram --defect antikink --ki 0.01:3:40:log --v0 0.5:12:40 --out antikink.csv --shard 3/8
+//!     # writes antikink.shard-3-of-8.csv
+//! phase-diagram merge --out antikink.csv   # every antikink.shard-I-of-8.csv beside it
+//! ```
+//!
+//! Exit status: 0 every point computed (merged); 1 the sweep (merge) could not run or stopped (a
+//! file of another sweep, a locked file, an I/O error, shards that are missing points: the
+//! message says why); 2 bad arguments or an invalid value, nothing written; 3 the sweep (merge)
+//! finished but some points failed (their errors are in the file's `error` column;
+//! `--retry-failed` computes them again).
 
 use std::num::NonZeroUsize;
 use std::path::PathBuf;
@@ -20,23 +30,34 @@ use std::time::Duration;
 use chain_sweep::scattering::{
     DEFAULT_ENERGY_TOLERANCE, Defect, Ends, Integrator, PhaseDiagram, PointRecord, fake_point,
 };
-use chain_sweep::{Axis, Grid, Summary, SweepError, SweepOptions, run_sweep};
-use clap::{Parser, ValueEnum};
+use chain_sweep::{
+    Axis, Grid, MergeSummary, Shard, Summary, SweepError, SweepOptions, find_shards, merge_shards, run_sweep,
+};
+use clap::{Parser, Subcommand, ValueEnum};
 
 /// Sweep a scattering phase diagram: a kink or antikink launched at speed v0 towards an impurity
 /// spring of stiffness k_i, one simulation per grid point. Results are appended to --out as they
 /// finish; rerun the same command to resume. Exit status: 0 done, 1 the sweep could not run,
-/// 2 bad arguments, 3 some points failed.
+/// 2 bad arguments, 3 some points failed. `phase-diagram merge --help`: join the files of a sweep
+/// split with --shard.
 #[derive(Debug, Parser)]
-#[command(name = "phase-diagram", version, allow_negative_numbers = true)]
+#[command(
+    name = "phase-diagram",
+    version,
+    allow_negative_numbers = true,
+    args_conflicts_with_subcommands = true,
+    subcommand_negates_reqs = true
+)]
 struct Cli {
+    #[command(subcommand)]
+    command: Option<Command>,
     /// Impurity stiffness ratio k_i/k, evenly spaced (both ends included), or evenly spaced in
     /// the logarithm with a fourth part `log` (0.01:3:40:log); every value > 0
-    #[arg(long, value_name = "FROM:TO:COUNT[:log]", allow_hyphen_values = true)]
-    ki: Axis,
+    #[arg(long, value_name = "FROM:TO:COUNT[:log]", allow_hyphen_values = true, required = true)]
+    ki: Option<Axis>,
     /// Launch speed of the defect, evenly spaced (both ends included)
-    #[arg(long, value_name = "FROM:TO:COUNT[:log]", allow_hyphen_values = true)]
-    v0: Axis,
+    #[arg(long, value_name = "FROM:TO:COUNT[:log]", allow_hyphen_values = true, required = true)]
+    v0: Option<Axis>,
     /// Number of rotors (the paper's phase diagram: 60)
     #[arg(long, default_value_t = 60)]
     n: usize,
@@ -50,8 +71,8 @@ struct Cli {
     #[arg(long, default_value_t = 0.28)]
     theta_bar: f64,
     /// The defect launched at the impurity
-    #[arg(long, value_enum)]
-    defect: DefectArg,
+    #[arg(long, value_enum, required = true)]
+    defect: Option<DefectArg>,
     /// The chain's ends: free (the paper's) or absorbing (a damping sponge on the last 10 rotors)
     #[arg(long, value_enum, default_value_t = EndsArg::Free)]
     ends: EndsArg,
@@ -71,9 +92,15 @@ struct Cli {
     /// End time of each run
     #[arg(long, default_value_t = 20.0)]
     t_max: f64,
-    /// The results file (CSV); created if missing, resumed if it holds part of this sweep
-    #[arg(long, value_name = "FILE")]
-    out: PathBuf,
+    /// The results file (CSV); created if missing, resumed if it holds part of this sweep. With
+    /// --shard I/N the shard's own file, FILE with `.shard-I-of-N` before its extension
+    #[arg(long, value_name = "FILE", required = true)]
+    out: Option<PathBuf>,
+    /// Compute only shard I of N (every N-th grid point from the I-th, I from 0) into its own
+    /// file, for a job array; `slurm`: this task's shard of a SLURM job array
+    /// (SLURM_ARRAY_TASK_ID of SLURM_ARRAY_TASK_COUNT). `phase-diagram merge` joins the shards
+    #[arg(long, value_name = "I/N|slurm")]
+    shard: Option<String>,
     /// Worker threads [default: every core]
     #[arg(long)]
     threads: Option<NonZeroUsize>,
@@ -84,6 +111,25 @@ struct Cli {
     /// many milliseconds per point
     #[arg(long, hide = true, value_name = "MS")]
     fake_delay_ms: Option<u64>,
+}
+
+#[derive(Debug, Subcommand)]
+enum Command {
+    /// Join the shard files of a sweep split with --shard into the whole diagram: every grid
+    /// point must be in exactly one shard file, all of the same grid and run. Exit status: 0
+    /// merged, 1 cannot merge (the message says why; nothing written), 3 merged but some points
+    /// failed.
+    Merge(MergeArgs),
+}
+
+#[derive(Debug, clap::Args)]
+struct MergeArgs {
+    /// The whole diagram's results file: the --out the shards were given
+    #[arg(long, value_name = "FILE")]
+    out: PathBuf,
+    /// The shard files [default: every FILE.shard-I-of-N beside --out, as --shard names them]
+    #[arg(value_name = "SHARD_FILE")]
+    shards: Vec<PathBuf>,
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
@@ -115,10 +161,10 @@ enum Failure {
 }
 
 /// The phase diagram of the arguments, checked.
-fn diagram(cli: &Cli) -> Result<PhaseDiagram, Failure> {
+fn diagram(cli: &Cli, ki: &Axis, v0: &Axis) -> Result<PhaseDiagram, Failure> {
     let defect = match cli.defect {
-        DefectArg::Kink => Defect::Kink,
-        DefectArg::Antikink => Defect::Antikink,
+        Some(DefectArg::Kink) | None => Defect::Kink,
+        Some(DefectArg::Antikink) => Defect::Antikink,
     };
     let usage = |e: chain_sweep::scattering::ConfigError| Failure::Usage(e.to_string());
     let mut d = PhaseDiagram::new(cli.n, cli.r, cli.k, cli.theta_bar, defect).map_err(usage)?;
@@ -135,10 +181,10 @@ fn diagram(cli: &Cli) -> Result<PhaseDiagram, Failure> {
     d.recompute = !cli.no_recompute;
     d.t_max = cli.t_max;
     d.check().map_err(usage)?;
-    for &ki in cli.ki.values() {
+    for &ki in ki.values() {
         d.check_ki(ki).map_err(|e| Failure::Usage(format!("invalid --ki: {e}")))?;
     }
-    for &v0 in cli.v0.values() {
+    for &v0 in v0.values() {
         if !(v0 >= 0.0 && v0.is_finite()) {
             return Err(Failure::Usage(format!("invalid --v0: every launch speed must be >= 0, got {v0}")));
         }
@@ -149,10 +195,30 @@ fn diagram(cli: &Cli) -> Result<PhaseDiagram, Failure> {
 fn main() -> ExitCode {
     // clap prints usage errors itself and exits with status 2.
     let cli = Cli::parse();
-    match run(&cli) {
-        Ok(summary) => {
-            report(&cli, &summary);
-            if summary.failed + summary.failed_before > 0 { ExitCode::from(3) } else { ExitCode::SUCCESS }
+    let result = match &cli.command {
+        Some(Command::Merge(args)) => merge(args).map(|summary| {
+            eprintln!(
+                "phase-diagram: merged {} shards into {}: {} points ({} failed); run {}",
+                summary.shards,
+                args.out.display(),
+                summary.total,
+                summary.failed,
+                summary.run
+            );
+            summary.failed
+        }),
+        None => run(&cli).map(|(summary, out)| {
+            report(&cli, &out, &summary);
+            summary.failed + summary.failed_before
+        }),
+    };
+    match result {
+        Ok(failed) => {
+            if failed > 0 {
+                ExitCode::from(3)
+            } else {
+                ExitCode::SUCCESS
+            }
         }
         Err(Failure::Usage(message)) => {
             eprintln!("phase-diagram: error: {message}");
@@ -165,10 +231,30 @@ fn main() -> ExitCode {
     }
 }
 
+/// The shard of `--shard`, if any.
+fn shard(cli: &Cli) -> Result<Option<Shard>, Failure> {
+    let usage = |e: chain_sweep::ShardError| Failure::Usage(format!("invalid --shard: {e}"));
+    match cli.shard.as_deref() {
+        None => Ok(None),
+        Some("slurm") => Shard::from_slurm_env().map(Some).map_err(usage),
+        Some(spec) => spec.parse().map(Some).map_err(usage),
+    }
+}
+
 /// Check everything, then sweep. Nothing is written before every argument has been checked.
-fn run(cli: &Cli) -> Result<Summary, Failure> {
-    let d = diagram(cli)?;
-    let grid = Grid::new(cli.ki.clone(), cli.v0.clone()).map_err(|e| Failure::Usage(e.to_string()))?;
+/// Returns the summary and the file written.
+fn run(cli: &Cli) -> Result<(Summary, PathBuf), Failure> {
+    let missing = |name: &str| Failure::Usage(format!("the argument {name} is required"));
+    let (ki, v0) =
+        (cli.ki.as_ref().ok_or_else(|| missing("--ki"))?, cli.v0.as_ref().ok_or_else(|| missing("--v0"))?);
+    let out = cli.out.as_ref().ok_or_else(|| missing("--out"))?;
+    let d = diagram(cli, ki, v0)?;
+    let grid = Grid::new(ki.clone(), v0.clone()).map_err(|e| Failure::Usage(e.to_string()))?;
+    let shard = shard(cli)?;
+    let out = match shard {
+        Some(s) => s.file_name(out),
+        None => out.clone(),
+    };
     let fake_delay = cli.fake_delay_ms.map(Duration::from_millis);
     let label = if fake_delay.is_some() {
         d.run_label().replace("physics=scatter-v2", "physics=fake")
@@ -178,23 +264,36 @@ fn run(cli: &Cli) -> Result<Summary, Failure> {
     let mut options = SweepOptions::new(format!("{} phase diagram", d.defect.name()), label);
     options.threads = cli.threads.map(NonZeroUsize::get);
     options.retry_failed = cli.retry_failed;
+    options.shard = shard;
+    if let Some(s) = shard {
+        eprintln!("phase-diagram: shard {s}: its points go to {}", out.display());
+    }
     let compute = |ki_ratio: f64, v0: f64| -> Result<PointRecord, String> {
         match fake_delay {
             Some(delay) => {
                 std::thread::sleep(delay);
                 Ok(fake_point(ki_ratio, v0))
             }
-            None => d.compute_point(ki_ratio, v0),
+            None => d.compute_point(ki_ratio, v0).map_err(|e| e.to_string()),
         }
     };
-    run_sweep(&grid, &cli.out, compute, &options).map_err(|e| match e {
+    let summary = run_sweep(&grid, &out, compute, &options).map_err(|e| match e {
         e @ SweepError::NotAFile { .. } => Failure::Usage(e.to_string()),
         e => Failure::Run(e.to_string()),
-    })
+    })?;
+    Ok((summary, out))
 }
 
-fn report(cli: &Cli, s: &Summary) {
-    let out = cli.out.display();
+/// `phase-diagram merge`.
+fn merge(args: &MergeArgs) -> Result<MergeSummary, Failure> {
+    let run = |e: SweepError| Failure::Run(e.to_string());
+    let shards =
+        if args.shards.is_empty() { find_shards(&args.out).map_err(run)? } else { args.shards.clone() };
+    merge_shards::<PointRecord>(&shards, &args.out).map_err(run)
+}
+
+fn report(cli: &Cli, out: &std::path::Path, s: &Summary) {
+    let out = out.display();
     eprintln!(
         "phase-diagram: {out}: {} points: {} computed now ({} failed), {} already done ({} failed) in {:.1} s",
         s.total,

@@ -117,7 +117,7 @@ fn a_file_cut_inside_its_preamble_starts_afresh() {
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("r.csv");
     let grid = grid("0:1:2", "0:1:2");
-    let preamble = file::preamble::<Probe>(&grid, "probe v1");
+    let preamble = file::preamble::<Probe>(&grid, "probe v1", None);
     for cut in [0, 10, preamble.find('\n').unwrap() + 1, preamble.len() - 1] {
         fs::write(&path, &preamble[..cut]).unwrap();
         let summary = run_sweep(&grid, &path, probe, &options()).unwrap();

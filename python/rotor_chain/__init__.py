@@ -1,0 +1,78 @@
+"""rotor_chain: topological mechanical rotor chains, from Python.
+
+The paper *Kink-antikink asymmetry and impurity interactions in topological mechanical chains*
+(Zhou, Chen, Upadhyaya, Vitelli), computed by the Rust library ``rotor-chain`` through PyO3:
+
+>>> import numpy as np, rotor_chain as rc
+>>> chain = rc.Chain(60, 0.8, 1e4, 0.58)          # n, r/a, k, theta_bar
+>>> theta = chain.kink(29.5)                       # the zero-energy kink (radians)
+>>> bool(chain.energy(theta) < 1e-20)
+True
+>>> pn = chain.peierls_nabarro()                   # antikink minimum, saddle, barrier
+>>> round(pn.barrier, 3)
+0.668
+
+- :class:`Chain`: energy, gradient, tangent stiffness, Hessian, spring lengths, tensions,
+  compatibility, branch solve; statics (``kink``, ``antikink``, ``peierls_nabarro``, ``modes``,
+  ``maxwell_calladine``) and dynamics (``launch``, ``propagate``, ``scatter``) as methods.
+- :mod:`rotor_chain.sweep`: scattering phase diagrams (Fig. ``fig:phasediagram``) on one machine
+  or a Dask cluster, resumable CSV files shared with the ``phase-diagram`` command.
+- :mod:`rotor_chain.errors`: the exceptions, one class per Rust error family.
+
+Units: angles in radians, lengths in the lattice spacing ``a``, energies in ``k a^2``, time in
+the unit ``t`` of the paper's Appendix B (``M = 1``, ``k`` in ``M/t^2``). Arrays are numpy
+``float64``. Long computations release the GIL, so threads run them in parallel.
+"""
+
+from . import errors, sweep
+from ._native import (
+    Antikink,
+    Chain,
+    Continuum,
+    Counting,
+    Launch,
+    Modes,
+    PeierlsNabarro,
+    Run,
+    Scattering,
+    __version__,
+    domain_walls,
+)
+from .errors import (
+    BranchError,
+    ConfigError,
+    DynamicsError,
+    GridError,
+    IntegrateError,
+    ParameterError,
+    PointError,
+    RotorChainError,
+    StaticsError,
+    SweepError,
+)
+
+__all__ = [
+    "Chain",
+    "Continuum",
+    "Antikink",
+    "PeierlsNabarro",
+    "Modes",
+    "Counting",
+    "Launch",
+    "Run",
+    "Scattering",
+    "domain_walls",
+    "sweep",
+    "errors",
+    "RotorChainError",
+    "ParameterError",
+    "BranchError",
+    "StaticsError",
+    "DynamicsError",
+    "IntegrateError",
+    "ConfigError",
+    "PointError",
+    "GridError",
+    "SweepError",
+    "__version__",
+]

@@ -1,0 +1,383 @@
+"""Scattering phase diagrams (paper Sec. VI, Fig. ``fig:phasediagram``), on one machine or a Dask
+cluster.
+
+Every point is the Rust ``PhaseDiagram::compute_point`` of chain-sweep, the one implementation the
+``phase-diagram`` command and the paper reproduction use: a kink or antikink launched at ``v0``
+from 15 sites to the right of an impurity spring of stiffness ``k_i = ki * k`` (the middle
+spring), followed until its outcome is decided and confirmed, and held to an energy budget
+(recomputed with DOP853 above ``energy_tolerance``, or recorded as failed with the numbers).
+
+>>> from rotor_chain import sweep
+>>> records = sweep.phase_diagram("antikink", "0.5:1:2", [4.0], out=None)   # doctest: +SKIP
+>>> [(r["ki"], r["outcome"]) for r in records]                              # doctest: +SKIP
+[(0.5, 'trapped'), (1.0, 'transmitted')]
+
+A *record* is a dict with the columns of the results file: ``i``, ``j`` (grid indices), ``ki``
+(``k_i/k``), ``v0``, ``outcome``, ``t_decided``, ``confirmed``, ``later``, ``t_later``,
+``kinks_final``, ``antikinks_final``, ``energy_error``, ``integrator`` and ``error`` (``None``, or
+the message of a point that failed, whose other fields are then ``None``). Times are in the unit
+``t`` of Appendix B, speeds in ``a/t``.
+
+With ``out=...`` every point is appended to that CSV file the moment it is known, in the format of
+the ``phase-diagram`` command (same first two lines for the same settings): a sweep that is
+interrupted (Ctrl-C, a killed kernel) resumes where it stopped when called again, and the command
+and this function resume each other's files.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import sys
+import uuid
+from typing import Any, Callable, Dict, Iterable, List, Optional, Sequence, Tuple, Union
+
+from . import _native
+from .errors import ConfigError
+
+__all__ = [
+    "OUTCOMES",
+    "COLUMNS",
+    "phase_diagram",
+    "point",
+    "read_results",
+    "outcome_grid",
+    "axis",
+]
+
+Record = Dict[str, Any]
+AxisSpec = Union[str, Sequence[float]]
+Progress = Union[None, bool, Callable[[int, int], None]]
+
+#: Every outcome, in the order of the paper's regimes then the others (docs/dynamics.md §5).
+OUTCOMES: Tuple[str, ...] = (
+    "transmitted",
+    "reflected",
+    "trapped",
+    "split",
+    "annihilated",
+    "disintegrated",
+    "pair-creation",
+    "undecided",
+)
+
+#: The keys of a record, in the order of the results file's columns.
+COLUMNS: Tuple[str, ...] = (
+    "i",
+    "j",
+    "ki",
+    "v0",
+    "outcome",
+    "t_decided",
+    "confirmed",
+    "later",
+    "t_later",
+    "kinks_final",
+    "antikinks_final",
+    "energy_error",
+    "integrator",
+    "error",
+)
+
+DEFAULT_ENERGY_TOLERANCE: float = _native.DEFAULT_ENERGY_TOLERANCE
+
+
+def axis(spec: AxisSpec) -> List[float]:
+    """The values of an axis: ``"FROM:TO:COUNT"`` (evenly spaced, both ends included),
+    ``"FROM:TO:COUNT:log"`` (evenly spaced in the logarithm), as on the ``phase-diagram``
+    command line, or a sequence of finite floats. Raises :class:`~rotor_chain.GridError`."""
+    return _native.axis(spec)
+
+
+def point(
+    defect: str,
+    ki: float,
+    v0: float,
+    *,
+    theta_bar: float = 0.28,
+    n: int = 60,
+    r: float = 0.8,
+    k: float = 1.0e4,
+    mass: float = 1.0,
+    ends: str = "free",
+    integrator: str = "verlet",
+    dt: Optional[float] = None,
+    energy_tolerance: float = DEFAULT_ENERGY_TOLERANCE,
+    recompute: bool = True,
+    t_max: float = 20.0,
+) -> Record:
+    """One point of a phase diagram, as a record (``i = j = 0``). The settings are those of
+    :func:`phase_diagram`.
+
+    Raises:
+        PointError: the point failed (energy budget, a failed run, rotors spun through pi), with
+            the numbers (``variant``, ``error``, ``tolerance``, ``time``, ...).
+        ConfigError: invalid settings.
+    """
+    d = _native.PhaseDiagram(
+        defect,
+        n=n,
+        r=r,
+        k=k,
+        theta_bar=theta_bar,
+        mass=mass,
+        ends=ends,
+        integrator=integrator,
+        dt=dt,
+        energy_tolerance=energy_tolerance,
+        recompute=recompute,
+        t_max=t_max,
+    )
+    return d.compute_point(ki, v0)
+
+
+def phase_diagram(
+    defect: str,
+    ki: AxisSpec,
+    v0: AxisSpec,
+    *,
+    theta_bar: float = 0.28,
+    n: int = 60,
+    r: float = 0.8,
+    k: float = 1.0e4,
+    mass: float = 1.0,
+    ends: str = "free",
+    integrator: str = "verlet",
+    dt: Optional[float] = None,
+    energy_tolerance: float = DEFAULT_ENERGY_TOLERANCE,
+    recompute: bool = True,
+    t_max: float = 20.0,
+    out: Union[None, str, "os.PathLike[str]"] = None,
+    client: Any = None,
+    threads: Optional[int] = None,
+    chunk_size: Optional[int] = None,
+    retry_failed: bool = False,
+    progress: Progress = None,
+    max_resubmits: int = 3,
+) -> List[Record]:
+    """The scattering phase diagram of ``defect`` over ``ki`` (``k_i/k``) x ``v0``, as records in
+    grid order (``ki`` outer, ``v0`` inner).
+
+    Args:
+        defect: ``"kink"`` or ``"antikink"``.
+        ki: impurity stiffness ratios ``k_i/k`` (every value > 0): ``"0.01:3:40:log"``,
+            ``"0.1:1:10"`` or a sequence of floats.
+        v0: launch speeds (``a/t``, every value >= 0), likewise.
+        theta_bar, n, r, k, mass: the chain (paper Sec. VI: 0.28, 60, 0.8, 1e4, 1; ``n >= 20``).
+        ends: ``"free"`` (the paper's) or ``"absorbing"`` (a damping sponge at each end).
+        integrator: ``"verlet"`` (default; recomputed with DOP853 over the energy budget) or
+            ``"dop853"``.
+        dt: Verlet's step (default a tenth of its stability limit).
+        energy_tolerance: the largest relative energy error of a point (default 5e-3).
+        recompute: recompute a point over budget with DOP853 (else it is recorded as failed).
+        t_max: the end of each run (``t``).
+        out: a results file (CSV): created, or resumed if it holds part of this sweep (then only
+            the missing points are computed, and the records returned are all of the file's).
+        client: a ``dask.distributed.Client``: the points are computed in chunks on its workers
+            and gathered here (and appended to ``out`` here). A chunk whose worker dies is computed
+            again; the others are kept.
+        threads: without ``client``, the threads computing points (default: every core).
+        chunk_size: points per chunk (default: about 8 chunks per worker thread with ``client``,
+            ``8 x threads`` without).
+        retry_failed: compute again the points ``out`` records as failed.
+        progress: ``True`` prints ``done/total`` on stderr, ``False`` nothing, a callable is
+            called as ``progress(done, total)``; ``None`` (default) prints only to a terminal.
+        max_resubmits: how often a chunk is submitted again after Dask gave up on it
+            (``KilledWorker``: it killed its worker each time it ran); after that its points are
+            recorded as failed with the reason.
+
+    Raises:
+        ConfigError, GridError: invalid settings or axes (nothing is computed or written).
+        SweepError: ``out`` belongs to another sweep (another grid or settings), is locked by a
+            running sweep, or cannot be written.
+    """
+    settings: Dict[str, Any] = dict(
+        defect=defect,
+        n=n,
+        r=r,
+        k=k,
+        theta_bar=theta_bar,
+        mass=mass,
+        ends=ends,
+        integrator=integrator,
+        dt=dt,
+        energy_tolerance=energy_tolerance,
+        recompute=recompute,
+        t_max=t_max,
+    )
+    d = _native.PhaseDiagram(**settings)  # checks them all: ConfigError or ValueError
+    xs, ys = _native.axis(ki), _native.axis(v0)
+    for x in xs:
+        d.check_ki(x)
+    for y in ys:
+        if not (y >= 0.0 and math.isfinite(y)):
+            raise ConfigError(
+                f"invalid v0: every launch speed must be >= 0, got {y}",
+                "Value",
+                {"name": "v0", "value": y, "rule": ">= 0 and finite"},
+            )
+    if threads is not None and threads < 1:
+        raise ValueError(f"threads must be at least 1, got {threads}")
+    if chunk_size is not None and chunk_size < 1:
+        raise ValueError(f"chunk_size must be at least 1, got {chunk_size}")
+
+    file = None
+    if out is not None:
+        file = _native.ResultsFile(xs, ys, os.fspath(out), d.run_label, retry_failed=retry_failed)
+        todo = file.missing()
+    else:
+        todo = [(i, j) for i in range(len(xs)) for j in range(len(ys))]
+    points = [(i, j, xs[i], ys[j]) for i, j in todo]
+    records: List[Record] = []
+
+    def sink(record: Record) -> None:
+        if file is not None:
+            file.append(record)
+        else:
+            records.append(record)
+
+    report = _progress(progress, len(points), f"{defect} phase diagram")
+    try:
+        if client is None:
+            _run_local(d, points, threads, chunk_size, sink, report)
+        else:
+            _run_dask(client, settings, points, chunk_size, sink, report, max_resubmits)
+    finally:
+        if file is not None:
+            file.close()
+    if out is not None:
+        return read_results(out)
+    return sorted(records, key=lambda r: (r["i"], r["j"]))
+
+
+def read_results(path: Union[str, "os.PathLike[str]"]) -> List[Record]:
+    """Every point of a results file (of :func:`phase_diagram`, the ``phase-diagram`` command or
+    ``phase-diagram merge``) as records in grid order, failed points included."""
+    return sorted(_native.read_points(os.fspath(path)), key=lambda r: (r["i"], r["j"]))
+
+
+def outcome_grid(records: Iterable[Record]):
+    """``(ki, v0, outcomes)`` for plotting: the sorted axis values and a 2-D numpy array of
+    outcome names, ``outcomes[j, i]`` at ``v0[j]``, ``ki[i]`` (``"failed"`` for a failed point,
+    ``""`` for a point not in ``records``)."""
+    import numpy as np
+
+    records = list(records)
+    ki = sorted({r["ki"] for r in records})
+    v0 = sorted({r["v0"] for r in records})
+    col = {x: i for i, x in enumerate(ki)}
+    row = {y: j for j, y in enumerate(v0)}
+    grid = np.full((len(v0), len(ki)), "", dtype=object)
+    for r in records:
+        grid[row[r["v0"]], col[r["ki"]]] = r["outcome"] if r["error"] is None else "failed"
+    return np.array(ki), np.array(v0), grid
+
+
+# --- running the points -----------------------------------------------------------------------
+
+
+def _progress(progress: Progress, total: int, name: str) -> Callable[[int], None]:
+    """A function of the number of points done so far."""
+    if callable(progress):
+        return lambda done: progress(done, total)  # type: ignore[misc,operator]
+    show = sys.stderr.isatty() if progress is None else bool(progress)
+    if not show or total == 0:
+        return lambda done: None
+
+    def report(done: int) -> None:
+        end = "\n" if done >= total else ""
+        sys.stderr.write(f"\r{name}: {done}/{total} points{end}")
+        sys.stderr.flush()
+
+    return report
+
+
+def _run_local(
+    d: "_native.PhaseDiagram",
+    points: List[Tuple[int, int, float, float]],
+    threads: Optional[int],
+    chunk_size: Optional[int],
+    sink: Callable[[Record], None],
+    report: Callable[[int], None],
+) -> None:
+    # Chunks of points, each computed in parallel with the GIL released; between chunks the
+    # records are written and Ctrl-C is seen, so an interrupted sweep keeps every finished chunk.
+    width = threads or os.cpu_count() or 1
+    size = chunk_size or 8 * width
+    done = 0
+    for start in range(0, len(points), size):
+        chunk = points[start : start + size]
+        for record in d.compute_points(chunk, threads):
+            sink(record)
+        done += len(chunk)
+        report(done)
+
+
+def _compute_chunk(settings: Dict[str, Any], chunk: List[Tuple[int, int, float, float]]) -> List[Record]:
+    """One Dask task: the records of ``chunk`` on one thread of the worker."""
+    return _native.PhaseDiagram(**settings).compute_points(chunk, 1)
+
+
+def _run_dask(
+    client: Any,
+    settings: Dict[str, Any],
+    points: List[Tuple[int, int, float, float]],
+    chunk_size: Optional[int],
+    sink: Callable[[Record], None],
+    report: Callable[[int], None],
+    max_resubmits: int,
+) -> None:
+    try:
+        from distributed import KilledWorker, as_completed
+    except ImportError as e:  # pragma: no cover - only without dask installed
+        raise ImportError("client=... needs dask.distributed: pip install 'dask[distributed]'") from e
+    if not points:
+        return
+    slots = max(1, sum(client.nthreads().values()))
+    size = chunk_size or max(1, min(256, math.ceil(len(points) / (8 * slots))))
+    chunks = [points[k : k + size] for k in range(0, len(points), size)]
+    tag = uuid.uuid4().hex[:12]
+
+    def submit(c: int, attempt: int):
+        key = f"phase-diagram-{tag}-chunk-{c}-try-{attempt}"
+        return client.submit(_compute_chunk, settings, chunks[c], key=key, pure=False)
+
+    futures = {submit(c, 0): c for c in range(len(chunks))}
+    attempts = [0] * len(chunks)
+    done = 0
+    pending = as_completed(list(futures))
+    try:
+        for future in pending:
+            c = futures.pop(future)
+            if future.status == "finished":
+                for record in future.result():
+                    sink(record)
+            else:
+                error = future.exception()
+                if not isinstance(error, KilledWorker):
+                    raise error
+                if attempts[c] < max_resubmits:
+                    attempts[c] += 1
+                    again = submit(c, attempts[c])
+                    futures[again] = c
+                    pending.add(again)
+                    future.release()
+                    continue
+                message = (
+                    f"dask: the worker computing this point's chunk died each time it ran "
+                    f"({max_resubmits + 1} submissions): {type(error).__name__}: {error}"
+                )
+                for i, j, x, y in chunks[c]:
+                    sink(_failed(i, j, x, y, message))
+            future.release()
+            done += len(chunks[c])
+            report(done)
+    finally:
+        for future in futures:
+            future.cancel()
+
+
+def _failed(i: int, j: int, ki: float, v0: float, message: str) -> Record:
+    record: Record = {key: None for key in COLUMNS}
+    record.update(i=i, j=j, ki=ki, v0=v0, error=message)
+    return record

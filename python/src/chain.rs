@@ -1,0 +1,740 @@
+//! `Chain`: a `RuntimeChain`, its evaluation methods, and the entry points of its statics and
+//! dynamics; `Continuum`: the continuum theory of the same chain.
+
+use numpy::{AllowTypeChange, PyArray1, PyArray2, PyArrayLike1};
+use pyo3::prelude::*;
+use pyo3::types::{PyDict, PyTuple};
+use rotor_chain::statics::continuum::ContinuumChain;
+use rotor_chain::{ChainModel, Law, RuntimeChain};
+
+use crate::args::{self, array, choice, matrix, vector};
+use crate::errors::{self, value_error};
+
+/// How the chain was asked for: kept for `repr`, pickling and the continuum theory.
+#[derive(Clone, Debug)]
+struct Spec {
+    n: usize,
+    r: f64,
+    k: f64,
+    theta_bar: f64,
+    a: f64,
+    mass: f64,
+    law: &'static str,
+    springs: Vec<(usize, Option<f64>, Option<f64>)>,
+    rotors: Vec<(usize, f64)>,
+}
+
+/// A rotor chain of runtime size (paper Sec. II): ``n`` rotors of length ``r`` on pivots a
+/// distance ``a`` apart, their tips (mass ``mass`` each) joined by ``n - 1`` springs of stiffness
+/// ``k`` whose rest length makes ``theta_i = +theta_bar`` and ``-theta_bar`` the uniform states.
+///
+/// Units: angles in radians (from the vertical, alternately measured as in the paper), lengths in
+/// the unit of ``a``, stiffness ``k`` in energy per length squared, so energies are in the unit of
+/// ``k a^2``; time is the unit ``t`` of Appendix B (``k`` in ``M / t^2``).
+///
+/// Args:
+///     n: number of rotors, at least 2.
+///     r: rotor length (``2 r sin(theta_bar) < a``: the flipper phase).
+///     k: spring stiffness, > 0.
+///     theta_bar: equilibrium angle, ``0 < theta_bar < pi/2``.
+///     a: lattice spacing (default 1).
+///     mass: tip mass ``M`` (default 1).
+///     law: ``"harmonic"`` (``k (l - l0)^2 / 2``, the default) or ``"quartic"``
+///         (``k (l^2 - l0^2)^2 / (8 l0^2)``).
+///     springs: per-spring overrides ``{p: {"k": k_p, "l0": l0_p}}`` (either key may be left out),
+///         for example an impurity ``{29: {"k": 0.7e4}}``.
+///     rotors: per-rotor lengths ``{i: r_i}``.
+///
+/// Raises:
+///     ParameterError: a parameter outside the model's rules, with the same message and numbers as
+///         the Rust ``ParameterError`` (``variant``, and ``n``, ``key``, ``value``, ``theta_bar``, ...).
+#[pyclass(frozen, module = "rotor_chain._native")]
+pub struct Chain {
+    pub(crate) chain: RuntimeChain,
+    spec: Spec,
+}
+
+/// `IndexOutOfRange` for an index Python gave as negative (the Rust error holds a `usize`).
+fn negative_index(py: Python<'_>, kind: &str, index: i64, count: usize) -> PyErr {
+    let message = format!(
+        "{kind} index {index} is out of range: the chain has {count} {kind}s, numbered 0 to {}",
+        count.saturating_sub(1)
+    );
+    let fields = PyDict::new(py);
+    let _ = fields.set_item("kind", kind);
+    let _ = fields.set_item("index", index);
+    let _ = fields.set_item("count", count);
+    raise_parameter(py, message, "IndexOutOfRange", fields)
+}
+
+fn raise_parameter(py: Python<'_>, message: String, variant: &str, fields: Bound<'_, PyDict>) -> PyErr {
+    let build = || -> PyResult<PyErr> {
+        let class = py.import("rotor_chain.errors")?.getattr("ParameterError")?;
+        Ok(PyErr::from_value(class.call1((message, variant, fields))?))
+    };
+    build().unwrap_or_else(|e| e)
+}
+
+fn index(py: Python<'_>, kind: &str, index: i64, count: usize) -> PyResult<usize> {
+    usize::try_from(index).map_err(|_| negative_index(py, kind, index, count))
+}
+
+impl Chain {
+    pub fn n(&self) -> usize {
+        self.chain.rotor_count()
+    }
+
+    pub fn theta(&self, theta: PyArrayLike1<'_, f64, AllowTypeChange>) -> PyResult<Vec<f64>> {
+        vector(theta, "theta", self.n())
+    }
+
+    fn springs_of(spec: &Spec) -> Vec<(usize, Option<f64>, Option<f64>)> {
+        spec.springs.clone()
+    }
+}
+
+#[pymethods]
+impl Chain {
+    #[new]
+    #[pyo3(signature = (n, r, k, theta_bar, *, a = 1.0, mass = 1.0, law = "harmonic", springs = None, rotors = None))]
+    #[allow(clippy::too_many_arguments)]
+    fn new(
+        py: Python<'_>,
+        n: i64,
+        r: f64,
+        k: f64,
+        theta_bar: f64,
+        a: f64,
+        mass: f64,
+        law: &str,
+        springs: Option<&Bound<'_, PyDict>>,
+        rotors: Option<&Bound<'_, PyDict>>,
+    ) -> PyResult<Self> {
+        let (law_name, law) = choice(
+            "law",
+            law,
+            &[("harmonic", ("harmonic", Law::Harmonic)), ("quartic", ("quartic", Law::Quartic))],
+        )?;
+        let n = usize::try_from(n).map_err(|_| {
+            let fields = PyDict::new(py);
+            let _ = fields.set_item("n", n);
+            let message =
+                format!("`n` must be at least 2 (a chain needs two rotors and one spring), got {n}");
+            raise_parameter(py, message, "TooFewRotors", fields)
+        })?;
+        let mut spring_list = Vec::new();
+        if let Some(springs) = springs {
+            for (p, spec) in springs.iter() {
+                let p = index(py, "spring", p.extract()?, n.saturating_sub(1))?;
+                let spec = spec.cast_into::<PyDict>().map_err(|_| {
+                    value_error(format!("springs[{p}] must be a dict with the keys 'k' and/or 'l0'"))
+                })?;
+                let (mut kp, mut l0) = (None, None);
+                for (key, value) in spec.iter() {
+                    match key.extract::<String>()?.as_str() {
+                        "k" => kp = Some(value.extract::<f64>()?),
+                        "l0" => l0 = Some(value.extract::<f64>()?),
+                        other => {
+                            return Err(value_error(format!(
+                                "springs[{p}]: unknown key '{other}' (a spring takes 'k' and 'l0')"
+                            )));
+                        }
+                    }
+                }
+                spring_list.push((p, kp, l0));
+            }
+        }
+        let mut rotor_list = Vec::new();
+        if let Some(rotors) = rotors {
+            for (i, ri) in rotors.iter() {
+                rotor_list.push((index(py, "rotor", i.extract()?, n)?, ri.extract::<f64>()?));
+            }
+        }
+        let mut builder = RuntimeChain::builder(n, r, k, theta_bar).lattice_spacing(a).mass(mass).law(law);
+        for &(p, kp, l0) in &spring_list {
+            builder = builder.spring(p, kp, l0);
+        }
+        for &(i, ri) in &rotor_list {
+            builder = builder.rotor(i, ri);
+        }
+        let chain = builder.build().map_err(|e| errors::parameter(py, &e))?;
+        let spec =
+            Spec { n, r, k, theta_bar, a, mass, law: law_name, springs: spring_list, rotors: rotor_list };
+        Ok(Self { chain, spec })
+    }
+
+    /// Number of rotors ``n``.
+    #[getter]
+    fn n_rotors(&self) -> usize {
+        self.n()
+    }
+
+    /// Number of springs ``n - 1``.
+    #[getter]
+    fn n_springs(&self) -> usize {
+        self.chain.spring_count()
+    }
+
+    /// Lattice spacing ``a``.
+    #[getter]
+    fn a(&self) -> f64 {
+        self.chain.lattice_spacing()
+    }
+
+    /// Equilibrium angle ``theta_bar`` (radians).
+    #[getter]
+    fn theta_bar(&self) -> f64 {
+        self.chain.theta_bar()
+    }
+
+    /// Tip mass ``M``.
+    #[getter]
+    fn mass(&self) -> f64 {
+        self.chain.mass()
+    }
+
+    /// The spring law: ``"harmonic"`` or ``"quartic"``.
+    #[getter]
+    fn law(&self) -> &'static str {
+        self.spec.law
+    }
+
+    /// Rotor lengths ``r_i`` (length ``n``), in units of ``a``.
+    #[getter]
+    fn rotor_lengths(&self, py: Python<'_>) -> Py<PyArray1<f64>> {
+        array(py, (0..self.n()).map(|i| self.chain.rotor_length(i)).collect())
+    }
+
+    /// Spring stiffnesses ``k_p`` (length ``n - 1``).
+    #[getter]
+    fn stiffness(&self, py: Python<'_>) -> Py<PyArray1<f64>> {
+        array(py, (0..self.chain.spring_count()).map(|p| self.chain.stiffness(p)).collect())
+    }
+
+    /// Spring rest lengths ``l0_p`` (length ``n - 1``), in units of ``a``.
+    #[getter]
+    fn rest_lengths(&self, py: Python<'_>) -> Py<PyArray1<f64>> {
+        array(py, (0..self.chain.spring_count()).map(|p| self.chain.rest_length(p)).collect())
+    }
+
+    /// Moments of inertia ``M r_i^2`` (length ``n``).
+    #[getter]
+    fn inertia(&self, py: Python<'_>) -> Py<PyArray1<f64>> {
+        array(py, (0..self.n()).map(|i| self.chain.inertia(i)).collect())
+    }
+
+    /// Potential energy ``V(theta) = sum_p law(l_p)``, in units of ``k a^2``.
+    fn energy(&self, py: Python<'_>, theta: PyArrayLike1<'_, f64, AllowTypeChange>) -> PyResult<f64> {
+        let theta = self.theta(theta)?;
+        Ok(py.detach(|| self.chain.energy(&theta)))
+    }
+
+    /// Gradient ``dV/dtheta_i`` (length ``n``; the torques are its negative), in units of
+    /// ``k a^2`` per radian.
+    fn gradient(
+        &self,
+        py: Python<'_>,
+        theta: PyArrayLike1<'_, f64, AllowTypeChange>,
+    ) -> PyResult<Py<PyArray1<f64>>> {
+        let theta = self.theta(theta)?;
+        let out = py.detach(|| {
+            let mut out = vec![0.0; theta.len()];
+            self.chain.gradient_into(&theta, &mut out);
+            out
+        });
+        Ok(array(py, out))
+    }
+
+    /// Energy and gradient in one pass: ``(V, dV/dtheta)``.
+    fn energy_and_gradient(
+        &self,
+        py: Python<'_>,
+        theta: PyArrayLike1<'_, f64, AllowTypeChange>,
+    ) -> PyResult<(f64, Py<PyArray1<f64>>)> {
+        let theta = self.theta(theta)?;
+        let (e, out) = py.detach(|| {
+            let mut out = vec![0.0; theta.len()];
+            let e = self.chain.energy_and_gradient_into(&theta, &mut out);
+            (e, out)
+        });
+        Ok((e, array(py, out)))
+    }
+
+    /// The tangent stiffness ``d2V/dtheta_i dtheta_j`` (paper Appendix D), tridiagonal:
+    /// ``(diag, off)`` with ``diag`` of length ``n`` and ``off[p]`` the entry ``(p, p + 1)``
+    /// (length ``n - 1``); units of ``k a^2`` per radian squared.
+    fn tangent_stiffness(
+        &self,
+        py: Python<'_>,
+        theta: PyArrayLike1<'_, f64, AllowTypeChange>,
+    ) -> PyResult<Banded> {
+        self.banded(py, theta, |c, t, d, o| c.tangent_stiffness_into(t, d, o))
+    }
+
+    /// The material part ``sum_p g_p a_p a_p^T`` of the tangent stiffness (Appendix D), as ``(diag, off)``.
+    fn material_stiffness(
+        &self,
+        py: Python<'_>,
+        theta: PyArrayLike1<'_, f64, AllowTypeChange>,
+    ) -> PyResult<Banded> {
+        self.banded(py, theta, |c, t, d, o| c.material_stiffness_into(t, d, o))
+    }
+
+    /// The stress matrix ``sum_p S_p`` (Appendix D), as ``(diag, off)``; material part + stress
+    /// matrix = tangent stiffness.
+    fn stress_matrix(
+        &self,
+        py: Python<'_>,
+        theta: PyArrayLike1<'_, f64, AllowTypeChange>,
+    ) -> PyResult<Banded> {
+        self.banded(py, theta, |c, t, d, o| c.stress_matrix_into(t, d, o))
+    }
+
+    /// The tangent stiffness as a dense symmetric ``n x n`` array.
+    fn hessian(
+        &self,
+        py: Python<'_>,
+        theta: PyArrayLike1<'_, f64, AllowTypeChange>,
+    ) -> PyResult<Py<PyArray2<f64>>> {
+        let theta = self.theta(theta)?;
+        let n = theta.len();
+        let dense = py.detach(|| {
+            let (mut diag, mut off) = (vec![0.0; n], vec![0.0; n - 1]);
+            self.chain.tangent_stiffness_into(&theta, &mut diag, &mut off);
+            let mut dense = vec![0.0; n * n];
+            for i in 0..n {
+                dense[i * n + i] = diag[i];
+            }
+            for p in 0..n - 1 {
+                dense[p * n + p + 1] = off[p];
+                dense[(p + 1) * n + p] = off[p];
+            }
+            dense
+        });
+        Ok(matrix(py, n, n, dense))
+    }
+
+    /// Spring lengths ``l_p`` (length ``n - 1``), in units of ``a``.
+    fn spring_lengths(
+        &self,
+        py: Python<'_>,
+        theta: PyArrayLike1<'_, f64, AllowTypeChange>,
+    ) -> PyResult<Py<PyArray1<f64>>> {
+        self.per_spring(py, theta, |c, t, o| c.spring_lengths_into(t, o))
+    }
+
+    /// Spring tensions ``t_p = dlaw/dl`` at the current lengths (length ``n - 1``), in units of
+    /// ``k a``.
+    fn tensions(
+        &self,
+        py: Python<'_>,
+        theta: PyArrayLike1<'_, f64, AllowTypeChange>,
+    ) -> PyResult<Py<PyArray1<f64>>> {
+        self.per_spring(py, theta, |c, t, o| c.tensions_into(t, o))
+    }
+
+    /// The compatibility matrix ``C[p][i] = dl_p / d(r_i theta_i)`` (paper Sec. VII-A): its two
+    /// bands ``(left, right)`` with ``left[p] = C[p][p]``, ``right[p] = C[p][p + 1]``, or with
+    /// ``dense=True`` the ``(n - 1) x n`` array. Dimensionless.
+    #[pyo3(signature = (theta, *, dense = false))]
+    fn compatibility<'py>(
+        &self,
+        py: Python<'py>,
+        theta: PyArrayLike1<'py, f64, AllowTypeChange>,
+        dense: bool,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        let theta = self.theta(theta)?;
+        let (n, m) = (self.n(), self.chain.spring_count());
+        let (left, right) = py.detach(|| {
+            let (mut left, mut right) = (vec![0.0; m], vec![0.0; m]);
+            self.chain.compatibility_into(&theta, &mut left, &mut right);
+            (left, right)
+        });
+        if dense {
+            let mut c = vec![0.0; m * n];
+            for p in 0..m {
+                c[p * n + p] = left[p];
+                c[p * n + p + 1] = right[p];
+            }
+            Ok(matrix(py, m, n, c).into_bound(py).into_any())
+        } else {
+            Ok(PyTuple::new(py, [array(py, left), array(py, right)])?.into_any())
+        }
+    }
+
+    /// Both ``theta_{p+1}`` that put spring ``p`` at its rest length given ``theta_p`` (the branch
+    /// solve of Appendix A), flipper branch first.
+    ///
+    /// Raises:
+    ///     BranchError: no real root (``variant == "NoRealRoot"``, with ``distance``, ``min``,
+    ///         ``max``, ...), or no such spring.
+    fn next_angles(&self, py: Python<'_>, p: i64, theta_p: f64) -> PyResult<(f64, f64)> {
+        let p = index(py, "spring", p, self.chain.spring_count())?;
+        let [a, b] = self.chain.next_angles(p, theta_p).map_err(|e| errors::branch(py, &e))?;
+        Ok((a, b))
+    }
+
+    /// Both ``theta_p`` that put spring ``p`` at its rest length given ``theta_{p+1}``: the inverse map.
+    fn previous_angles(&self, py: Python<'_>, p: i64, theta_next: f64) -> PyResult<(f64, f64)> {
+        let p = index(py, "spring", p, self.chain.spring_count())?;
+        let [a, b] = self.chain.previous_angles(p, theta_next).map_err(|e| errors::branch(py, &e))?;
+        Ok((a, b))
+    }
+
+    /// A uniform state: every rotor at ``sign * theta_bar``.
+    #[pyo3(signature = (sign = 1))]
+    fn uniform(&self, py: Python<'_>, sign: i32) -> PyResult<Py<PyArray1<f64>>> {
+        let s = match sign {
+            1 => 1.0,
+            -1 => -1.0,
+            _ => return Err(value_error(format!("sign must be +1 or -1, got {sign}"))),
+        };
+        Ok(array(py, vec![s * self.chain.theta_bar(); self.n()]))
+    }
+
+    /// The continuum theory of this chain (paper Secs. III-V, App. E) with its uniform ``a``,
+    /// ``r``, ``theta_bar``, ``k`` and ``M`` (per-spring and per-rotor overrides are not part of it).
+    fn continuum(&self, py: Python<'_>) -> PyResult<Continuum> {
+        let s = &self.spec;
+        let c =
+            ContinuumChain::new(s.a, s.r, s.theta_bar, s.k, s.mass).map_err(|e| errors::parameter(py, &e))?;
+        Ok(Continuum { c })
+    }
+
+    // --- statics (paper Secs. II-V, VII) -------------------------------------------------------
+
+    /// The zero-energy kink centred at ``centre`` (a rotor index, fractional allowed, in
+    /// ``[0, n - 1]``), built outward from its centre by the branch solve: ``+theta_bar`` on the
+    /// left, ``-theta_bar`` on the right. Returns the angles (radians).
+    fn kink(&self, py: Python<'_>, centre: f64) -> PyResult<Py<PyArray1<f64>>> {
+        crate::statics::kink(self, py, centre)
+    }
+
+    /// An antikink equilibrium (``-theta_bar`` on the left, ``+theta_bar`` on the right).
+    ///
+    /// With ``relaxed=True`` (default), the paper's construction: the reflected kink near
+    /// ``centre`` relaxed by dissipative dynamics and polished by Newton's method: a
+    /// Peierls-Nabarro **minimum**. With ``relaxed=False``, the equilibrium centred exactly at
+    /// ``centre`` (an integer: on a rotor; a half-integer: on a spring), minimum or saddle.
+    /// ``centre`` defaults to the middle rotor; ``ends`` is ``"held"`` (end rotors held at
+    /// ``-theta_bar``, ``+theta_bar``, the default) or ``"free"``.
+    ///
+    /// Raises:
+    ///     StaticsError: no convergence, or the defect was lost (with the numbers).
+    #[pyo3(signature = (centre = None, *, relaxed = true, ends = "held"))]
+    fn antikink(
+        &self,
+        py: Python<'_>,
+        centre: Option<f64>,
+        relaxed: bool,
+        ends: &str,
+    ) -> PyResult<crate::statics::Antikink> {
+        crate::statics::antikink(self, py, centre, relaxed, ends)
+    }
+
+    /// The Peierls-Nabarro barrier (paper Sec. V): the antikink centred on the middle rotor and
+    /// on the neighbouring spring, which is the minimum and which the saddle, and the barrier
+    /// ``V_saddle - V_minimum`` (units of ``k a^2``).
+    #[pyo3(signature = (*, ends = "held"))]
+    fn peierls_nabarro(&self, py: Python<'_>, ends: &str) -> PyResult<crate::statics::PeierlsNabarro> {
+        crate::statics::peierls_nabarro(self, py, ends)
+    }
+
+    /// The lowest ``count`` vibrational modes about ``theta`` (``K v = omega^2 I v``, paper
+    /// Sec. IV), ascending; ``count=None`` gives all ``n``. Frequencies in ``1/t``.
+    #[pyo3(signature = (theta, count = Some(12), *, hold_ends = false))]
+    fn modes(
+        &self,
+        py: Python<'_>,
+        theta: PyArrayLike1<'_, f64, AllowTypeChange>,
+        count: Option<usize>,
+        hold_ends: bool,
+    ) -> PyResult<crate::statics::Modes> {
+        crate::statics::modes(self, py, theta, count, hold_ends)
+    }
+
+    /// Maxwell-Calladine counting at ``theta`` (paper Sec. VII-A): the rank of the compatibility
+    /// matrix, the zero modes and the states of self-stress; ``N_zero - N_selfstress = 1``.
+    /// ``tolerance`` overrides the numerical-rank rule for singular values.
+    #[pyo3(signature = (theta, tolerance = None))]
+    fn maxwell_calladine(
+        &self,
+        py: Python<'_>,
+        theta: PyArrayLike1<'_, f64, AllowTypeChange>,
+        tolerance: Option<f64>,
+    ) -> PyResult<crate::statics::Counting> {
+        crate::statics::maxwell_calladine(self, py, theta, tolerance)
+    }
+
+    // --- dynamics (paper Secs. V, VI, Appendix B) ----------------------------------------------
+
+    /// A ``defect`` (``"kink"`` or ``"antikink"``) at ``position`` set in motion along its
+    /// translation mode with speed amplitude ``v0`` (``a/t``) towards ``direction``
+    /// (``"left"``: rotor 0, or ``"right"``); Appendix B: ``r_i thetadot_i = v0 e_i``, kinetic
+    /// energy ``M v0^2 / 2``.
+    #[pyo3(signature = (defect, position, v0, direction = "left"))]
+    fn launch(
+        &self,
+        py: Python<'_>,
+        defect: &str,
+        position: f64,
+        v0: f64,
+        direction: &str,
+    ) -> PyResult<crate::dynamics::Launch> {
+        crate::dynamics::launch(self, py, defect, position, v0, direction)
+    }
+
+    /// Integrate ``M r_i^2 thetadd_i = -dV/dtheta_i - gamma M r_i^2 thetadot_i`` from ``(theta,
+    /// omega)`` at time 0 to ``t_max``, recording at every ``output_interval`` the time, the
+    /// kinetic energy and the domain walls (Appendix C).
+    ///
+    /// Args:
+    ///     method: ``"verlet"`` (velocity Verlet, step ``dt``; default a tenth of the stability
+    ///         limit) or ``"dop853"`` (adaptive, tolerances ``rtol``, ``atol``).
+    ///     damping: viscous rate ``gamma`` (``1/t``), >= 0.
+    ///     absorbing_ends: a damping sponge on the last 10 rotors at each end.
+    ///     space_time: keep the angles at every output (``Run.space_time``).
+    ///     energy_limit: the run stops with ``IntegrateError`` if the energy changes by more than
+    ///         this fraction.
+    ///
+    /// Raises:
+    ///     IntegrateError: a bad option, a non-finite state, a broken energy limit or budget.
+    #[pyo3(signature = (theta, omega, *, t_max = 20.0, output_interval = 0.01, method = "verlet", dt = None,
+                        rtol = 1e-10, atol = 1e-11, damping = 0.0, absorbing_ends = false, space_time = false,
+                        energy_limit = 0.1))]
+    #[allow(clippy::too_many_arguments)]
+    fn propagate(
+        &self,
+        py: Python<'_>,
+        theta: PyArrayLike1<'_, f64, AllowTypeChange>,
+        omega: PyArrayLike1<'_, f64, AllowTypeChange>,
+        t_max: f64,
+        output_interval: f64,
+        method: &str,
+        dt: Option<f64>,
+        rtol: f64,
+        atol: f64,
+        damping: f64,
+        absorbing_ends: bool,
+        space_time: bool,
+        energy_limit: f64,
+    ) -> PyResult<crate::dynamics::Run> {
+        let theta = self.theta(theta)?;
+        let omega = vector(omega, "omega", self.n())?;
+        let options = crate::dynamics::run_options(
+            t_max,
+            output_interval,
+            method,
+            dt,
+            (rtol, atol),
+            damping,
+            absorbing_ends,
+            space_time,
+            energy_limit,
+        )?;
+        crate::dynamics::propagate(self, py, theta, omega, options)
+    }
+
+    /// Scattering of a ``defect`` on the stiffness impurity at spring ``impurity`` (paper
+    /// Sec. VI; the chain carries the impurity's stiffness, e.g. ``springs={29: {"k": 7e3}}``):
+    /// launched at ``v0`` from 15 sites away (``start`` overrides), run until the outcome is
+    /// decided and confirmed, or ``t_max``.
+    ///
+    /// ``impurity`` defaults to the middle spring ``(n - 1) // 2``; ``direction="left"`` (the
+    /// paper's, from the right) or ``"right"``.
+    #[pyo3(signature = (defect, v0, impurity = None, *, start = None, direction = "left", t_max = 20.0,
+                        method = "verlet", dt = None, absorbing_ends = false, space_time = false, watch = 0.0))]
+    #[allow(clippy::too_many_arguments)]
+    fn scatter(
+        &self,
+        py: Python<'_>,
+        defect: &str,
+        v0: f64,
+        impurity: Option<i64>,
+        start: Option<f64>,
+        direction: &str,
+        t_max: f64,
+        method: &str,
+        dt: Option<f64>,
+        absorbing_ends: bool,
+        space_time: bool,
+        watch: f64,
+    ) -> PyResult<crate::dynamics::Scattering> {
+        let springs = self.chain.spring_count();
+        let impurity = match impurity {
+            Some(p) => index(py, "spring", p, springs)?,
+            None => (self.n() - 1) / 2,
+        };
+        let options = crate::dynamics::run_options(
+            t_max,
+            0.01,
+            method,
+            dt,
+            (1e-10, 1e-11),
+            0.0,
+            absorbing_ends,
+            space_time,
+            0.1,
+        )?;
+        let setup = crate::dynamics::ScatterArgs { defect, v0, impurity, start, direction, watch, options };
+        crate::dynamics::scatter(self, py, setup)
+    }
+
+    fn __repr__(&self) -> String {
+        let s = &self.spec;
+        let mut text = format!("Chain(n={}, r={:?}, k={:?}, theta_bar={:?}", s.n, s.r, s.k, s.theta_bar);
+        if s.a != 1.0 {
+            text += &format!(", a={:?}", s.a);
+        }
+        if s.mass != 1.0 {
+            text += &format!(", mass={:?}", s.mass);
+        }
+        if s.law != "harmonic" {
+            text += &format!(", law={:?}", s.law);
+        }
+        if !s.springs.is_empty() {
+            let items: Vec<String> = Self::springs_of(s)
+                .iter()
+                .map(|(p, k, l0)| {
+                    let mut parts = Vec::new();
+                    if let Some(k) = k {
+                        parts.push(format!("'k': {k:?}"));
+                    }
+                    if let Some(l0) = l0 {
+                        parts.push(format!("'l0': {l0:?}"));
+                    }
+                    format!("{p}: {{{}}}", parts.join(", "))
+                })
+                .collect();
+            text += &format!(", springs={{{}}}", items.join(", "));
+        }
+        if !s.rotors.is_empty() {
+            let items: Vec<String> = s.rotors.iter().map(|(i, r)| format!("{i}: {r:?}")).collect();
+            text += &format!(", rotors={{{}}}", items.join(", "));
+        }
+        text + ")"
+    }
+
+    /// Pickling (for multiprocessing and Dask): the constructor's arguments.
+    fn __getnewargs_ex__<'py>(&self, py: Python<'py>) -> PyResult<(Bound<'py, PyTuple>, Bound<'py, PyDict>)> {
+        let s = &self.spec;
+        let args = (s.n, s.r, s.k, s.theta_bar).into_pyobject(py)?;
+        let kwargs = PyDict::new(py);
+        kwargs.set_item("a", s.a)?;
+        kwargs.set_item("mass", s.mass)?;
+        kwargs.set_item("law", s.law)?;
+        let springs = PyDict::new(py);
+        for &(p, k, l0) in &s.springs {
+            let d = PyDict::new(py);
+            if let Some(k) = k {
+                d.set_item("k", k)?;
+            }
+            if let Some(l0) = l0 {
+                d.set_item("l0", l0)?;
+            }
+            springs.set_item(p, d)?;
+        }
+        kwargs.set_item("springs", springs)?;
+        let rotors = PyDict::new(py);
+        for &(i, r) in &s.rotors {
+            rotors.set_item(i, r)?;
+        }
+        kwargs.set_item("rotors", rotors)?;
+        Ok((args, kwargs))
+    }
+}
+
+type Banded = (Py<PyArray1<f64>>, Py<PyArray1<f64>>);
+
+impl Chain {
+    fn banded(
+        &self,
+        py: Python<'_>,
+        theta: PyArrayLike1<'_, f64, AllowTypeChange>,
+        f: impl Fn(&RuntimeChain, &[f64], &mut [f64], &mut [f64]) + Sync,
+    ) -> PyResult<Banded> {
+        let theta = self.theta(theta)?;
+        let n = theta.len();
+        let (diag, off) = py.detach(|| {
+            let (mut diag, mut off) = (vec![0.0; n], vec![0.0; n - 1]);
+            f(&self.chain, &theta, &mut diag, &mut off);
+            (diag, off)
+        });
+        Ok((array(py, diag), array(py, off)))
+    }
+
+    fn per_spring(
+        &self,
+        py: Python<'_>,
+        theta: PyArrayLike1<'_, f64, AllowTypeChange>,
+        f: impl Fn(&RuntimeChain, &[f64], &mut [f64]) + Sync,
+    ) -> PyResult<Py<PyArray1<f64>>> {
+        let theta = self.theta(theta)?;
+        let m = self.chain.spring_count();
+        let out = py.detach(|| {
+            let mut out = vec![0.0; m];
+            f(&self.chain, &theta, &mut out);
+            out
+        });
+        Ok(array(py, out))
+    }
+}
+
+/// The continuum theory of a chain (paper Secs. III-V, Appendix E): closed forms with the chain's
+/// ``a``, ``r``, ``theta_bar``, ``k``, ``M``. Get it from ``Chain.continuum()``.
+#[pyclass(frozen, module = "rotor_chain._native")]
+pub struct Continuum {
+    c: ContinuumChain,
+}
+
+#[pymethods]
+impl Continuum {
+    /// Energy of the static continuum antikink, Eq. (akenergy), in the energy unit ``k a^2``
+    /// (``V = k a^2 (16/3)(r/a)^3 sin^3(theta_bar) / (1 + 4 (r/a)^2 cos^2(theta_bar))``).
+    #[getter]
+    fn antikink_energy(&self) -> f64 {
+        self.c.antikink_energy()
+    }
+
+    /// Wall width ``w = a^2 / (2 r sin theta_bar)`` (Sec. III), in units of ``a``.
+    #[getter]
+    fn width(&self) -> f64 {
+        self.c.width()
+    }
+
+    /// Sound speed ``c`` of the continuum (``a/t``).
+    #[getter]
+    fn sound_speed(&self) -> f64 {
+        self.c.sound_speed()
+    }
+
+    /// Rest length ``lbar`` of the springs.
+    #[getter]
+    fn rest_length(&self) -> f64 {
+        self.c.rest_length()
+    }
+
+    /// Peierls-Nabarro barrier of the continuum estimate (Sec. V), units of ``k a^2``.
+    #[getter]
+    fn pn_barrier(&self) -> f64 {
+        self.c.pn_barrier()
+    }
+
+    /// ``l_critical`` of a spring-length impurity (Sec. VII-A), in units of ``a``.
+    #[getter]
+    fn l_critical(&self) -> f64 {
+        self.c.l_critical()
+    }
+
+    /// Edges ``[omega_min, omega_max]`` of the phonon band about the uniform state (``1/t``).
+    #[getter]
+    fn phonon_band_edges(&self) -> (f64, f64) {
+        let [lo, hi] = self.c.phonon_band_edges();
+        (lo, hi)
+    }
+
+    /// The continuum angle profile of a wall of ``defect`` at ``x0`` on ``n`` rotors (radians).
+    fn angle_profile(&self, py: Python<'_>, defect: &str, n: usize, x0: f64) -> PyResult<Py<PyArray1<f64>>> {
+        Ok(array(py, self.c.angle_profile(args::charge(defect)?, n, x0)))
+    }
+}

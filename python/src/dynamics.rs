@@ -1,0 +1,249 @@
+//! The dynamics of a `Chain` (paper Secs. V, VI, Appendix B): launch, propagate, scatter. Each
+//! runs with the GIL released.
+
+use numpy::{PyArray1, PyArray2};
+use pyo3::prelude::*;
+use rotor_chain::dynamics::integrate::State;
+use rotor_chain::dynamics::launch::{self as ln, Direction};
+use rotor_chain::dynamics::run::{self as rn, ABSORBING_ENDS, Method, RunOptions};
+use rotor_chain::dynamics::scatter::{self as sc, ScatterSetup};
+
+use crate::args::{array, charge, charge_name, choice, matrix, rows};
+use crate::chain::Chain;
+use crate::errors::{self, value_error};
+
+fn direction(name: &str) -> PyResult<Direction> {
+    choice("direction", name, &[("left", Direction::Left), ("right", Direction::Right)])
+}
+
+/// The run options of `Chain.propagate` and `Chain.scatter`, checked where the Rust options
+/// would only fail later.
+#[allow(clippy::too_many_arguments)]
+pub fn run_options(
+    t_max: f64,
+    output_interval: f64,
+    method: &str,
+    dt: Option<f64>,
+    (rtol, atol): (f64, f64),
+    damping: f64,
+    absorbing_ends: bool,
+    space_time: bool,
+    energy_limit: f64,
+) -> PyResult<RunOptions> {
+    let adaptive = choice("method", method, &[("verlet", false), ("dop853", true)])?;
+    let method = if adaptive { Method::Dop853 { rtol, atol } } else { Method::Verlet };
+    Ok(RunOptions {
+        t_max,
+        output_interval,
+        method,
+        dt,
+        damping,
+        absorbing_ends: absorbing_ends.then_some(ABSORBING_ENDS),
+        space_time,
+        energy_limit,
+        ..RunOptions::default()
+    })
+}
+
+/// A defect set in motion (``Chain.launch``).
+#[pyclass(frozen, get_all, module = "rotor_chain._native")]
+pub struct Launch {
+    /// Angles at time 0 (radians).
+    theta: Py<PyArray1<f64>>,
+    /// Angular velocities at time 0 (``1/t``).
+    omega: Py<PyArray1<f64>>,
+    /// The normalised launch vector in tip displacements (``sum e_i^2 = 1``).
+    mode: Py<PyArray1<f64>>,
+    /// Where the defect starts (Appendix C wall position).
+    position: f64,
+    /// ``"kink"`` or ``"antikink"``.
+    defect: &'static str,
+}
+
+#[pymethods]
+impl Launch {
+    fn __repr__(&self) -> String {
+        format!("Launch(defect='{}', position={:?})", self.defect, self.position)
+    }
+}
+
+pub fn launch(
+    chain: &Chain,
+    py: Python<'_>,
+    defect: &str,
+    position: f64,
+    v0: f64,
+    direction_name: &str,
+) -> PyResult<Launch> {
+    let (charge, direction) = (charge(defect)?, direction(direction_name)?);
+    let l = py
+        .detach(|| ln::launch(&chain.chain, charge, position, v0, direction))
+        .map_err(|e| errors::dynamics(py, &e))?;
+    Ok(Launch {
+        theta: array(py, l.state.theta),
+        omega: array(py, l.state.omega),
+        mode: array(py, l.mode),
+        position: l.position,
+        defect: charge_name(l.charge),
+    })
+}
+
+/// What a run recorded (``Chain.propagate``, ``Scattering.run``): one entry per output.
+#[pyclass(frozen, get_all, module = "rotor_chain._native")]
+pub struct Run {
+    /// Output times (``t``).
+    times: Py<PyArray1<f64>>,
+    /// Kinetic energy at each output (units of ``k a^2``).
+    kinetic: Py<PyArray1<f64>>,
+    /// The walls at each output: ``[(position, "kink" | "antikink"), ...]``, interior walls left
+    /// to right, then walls that left through an end (kept at ``0`` or ``n - 1``, Appendix C).
+    walls: Vec<Vec<(f64, &'static str)>>,
+    /// ``(kinks, antikinks)`` at each output (``T x 2``).
+    wall_counts: Py<PyArray2<f64>>,
+    /// Output times at which the conserved ``N_kink - N_antikink`` was violated (rotors spun
+    /// through ``|theta| = pi``).
+    violations: Vec<f64>,
+    /// The angles at every output (``T x n``) if ``space_time=True``, else ``None``.
+    space_time: Option<Py<PyArray2<f64>>>,
+    /// Final time, angles and angular velocities.
+    time: f64,
+    theta: Py<PyArray1<f64>>,
+    omega: Py<PyArray1<f64>>,
+    /// ``E = T + V`` at the start and at the end, and the largest ``|E - E0|`` at the outputs.
+    energy_initial: f64,
+    energy_final: f64,
+    max_energy_error: f64,
+    /// The largest relative energy error (the rise, with damping).
+    relative_energy_error: f64,
+    /// Accepted and rejected steps.
+    steps: usize,
+    rejected: usize,
+    /// ``"verlet"`` or ``"dop853"``.
+    integrator: &'static str,
+}
+
+#[pymethods]
+impl Run {
+    fn __repr__(&self) -> String {
+        format!(
+            "Run(integrator='{}', time={:?}, steps={}, relative_energy_error={:e})",
+            self.integrator, self.time, self.steps, self.relative_energy_error
+        )
+    }
+}
+
+fn run_of(py: Python<'_>, run: rn::Run) -> Run {
+    let snapshots = &run.tracker.snapshots;
+    let counts: Vec<f64> = snapshots
+        .iter()
+        .flat_map(|s| {
+            let (k, a) = s.counts();
+            [k as f64, a as f64]
+        })
+        .collect();
+    let walls = snapshots
+        .iter()
+        .map(|s| s.walls.iter().map(|w| (w.position, charge_name(w.charge))).collect())
+        .collect();
+    let n = run.final_state.theta.len();
+    let space_time = (!run.space_time.times.is_empty()).then(|| rows(py, &run.space_time.theta, n));
+    Run {
+        times: array(py, run.kinetic.iter().map(|k| k.0).collect()),
+        kinetic: array(py, run.kinetic.iter().map(|k| k.1).collect()),
+        walls,
+        wall_counts: matrix(py, snapshots.len(), 2, counts),
+        violations: run.tracker.violations.clone(),
+        space_time,
+        time: run.final_state.time,
+        theta: array(py, run.final_state.theta),
+        omega: array(py, run.final_state.omega),
+        energy_initial: run.report.energy_initial,
+        energy_final: run.report.energy_final,
+        max_energy_error: run.report.max_energy_error,
+        relative_energy_error: run.report.relative_energy_error(),
+        steps: run.report.steps,
+        rejected: run.report.rejected,
+        integrator: run.integrator,
+    }
+}
+
+pub fn propagate(
+    chain: &Chain,
+    py: Python<'_>,
+    theta: Vec<f64>,
+    omega: Vec<f64>,
+    options: RunOptions,
+) -> PyResult<Run> {
+    let state = State { time: 0.0, theta, omega };
+    let run = py
+        .detach(|| rn::propagate(&chain.chain, state, &options, &mut |_| false))
+        .map_err(|e| errors::dynamics(py, &e))?;
+    Ok(run_of(py, run))
+}
+
+/// The outcome of ``Chain.scatter`` (paper Sec. VI).
+#[pyclass(frozen, get_all, module = "rotor_chain._native")]
+pub struct Scattering {
+    /// ``"transmitted"``, ``"reflected"``, ``"trapped"``, ``"split"``, ``"annihilated"``,
+    /// ``"disintegrated"``, ``"pair-creation"`` or ``"undecided"`` (docs/dynamics.md §5).
+    outcome: &'static str,
+    /// When the outcome was decided (``t``; the run's end if undecided).
+    decided_at: f64,
+    /// Whether the confirmation window closed before the run ended.
+    confirmed: bool,
+    /// An event after the outcome was settled (``"annihilated"`` or ``"escaped"``), or ``None``.
+    later: Option<&'static str>,
+    /// Its time, or ``None``.
+    later_at: Option<f64>,
+    /// The run (walls, energies, final state).
+    run: Py<Run>,
+}
+
+#[pymethods]
+impl Scattering {
+    fn __repr__(&self) -> String {
+        format!(
+            "Scattering(outcome='{}', decided_at={:?}, confirmed={}, later={}, later_at={})",
+            self.outcome,
+            self.decided_at,
+            if self.confirmed { "True" } else { "False" },
+            self.later.map_or("None".to_owned(), |l| format!("'{l}'")),
+            self.later_at.map_or("None".to_owned(), |t| format!("{t:?}"))
+        )
+    }
+}
+
+pub struct ScatterArgs<'a> {
+    pub defect: &'a str,
+    pub v0: f64,
+    pub impurity: usize,
+    pub start: Option<f64>,
+    pub direction: &'a str,
+    pub watch: f64,
+    pub options: RunOptions,
+}
+
+pub fn scatter(chain: &Chain, py: Python<'_>, a: ScatterArgs<'_>) -> PyResult<Scattering> {
+    let (charge, direction) = (charge(a.defect)?, direction(a.direction)?);
+    let mut setup = ScatterSetup::from_the_right(charge, a.v0, a.impurity);
+    setup.direction = direction;
+    setup.start = match (a.start, direction) {
+        (Some(start), _) => start,
+        (None, Direction::Left) => setup.start,
+        (None, Direction::Right) => a.impurity as f64 + 0.5 - 15.0,
+    };
+    if !(a.watch >= 0.0 && a.watch.is_finite()) {
+        return Err(value_error(format!("watch = {} must be >= 0 and finite", a.watch)));
+    }
+    setup.watch = a.watch;
+    setup.run = a.options;
+    let s = py.detach(|| sc::scatter(&chain.chain, &setup)).map_err(|e| errors::dynamics(py, &e))?;
+    Ok(Scattering {
+        outcome: s.outcome.name(),
+        decided_at: s.decided_at,
+        confirmed: s.confirmed,
+        later: s.later.map(|(e, _)| e.name()),
+        later_at: s.later.map(|(_, t)| t),
+        run: Py::new(py, run_of(py, s.run))?,
+    })
+}

@@ -1,0 +1,368 @@
+//! Rust errors as Python exceptions. Each Rust error family has its class in
+//! `rotor_chain/errors.py` (a subclass of `RotorChainError` and of `ValueError` or
+//! `RuntimeError`); the exception's message is the Rust error's `Display`, `variant` names the
+//! Rust variant, and every number the variant carries is an attribute (and an entry of
+//! `details`). A wrapped error is `details["source"]` and the exception's `__cause__`.
+
+use chain_sweep::scattering::{ConfigError, PointError, VerletBreach};
+use chain_sweep::{GridError, SweepError};
+use pyo3::prelude::*;
+use pyo3::sync::PyOnceLock;
+use pyo3::types::{PyDict, PyModule};
+use rotor_chain::dynamics::DynamicsError;
+use rotor_chain::dynamics::integrate::IntegrateError;
+use rotor_chain::linalg::LinalgError;
+use rotor_chain::statics::StaticsError;
+use rotor_chain::{BranchError, ParameterError};
+
+/// The variant name and the numbers of one Rust error.
+pub struct Details<'py> {
+    py: Python<'py>,
+    variant: &'static str,
+    fields: Bound<'py, PyDict>,
+    cause: Option<PyErr>,
+}
+
+impl<'py> Details<'py> {
+    fn new(py: Python<'py>, variant: &'static str) -> Self {
+        Self { py, variant, fields: PyDict::new(py), cause: None }
+    }
+
+    /// Add a field. Setting a field cannot fail for these plain values; a failure would only
+    /// lose the attribute, never the exception.
+    fn f<T: IntoPyObject<'py>>(self, name: &str, value: T) -> Self {
+        let _ = self.fields.set_item(name, value);
+        self
+    }
+
+    /// The wrapped error, as `details["source"]` and `__cause__`.
+    fn source(mut self, cause: PyErr) -> Self {
+        let _ = self.fields.set_item("source", cause.value(self.py));
+        self.cause = Some(cause);
+        self
+    }
+
+    /// The exception of class `class` (a name in `rotor_chain.errors`) with `message`.
+    fn raise(self, class: &str, message: String) -> PyErr {
+        let py = self.py;
+        let build = || -> PyResult<PyErr> {
+            let class = errors_module(py)?.getattr(class)?;
+            let value = class.call1((message.clone(), self.variant, self.fields))?;
+            let err = PyErr::from_value(value);
+            if let Some(cause) = self.cause {
+                err.set_cause(py, Some(cause));
+            }
+            Ok(err)
+        };
+        // If the errors module cannot be imported (a broken install), still raise, plainly.
+        build().unwrap_or_else(|e| e)
+    }
+}
+
+fn errors_module(py: Python<'_>) -> PyResult<&Bound<'_, PyModule>> {
+    static MODULE: PyOnceLock<Py<PyModule>> = PyOnceLock::new();
+    MODULE.get_or_try_init(py, || py.import("rotor_chain.errors").map(Bound::unbind)).map(|m| m.bind(py))
+}
+
+pub fn parameter(py: Python<'_>, e: &ParameterError) -> PyErr {
+    let d = Details::new(py, "");
+    let d = match *e {
+        ParameterError::TooFewRotors { n } => Details { variant: "TooFewRotors", ..d }.f("n", n),
+        ParameterError::NotPositive { key, value } => {
+            Details { variant: "NotPositive", ..d }.f("key", key.to_string()).f("value", value)
+        }
+        ParameterError::OutsideFlipperPhase { theta_bar, a, r, two_r_sin, limit } => {
+            Details { variant: "OutsideFlipperPhase", ..d }
+                .f("theta_bar", theta_bar)
+                .f("a", a)
+                .f("r", r)
+                .f("two_r_sin", two_r_sin)
+                .f("limit", limit)
+        }
+        ParameterError::RestLengthOutOfRange { rest_length, a, r, max } => {
+            Details { variant: "RestLengthOutOfRange", ..d }
+                .f("rest_length", rest_length)
+                .f("a", a)
+                .f("r", r)
+                .f("max", max)
+        }
+        ParameterError::IndexOutOfRange { kind, index, count } => Details { variant: "IndexOutOfRange", ..d }
+            .f("kind", kind.to_string())
+            .f("index", index)
+            .f("count", count),
+        _ => Details { variant: "Other", ..d },
+    };
+    d.raise("ParameterError", e.to_string())
+}
+
+pub fn branch(py: Python<'_>, e: &BranchError) -> PyErr {
+    let d = Details::new(py, "");
+    let d = match *e {
+        BranchError::NoRealRoot { spring, theta, distance, rotor_length, rest_length, min, max } => {
+            Details { variant: "NoRealRoot", ..d }
+                .f("spring", spring)
+                .f("theta", theta)
+                .f("distance", distance)
+                .f("rotor_length", rotor_length)
+                .f("rest_length", rest_length)
+                .f("min", min)
+                .f("max", max)
+        }
+        BranchError::NotFinite { spring, theta } => {
+            Details { variant: "NotFinite", ..d }.f("spring", spring).f("theta", theta)
+        }
+        BranchError::NoSuchSpring { spring, springs } => {
+            Details { variant: "NoSuchSpring", ..d }.f("spring", spring).f("springs", springs)
+        }
+        _ => Details { variant: "Other", ..d },
+    };
+    d.raise("BranchError", e.to_string())
+}
+
+fn linalg<'py>(d: Details<'py>, e: &LinalgError) -> Details<'py> {
+    match *e {
+        LinalgError::DimensionMismatch { diag, off } => d.f("diag", diag).f("off", off),
+        LinalgError::RhsMismatch { n, rhs } => d.f("n", n).f("rhs", rhs),
+        LinalgError::NotFinite { input, index, value } => {
+            d.f("input", input.to_string()).f("index", index).f("value", value)
+        }
+        LinalgError::IndexOutOfRange { lo, hi, n } => d.f("lo", lo).f("hi", hi).f("n", n),
+        LinalgError::Singular { row, pivot } => d.f("row", row).f("pivot", pivot),
+        LinalgError::NoConvergence { iterations, index, residual } => {
+            d.f("iterations", iterations).f("index", index).f("residual", residual)
+        }
+        _ => d,
+    }
+}
+
+pub fn statics(py: Python<'_>, e: &StaticsError) -> PyErr {
+    let d = Details::new(py, "");
+    let d = match e {
+        StaticsError::Branch(b) => Details { variant: "Branch", ..d }.source(branch(py, b)),
+        StaticsError::Parameter(p) => Details { variant: "Parameter", ..d }.source(parameter(py, p)),
+        StaticsError::Linalg(l) => linalg(Details { variant: "Linalg", ..d }, l),
+        &StaticsError::CentreOutOfRange { centre, n, max } => {
+            Details { variant: "CentreOutOfRange", ..d }.f("centre", centre).f("n", n).f("max", max)
+        }
+        &StaticsError::NoConvergence { method, iterations, residual, tolerance } => {
+            Details { variant: "NoConvergence", ..d }
+                .f("method", method)
+                .f("iterations", iterations)
+                .f("residual", residual)
+                .f("tolerance", tolerance)
+        }
+        &StaticsError::DefectLost { expected, kinks, antikinks } => Details { variant: "DefectLost", ..d }
+            .f("expected", expected)
+            .f("kinks", kinks)
+            .f("antikinks", antikinks),
+        &StaticsError::NoZeroEnergyState { spring, rest_length, min, max } => {
+            Details { variant: "NoZeroEnergyState", ..d }
+                .f("spring", spring)
+                .f("rest_length", rest_length)
+                .f("min", min)
+                .f("max", max)
+        }
+        &StaticsError::WrongLength { what, len, expected } => {
+            Details { variant: "WrongLength", ..d }.f("what", what).f("len", len).f("expected", expected)
+        }
+        &StaticsError::NotFinite { what, index, value } => {
+            Details { variant: "NotFinite", ..d }.f("what", what).f("index", index).f("value", value)
+        }
+        _ => Details { variant: "Other", ..d },
+    };
+    d.raise("StaticsError", e.to_string())
+}
+
+pub fn integrate(py: Python<'_>, e: &IntegrateError) -> PyErr {
+    let d = Details::new(py, "");
+    let d = match *e {
+        IntegrateError::WrongLength { what, len, expected } => {
+            Details { variant: "WrongLength", ..d }.f("what", what).f("len", len).f("expected", expected)
+        }
+        IntegrateError::NotFinite { what, time, index, value } => Details { variant: "NotFinite", ..d }
+            .f("what", what)
+            .f("time", time)
+            .f("index", index)
+            .f("value", value),
+        IntegrateError::StepSizeTooSmall { time, step } => {
+            Details { variant: "StepSizeTooSmall", ..d }.f("time", time).f("step", step)
+        }
+        IntegrateError::TooManySteps { time, steps } => {
+            Details { variant: "TooManySteps", ..d }.f("time", time).f("steps", steps)
+        }
+        IntegrateError::StepBudget { steps, dt, span, budget } => Details { variant: "StepBudget", ..d }
+            .f("steps", steps)
+            .f("dt", dt)
+            .f("span", span)
+            .f("budget", budget),
+        IntegrateError::OutputBudget { outputs, budget } => {
+            Details { variant: "OutputBudget", ..d }.f("outputs", outputs).f("budget", budget)
+        }
+        IntegrateError::EnergyNotConserved { time, energy, initial, relative, limit } => {
+            Details { variant: "EnergyNotConserved", ..d }
+                .f("time", time)
+                .f("energy", energy)
+                .f("initial", initial)
+                .f("relative", relative)
+                .f("limit", limit)
+        }
+        IntegrateError::InvalidOption { name, value, rule } => {
+            Details { variant: "InvalidOption", ..d }.f("name", name).f("value", value).f("rule", rule)
+        }
+        IntegrateError::EndBeforeStart { start, end } => {
+            Details { variant: "EndBeforeStart", ..d }.f("start", start).f("end", end)
+        }
+        IntegrateError::OutputsOutOfOrder { index, time, previous } => {
+            Details { variant: "OutputsOutOfOrder", ..d }
+                .f("index", index)
+                .f("time", time)
+                .f("previous", previous)
+        }
+        IntegrateError::BadInertia { index, inertia } => {
+            Details { variant: "BadInertia", ..d }.f("index", index).f("inertia", inertia)
+        }
+        IntegrateError::NoTimeScale { norm } => Details { variant: "NoTimeScale", ..d }.f("norm", norm),
+        _ => Details { variant: "Other", ..d },
+    };
+    d.raise("IntegrateError", e.to_string())
+}
+
+pub fn dynamics(py: Python<'_>, e: &DynamicsError) -> PyErr {
+    // An integration error is raised as IntegrateError, a subclass of DynamicsError.
+    if let DynamicsError::Integrate(i) = e {
+        return integrate(py, i);
+    }
+    let d = Details::new(py, "");
+    let d = match e {
+        DynamicsError::Statics(s) => Details { variant: "Statics", ..d }.source(statics(py, s)),
+        &DynamicsError::NoTranslationMode { position } => {
+            Details { variant: "NoTranslationMode", ..d }.f("position", position)
+        }
+        &DynamicsError::BadSpeed { v0 } => Details { variant: "BadSpeed", ..d }.f("v0", v0),
+        &DynamicsError::NoSuchSpring { spring, springs } => {
+            Details { variant: "NoSuchSpring", ..d }.f("spring", spring).f("springs", springs)
+        }
+        &DynamicsError::InvalidSetup { name, value, rule } => {
+            Details { variant: "InvalidSetup", ..d }.f("name", name).f("value", value).f("rule", rule)
+        }
+        _ => Details { variant: "Other", ..d },
+    };
+    d.raise("DynamicsError", e.to_string())
+}
+
+pub fn config(py: Python<'_>, e: &ConfigError) -> PyErr {
+    let d = Details::new(py, "");
+    let d = match e {
+        ConfigError::Chain(p) => Details { variant: "Chain", ..d }.source(parameter(py, p)),
+        &ConfigError::Value { name, value, rule } => {
+            Details { variant: "Value", ..d }.f("name", name).f("value", value).f("rule", rule)
+        }
+        _ => Details { variant: "Other", ..d },
+    };
+    d.raise("ConfigError", e.to_string())
+}
+
+pub fn point(py: Python<'_>, e: &PointError) -> PyErr {
+    let d = Details::new(py, "");
+    let d = match e {
+        PointError::Config(c) => Details { variant: "Config", ..d }.source(config(py, c)),
+        PointError::Chain(p) => Details { variant: "Chain", ..d }.source(parameter(py, p)),
+        PointError::Run { integrator, source } => {
+            Details { variant: "Run", ..d }.f("integrator", integrator.name()).source(dynamics(py, source))
+        }
+        &PointError::EnergyBudget { error, tolerance, integrator } => {
+            Details { variant: "EnergyBudget", ..d }
+                .f("error", error)
+                .f("tolerance", tolerance)
+                .f("integrator", integrator.name())
+        }
+        PointError::Recomputed { verlet, dop853 } => {
+            let d = Details { variant: "Recomputed", ..d }.f("verlet", verlet.to_string());
+            let d = match verlet {
+                VerletBreach::EnergyError { error } => d.f("verlet_energy_error", *error),
+                _ => d,
+            };
+            d.source(point(py, dop853))
+        }
+        &PointError::SpunThroughPi { time, outputs } => {
+            Details { variant: "SpunThroughPi", ..d }.f("time", time).f("outputs", outputs)
+        }
+        PointError::NothingRecorded => Details { variant: "NothingRecorded", ..d },
+        _ => Details { variant: "Other", ..d },
+    };
+    d.raise("PointError", e.to_string())
+}
+
+pub fn grid(py: Python<'_>, e: &GridError) -> PyErr {
+    let d = Details::new(py, "");
+    let d = match e {
+        &GridError::EmptyAxis { count } => Details { variant: "EmptyAxis", ..d }.f("count", count),
+        &GridError::TooManyPoints { count } => Details { variant: "TooManyPoints", ..d }.f("count", count),
+        &GridError::TooLarge { nx, ny } => Details { variant: "TooLarge", ..d }.f("nx", nx).f("ny", ny),
+        &GridError::NotFinite { value } => Details { variant: "NotFinite", ..d }.f("value", value),
+        &GridError::AmbiguousSinglePoint { from, to } => {
+            Details { variant: "AmbiguousSinglePoint", ..d }.f("from_", from).f("to", to)
+        }
+        GridError::BadRange { text, reason } => {
+            Details { variant: "BadRange", ..d }.f("text", text.as_str()).f("reason", reason.as_str())
+        }
+        &GridError::NotPositive { from, to } => {
+            Details { variant: "NotPositive", ..d }.f("from_", from).f("to", to)
+        }
+        _ => Details { variant: "Other", ..d },
+    };
+    d.raise("GridError", e.to_string())
+}
+
+/// Errors of results files. The path, when the variant has one, is the `path` attribute.
+pub fn sweep(py: Python<'_>, e: &SweepError) -> PyErr {
+    let d = Details::new(py, "");
+    let path = |p: &std::path::Path| p.display().to_string();
+    let d = match e {
+        SweepError::Io { action, path: p, source } => Details { variant: "Io", ..d }
+            .f("action", *action)
+            .f("path", path(p))
+            .f("errno", source.raw_os_error()),
+        SweepError::NotAResultsFile { path: p, found } => {
+            Details { variant: "NotAResultsFile", ..d }.f("path", path(p)).f("found", found.as_str())
+        }
+        SweepError::HeaderMismatch { path: p, expected, found } => Details { variant: "HeaderMismatch", ..d }
+            .f("path", path(p))
+            .f("expected", expected.as_str())
+            .f("found", found.as_str()),
+        SweepError::GridMismatch { path: p, expected, found } => Details { variant: "GridMismatch", ..d }
+            .f("path", path(p))
+            .f("expected", expected.as_str())
+            .f("found", found.as_str()),
+        SweepError::RunMismatch { path: p, expected, found } => Details { variant: "RunMismatch", ..d }
+            .f("path", path(p))
+            .f("expected", expected.as_str())
+            .f("found", found.as_str()),
+        SweepError::ShardMismatch { path: p, expected, found } => Details { variant: "ShardMismatch", ..d }
+            .f("path", path(p))
+            .f("expected", expected.as_str())
+            .f("found", found.as_str()),
+        SweepError::Parse { path: p, line, reason } => {
+            Details { variant: "Parse", ..d }.f("path", path(p)).f("line", *line).f("reason", reason.as_str())
+        }
+        SweepError::Locked { path: p } => Details { variant: "Locked", ..d }.f("path", path(p)),
+        SweepError::NotAFile { path: p, kind } => {
+            Details { variant: "NotAFile", ..d }.f("path", path(p)).f("kind", *kind)
+        }
+        SweepError::NotInSweep { path: p, index, .. } => {
+            Details { variant: "NotInSweep", ..d }.f("path", path(p)).f("index", *index)
+        }
+        SweepError::AlreadyDone { path: p, index } => {
+            Details { variant: "AlreadyDone", ..d }.f("path", path(p)).f("index", *index)
+        }
+        SweepError::Grid(g) => Details { variant: "Grid", ..d }.source(grid(py, g)),
+        _ => Details { variant: "Other", ..d },
+    };
+    d.raise("SweepError", e.to_string())
+}
+
+/// A plain `ValueError` (a wrong array length, an unknown name): programming errors of the
+/// caller, which the Rust API treats as panics.
+pub fn value_error(message: impl Into<String>) -> PyErr {
+    pyo3::exceptions::PyValueError::new_err(message.into())
+}

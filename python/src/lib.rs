@@ -1,0 +1,40 @@
+//! `rotor_chain._native`: the compiled half of the Python package `rotor_chain`.
+//!
+//! Every class and function wraps the Rust library one to one: [`chain::Chain`] is a
+//! `RuntimeChain` (the same builder and its checks), its statics and dynamics methods call
+//! `rotor_chain::statics` and `rotor_chain::dynamics`, and [`sweep`] exposes chain-sweep's
+//! `PhaseDiagram::compute_point` and results files, which `rotor_chain/sweep.py` drives on one
+//! machine or on a Dask cluster. Arrays cross as numpy `float64` arrays (copied in, so a computation
+//! never reads memory Python may change); every computation longer than a few microseconds runs
+//! with the GIL released (`Python::detach`). Errors become the exceptions of
+//! `rotor_chain/errors.py` ([`errors`]).
+
+use pyo3::prelude::*;
+
+mod args;
+mod chain;
+mod dynamics;
+mod errors;
+mod statics;
+mod sweep;
+
+#[pymodule]
+fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_class::<chain::Chain>()?;
+    m.add_class::<chain::Continuum>()?;
+    m.add_class::<statics::Antikink>()?;
+    m.add_class::<statics::PeierlsNabarro>()?;
+    m.add_class::<statics::Modes>()?;
+    m.add_class::<statics::Counting>()?;
+    m.add_class::<dynamics::Launch>()?;
+    m.add_class::<dynamics::Run>()?;
+    m.add_class::<dynamics::Scattering>()?;
+    m.add_class::<sweep::PhaseDiagram>()?;
+    m.add_class::<sweep::ResultsFile>()?;
+    m.add_function(wrap_pyfunction!(statics::domain_walls, m)?)?;
+    m.add_function(wrap_pyfunction!(sweep::axis, m)?)?;
+    m.add_function(wrap_pyfunction!(sweep::read_points, m)?)?;
+    m.add("__version__", env!("CARGO_PKG_VERSION"))?;
+    m.add("DEFAULT_ENERGY_TOLERANCE", chain_sweep::scattering::DEFAULT_ENERGY_TOLERANCE)?;
+    Ok(())
+}

@@ -1,0 +1,315 @@
+//! The statics of a `Chain` (paper Secs. II-V, VII-A): kink, antikink, Peierls-Nabarro barrier,
+//! modes, Maxwell-Calladine counting, domain walls. Each runs with the GIL released.
+
+use numpy::{AllowTypeChange, PyArray1, PyArray2, PyArrayLike1};
+use pyo3::prelude::*;
+use rotor_chain::ChainModel;
+use rotor_chain::statics::antikink::{self as ak, AntikinkOptions, Ends};
+use rotor_chain::statics::classify::EquilibriumKind;
+use rotor_chain::statics::counting;
+use rotor_chain::statics::modes::{self as md, ModeKind, ModeOptions};
+use rotor_chain::statics::walls;
+
+use crate::args::{array, charge_name, choice, rows};
+use crate::chain::Chain;
+use crate::errors;
+
+fn ends(name: &str) -> PyResult<Ends> {
+    choice("ends", name, &[("held", Ends::Held), ("free", Ends::Free)])
+}
+
+pub fn kink(chain: &Chain, py: Python<'_>, centre: f64) -> PyResult<Py<PyArray1<f64>>> {
+    let theta = py.detach(|| rotor_chain::statics::kink::kink(&chain.chain, centre));
+    Ok(array(py, theta.map_err(|e| errors::statics(py, &e))?))
+}
+
+/// An antikink equilibrium (see ``Chain.antikink``). Energies in units of ``k a^2``.
+#[pyclass(frozen, get_all, module = "rotor_chain._native")]
+pub struct Antikink {
+    /// The angles (radians).
+    theta: Py<PyArray1<f64>>,
+    /// Potential energy ``V``.
+    energy: f64,
+    /// Position of the antikink (Appendix C wall coordinate, in rotor indices).
+    centre: f64,
+    /// Morse index: eigenvalues of the tangent stiffness below ``-tolerance`` (1 at a saddle).
+    index: usize,
+    /// Eigenvalues within the tolerance of zero.
+    nullity: usize,
+    /// ``"minimum"``, ``"degenerate-minimum"`` or ``"saddle"``.
+    kind: &'static str,
+    /// ``max |dV/dtheta| / ||K||`` at the end (near-null directions held).
+    residual: f64,
+    /// The force left on the held near-null directions (tails reaching the free ends).
+    edge_force: f64,
+    /// Newton steps of the polish.
+    newton_iterations: usize,
+    /// Dissipative-relaxation steps (0 when not relaxed).
+    relax_steps: usize,
+}
+
+#[pymethods]
+impl Antikink {
+    /// Whether the tangent stiffness shows a saddle.
+    #[getter]
+    fn is_saddle(&self) -> bool {
+        self.kind == "saddle"
+    }
+
+    fn __repr__(&self) -> String {
+        format!(
+            "Antikink(energy={:?}, centre={:?}, kind='{}', index={})",
+            self.energy, self.centre, self.kind, self.index
+        )
+    }
+}
+
+fn antikink_of(py: Python<'_>, a: &ak::Antikink) -> Antikink {
+    let kind = match a.classification.kind {
+        EquilibriumKind::Minimum => "minimum",
+        EquilibriumKind::DegenerateMinimum { .. } => "degenerate-minimum",
+        EquilibriumKind::Saddle { .. } => "saddle",
+    };
+    Antikink {
+        theta: array(py, a.theta.clone()),
+        energy: a.energy,
+        centre: a.centre,
+        index: a.classification.index,
+        nullity: a.classification.nullity,
+        kind,
+        residual: a.residual,
+        edge_force: a.edge_force,
+        newton_iterations: a.newton_iterations,
+        relax_steps: a.relax_steps,
+    }
+}
+
+pub fn antikink(
+    chain: &Chain,
+    py: Python<'_>,
+    centre: Option<f64>,
+    relaxed: bool,
+    ends_name: &str,
+) -> PyResult<Antikink> {
+    let options = AntikinkOptions { ends: ends(ends_name)?, ..AntikinkOptions::default() };
+    let centre = centre.unwrap_or(((chain.n() - 1) / 2) as f64);
+    let result = py.detach(|| {
+        if relaxed {
+            ak::antikink_relaxed(&chain.chain, centre, &options)
+        } else {
+            ak::antikink_at(&chain.chain, centre, &options)
+        }
+    });
+    Ok(antikink_of(py, &result.map_err(|e| errors::statics(py, &e))?))
+}
+
+/// Both antikink equilibria in the middle of the chain and the Peierls-Nabarro barrier
+/// between them (paper Sec. V). Energies in units of ``k a^2``.
+#[pyclass(frozen, get_all, module = "rotor_chain._native")]
+pub struct PeierlsNabarro {
+    /// The lower-energy equilibrium.
+    minimum: Py<Antikink>,
+    /// The higher-energy equilibrium (the top of the barrier).
+    saddle: Py<Antikink>,
+    /// The antikink centred on the middle rotor ``(n - 1) // 2``.
+    rotor_centred: Py<Antikink>,
+    /// The antikink centred on the spring to its right.
+    spring_centred: Py<Antikink>,
+    /// ``V_saddle - V_minimum``.
+    barrier: f64,
+    /// Whether the spectra show exactly one minimum and one saddle of index 1 (for very wide
+    /// antikinks the barrier is below what double precision resolves; it is then an upper estimate).
+    resolved: bool,
+}
+
+#[pymethods]
+impl PeierlsNabarro {
+    /// ``minimum.energy``.
+    #[getter]
+    fn minimum_energy(&self) -> f64 {
+        self.minimum.get().energy
+    }
+
+    /// ``saddle.energy``.
+    #[getter]
+    fn saddle_energy(&self) -> f64 {
+        self.saddle.get().energy
+    }
+
+    fn __repr__(&self) -> String {
+        format!(
+            "PeierlsNabarro(minimum_energy={:?}, saddle_energy={:?}, barrier={:?}, resolved={})",
+            self.minimum.get().energy,
+            self.saddle.get().energy,
+            self.barrier,
+            if self.resolved { "True" } else { "False" }
+        )
+    }
+}
+
+pub fn peierls_nabarro(chain: &Chain, py: Python<'_>, ends_name: &str) -> PyResult<PeierlsNabarro> {
+    let options = AntikinkOptions { ends: ends(ends_name)?, ..AntikinkOptions::default() };
+    let pn =
+        py.detach(|| ak::peierls_nabarro(&chain.chain, &options)).map_err(|e| errors::statics(py, &e))?;
+    let rotor = Py::new(py, antikink_of(py, &pn.rotor_centred))?;
+    let spring = Py::new(py, antikink_of(py, &pn.spring_centred))?;
+    let rotor_is_minimum = pn.rotor_centred.energy <= pn.spring_centred.energy;
+    let (minimum, saddle) = if rotor_is_minimum {
+        (rotor.clone_ref(py), spring.clone_ref(py))
+    } else {
+        (spring.clone_ref(py), rotor.clone_ref(py))
+    };
+    Ok(PeierlsNabarro {
+        minimum,
+        saddle,
+        rotor_centred: rotor,
+        spring_centred: spring,
+        barrier: pn.barrier,
+        resolved: pn.resolved,
+    })
+}
+
+/// Vibrational modes about an equilibrium, ascending in ``omega^2`` (paper Sec. IV):
+/// ``K v = omega^2 I v`` with ``I = diag(M r_i^2)``.
+#[pyclass(frozen, get_all, module = "rotor_chain._native")]
+pub struct Modes {
+    /// ``omega`` (``1/t``; 0 for a negative ``omega^2``, an unstable direction).
+    frequencies: Py<PyArray1<f64>>,
+    /// The eigenvalues ``omega^2`` (``1/t^2``).
+    omega_squared: Py<PyArray1<f64>>,
+    /// ``vectors[m]`` is mode ``m``'s angular pattern ``v`` (``count x n``), normalised so
+    /// ``sum_i I_i v_i^2 = 1``.
+    vectors: Py<PyArray2<f64>>,
+    /// Mean position of each mode's weights ``I_i v_i^2`` (rotor index).
+    positions: Py<PyArray1<f64>>,
+    /// Participation number of each mode: how many rotors take part.
+    participation: Py<PyArray1<f64>>,
+    /// Where each mode lives: ``"translation"``, ``"shape"``, ``"edge-left"``, ``"edge-right"``
+    /// or ``"extended"``.
+    kinds: Vec<&'static str>,
+}
+
+#[pymethods]
+impl Modes {
+    fn __len__(&self) -> usize {
+        self.kinds.len()
+    }
+
+    fn __repr__(&self) -> String {
+        format!(
+            "Modes(count={}, kinds=[{}])",
+            self.kinds.len(),
+            self.kinds.iter().map(|k| format!("'{k}'")).collect::<Vec<_>>().join(", ")
+        )
+    }
+}
+
+pub fn modes(
+    chain: &Chain,
+    py: Python<'_>,
+    theta: PyArrayLike1<'_, f64, AllowTypeChange>,
+    count: Option<usize>,
+    hold_ends: bool,
+) -> PyResult<Modes> {
+    let theta = chain.theta(theta)?;
+    let options = ModeOptions { count, hold_ends, ..ModeOptions::default() };
+    let found =
+        py.detach(|| md::modes(&chain.chain, &theta, &options)).map_err(|e| errors::statics(py, &e))?;
+    let n = chain.n();
+    let shapes: Vec<Vec<f64>> = found.iter().map(|m| m.shape.clone()).collect();
+    Ok(Modes {
+        frequencies: array(py, found.iter().map(|m| m.frequency).collect()),
+        omega_squared: array(py, found.iter().map(|m| m.omega_squared).collect()),
+        vectors: rows(py, &shapes, n),
+        positions: array(py, found.iter().map(|m| m.position).collect()),
+        participation: array(py, found.iter().map(|m| m.participation).collect()),
+        kinds: found
+            .iter()
+            .map(|m| match m.kind {
+                ModeKind::Translation => "translation",
+                ModeKind::Shape => "shape",
+                ModeKind::Edge { left: true } => "edge-left",
+                ModeKind::Edge { left: false } => "edge-right",
+                ModeKind::Extended => "extended",
+            })
+            .collect(),
+    })
+}
+
+/// Maxwell-Calladine counting at one configuration (paper Sec. VII-A).
+#[pyclass(frozen, get_all, module = "rotor_chain._native")]
+pub struct Counting {
+    rotors: usize,
+    springs: usize,
+    /// Singular values of the compatibility matrix, descending.
+    singular_values: Py<PyArray1<f64>>,
+    /// Singular values at or below this count as zero.
+    tolerance: f64,
+    /// Rank of the compatibility matrix.
+    rank: usize,
+    /// Orthonormal zero modes, one per row (rotor displacements ``r_i dtheta_i``; ``N_zero x n``).
+    zero_modes: Py<PyArray2<f64>>,
+    /// Orthonormal states of self-stress, one per row (spring tensions; ``N_ss x (n - 1)``).
+    self_stresses: Py<PyArray2<f64>>,
+    /// ``N_zero - N_selfstress`` (always ``n - (n - 1) = 1``).
+    index: isize,
+}
+
+#[pymethods]
+impl Counting {
+    /// Number of zero modes ``N_zero = n - rank``.
+    #[getter]
+    fn n_zero_modes(&self) -> usize {
+        self.rotors - self.rank
+    }
+
+    /// Number of states of self-stress ``N_ss = (n - 1) - rank``.
+    #[getter]
+    fn n_self_stresses(&self) -> usize {
+        self.springs - self.rank
+    }
+
+    fn __repr__(&self) -> String {
+        format!(
+            "Counting(rotors={}, springs={}, rank={}, zero_modes={}, self_stresses={})",
+            self.rotors,
+            self.springs,
+            self.rank,
+            self.rotors - self.rank,
+            self.springs - self.rank
+        )
+    }
+}
+
+pub fn maxwell_calladine(
+    chain: &Chain,
+    py: Python<'_>,
+    theta: PyArrayLike1<'_, f64, AllowTypeChange>,
+    tolerance: Option<f64>,
+) -> PyResult<Counting> {
+    let theta = chain.theta(theta)?;
+    let c = py
+        .detach(|| counting::maxwell_calladine(&chain.chain, &theta, tolerance))
+        .map_err(|e| errors::statics(py, &e))?;
+    Ok(Counting {
+        rotors: c.rotors,
+        springs: c.springs,
+        singular_values: array(py, c.singular_values.clone()),
+        tolerance: c.tolerance,
+        rank: c.rank,
+        zero_modes: rows(py, &c.zero_modes, chain.chain.rotor_count()),
+        self_stresses: rows(py, &c.self_stresses, chain.chain.spring_count()),
+        index: c.index(),
+    })
+}
+
+/// The domain walls of a profile (paper Appendix C): ``[(position, "kink" | "antikink"), ...]``
+/// from left to right, positions in rotor indices (the interpolated sign changes of the angles).
+#[pyfunction]
+pub fn domain_walls(theta: PyArrayLike1<'_, f64, AllowTypeChange>) -> PyResult<Vec<(f64, &'static str)>> {
+    let theta = theta.as_array().to_vec();
+    if let Some((i, v)) = theta.iter().enumerate().find(|(_, v)| !v.is_finite()) {
+        return Err(errors::value_error(format!("theta[{i}] = {v} is not finite")));
+    }
+    Ok(walls::domain_walls(&theta).into_iter().map(|w| (w.position, charge_name(w.charge))).collect())
+}

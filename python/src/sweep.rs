@@ -1,0 +1,348 @@
+//! Phase-diagram sweeps: chain-sweep's `PhaseDiagram::compute_point` over lists of points (what
+//! one Dask task or one local chunk computes), its resumable results files, and the axes of the
+//! `phase-diagram` command line. `rotor_chain/sweep.py` drives these.
+//!
+//! A point's record crosses into Python as a dict with the columns of the results file
+//! (`i, j, ki, v0, outcome, t_decided, confirmed, later, t_later, kinks_final, antikinks_final,
+//! energy_error, integrator, error`): a failed point has `error` set and `None` elsewhere. Floats
+//! are Python floats, so a record goes to another process and back bit for bit.
+
+use std::panic::{AssertUnwindSafe, catch_unwind};
+use std::path::PathBuf;
+use std::str::FromStr;
+
+use chain_sweep::scattering::{
+    Defect, Ends, Integrator, LaterEvent, Outcome, PhaseDiagram as Diagram, PointRecord, Recomputed,
+};
+use chain_sweep::{Axis, Grid, Point, ResultsFile as File, SweepOptions};
+use pyo3::prelude::*;
+use pyo3::types::{PyDict, PyString};
+use rayon::prelude::*;
+
+use crate::args::choice;
+use crate::errors::{self, value_error};
+
+/// One phase diagram's settings, checked (chain-sweep's ``PhaseDiagram``): the chain of paper
+/// Sec. VI with the impurity on the middle spring, the defect launched from 15 sites to its
+/// right, each point held to the energy budget. ``rotor_chain.sweep.phase_diagram`` builds it.
+#[pyclass(frozen, module = "rotor_chain._native")]
+pub struct PhaseDiagram {
+    d: Diagram,
+}
+
+/// `(i, j, ki, v0)`: a grid point with its coordinates.
+type GridPoint = (usize, usize, f64, f64);
+
+#[pymethods]
+impl PhaseDiagram {
+    #[new]
+    #[pyo3(signature = (defect, *, n = 60, r = 0.8, k = 1.0e4, theta_bar = 0.28, mass = 1.0, ends = "free",
+                        integrator = "verlet", dt = None, energy_tolerance = chain_sweep::scattering::DEFAULT_ENERGY_TOLERANCE,
+                        recompute = true, t_max = 20.0))]
+    #[allow(clippy::too_many_arguments)]
+    fn new(
+        py: Python<'_>,
+        defect: &str,
+        n: usize,
+        r: f64,
+        k: f64,
+        theta_bar: f64,
+        mass: f64,
+        ends: &str,
+        integrator: &str,
+        dt: Option<f64>,
+        energy_tolerance: f64,
+        recompute: bool,
+        t_max: f64,
+    ) -> PyResult<Self> {
+        let defect = choice("defect", defect, &[("kink", Defect::Kink), ("antikink", Defect::Antikink)])?;
+        let ends = choice("ends", ends, &[("free", Ends::Free), ("absorbing", Ends::Absorbing)])?;
+        let integrator = choice(
+            "integrator",
+            integrator,
+            &[("verlet", Integrator::Verlet), ("dop853", Integrator::Dop853)],
+        )?;
+        let mut d = Diagram::new(n, r, k, theta_bar, defect).map_err(|e| errors::config(py, &e))?;
+        d.mass = mass;
+        d.ends = ends;
+        d.integrator = integrator;
+        d.dt = dt;
+        d.energy_tolerance = energy_tolerance;
+        d.recompute = recompute;
+        d.t_max = t_max;
+        d.check().map_err(|e| errors::config(py, &e))?;
+        Ok(Self { d })
+    }
+
+    /// The run label of the results file: the same as the ``phase-diagram`` command's for the
+    /// same settings, so either resumes the other's file.
+    #[getter]
+    fn run_label(&self) -> String {
+        self.d.run_label()
+    }
+
+    /// Checks an impurity stiffness ratio ``k_i/k`` (ConfigError if it is not > 0 with a finite
+    /// ``k_i``).
+    fn check_ki(&self, py: Python<'_>, ki: f64) -> PyResult<()> {
+        self.d.check_ki(ki).map_err(|e| errors::config(py, &e))
+    }
+
+    /// One point: the scattering run at ``(ki, v0)`` with its energy budget, as a record dict.
+    ///
+    /// Raises:
+    ///     PointError: the point failed, with the numbers (``variant``: ``EnergyBudget``,
+    ///         ``Recomputed``, ``Run``, ``SpunThroughPi``, ...).
+    fn compute_point<'py>(&self, py: Python<'py>, ki: f64, v0: f64) -> PyResult<Bound<'py, PyDict>> {
+        let record = py.detach(|| self.d.compute_point(ki, v0)).map_err(|e| errors::point(py, &e))?;
+        record_dict(py, (0, 0, ki, v0), &Ok(record))
+    }
+
+    /// The records of ``points`` (``(i, j, ki, v0)`` tuples), computed on ``threads`` threads
+    /// (default: every core) with the GIL released, in the order given. A point that fails (or
+    /// panics) has its message in ``error``; nothing is raised for it.
+    #[pyo3(signature = (points, threads = None))]
+    fn compute_points<'py>(
+        &self,
+        py: Python<'py>,
+        points: Vec<GridPoint>,
+        threads: Option<usize>,
+    ) -> PyResult<Vec<Bound<'py, PyDict>>> {
+        if threads == Some(0) {
+            return Err(value_error("threads must be at least 1"));
+        }
+        let results =
+            py.detach(|| -> Result<Vec<Result<PointRecord, String>>, rayon::ThreadPoolBuildError> {
+                let one = |&(_, _, ki, v0): &GridPoint| compute_one(&self.d, ki, v0);
+                if threads == Some(1) {
+                    return Ok(points.iter().map(one).collect());
+                }
+                let mut builder = rayon::ThreadPoolBuilder::new();
+                if let Some(t) = threads {
+                    builder = builder.num_threads(t);
+                }
+                let pool = builder.build()?;
+                Ok(pool.install(|| points.par_iter().map(one).collect()))
+            });
+        let results = results
+            .map_err(|e| pyo3::exceptions::PyRuntimeError::new_err(format!("cannot start threads: {e}")))?;
+        points.iter().zip(&results).map(|(p, r)| record_dict(py, *p, r)).collect()
+    }
+
+    fn __repr__(&self) -> String {
+        format!("PhaseDiagram({})", self.d.run_label())
+    }
+}
+
+/// One point; a panic becomes its error, as in chain-sweep's sweeps.
+fn compute_one(d: &Diagram, ki: f64, v0: f64) -> Result<PointRecord, String> {
+    match catch_unwind(AssertUnwindSafe(|| d.compute_point(ki, v0))) {
+        Ok(result) => result.map_err(|e| e.to_string()),
+        Err(payload) => {
+            let message = payload
+                .downcast_ref::<&str>()
+                .map(|s| s.to_string())
+                .or_else(|| payload.downcast_ref::<String>().cloned())
+                .unwrap_or_else(|| "unknown payload".to_owned());
+            Err(format!("panicked: {message}"))
+        }
+    }
+}
+
+fn record_dict<'py>(
+    py: Python<'py>,
+    (i, j, ki, v0): GridPoint,
+    outcome: &Result<PointRecord, String>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(py);
+    d.set_item("i", i)?;
+    d.set_item("j", j)?;
+    d.set_item("ki", ki)?;
+    d.set_item("v0", v0)?;
+    let none = py.None();
+    match outcome {
+        Ok(r) => {
+            d.set_item("outcome", r.outcome.name())?;
+            d.set_item("t_decided", r.t_decided)?;
+            d.set_item("confirmed", r.confirmed)?;
+            d.set_item("later", r.later.map(|(e, _)| e.name()))?;
+            d.set_item("t_later", r.later.map(|(_, t)| t))?;
+            d.set_item("kinks_final", r.kinks_final)?;
+            d.set_item("antikinks_final", r.antikinks_final)?;
+            d.set_item("energy_error", r.energy_error)?;
+            d.set_item("integrator", r.integrator.to_string())?;
+            d.set_item("error", &none)?;
+        }
+        Err(message) => {
+            for key in [
+                "outcome",
+                "t_decided",
+                "confirmed",
+                "later",
+                "t_later",
+                "kinks_final",
+                "antikinks_final",
+                "energy_error",
+                "integrator",
+            ] {
+                d.set_item(key, &none)?;
+            }
+            d.set_item("error", message)?;
+        }
+    }
+    Ok(d)
+}
+
+fn item<'py, T: FromPyObjectOwned<'py>>(d: &Bound<'py, PyDict>, key: &str) -> PyResult<T> {
+    match d.get_item(key)? {
+        Some(v) => v.extract::<T>().map_err(|e| {
+            let e: PyErr = e.into();
+            value_error(format!("record field `{key}`: {e}"))
+        }),
+        None => Err(value_error(format!("the record has no field `{key}`"))),
+    }
+}
+
+/// A record dict back into the point and its outcome.
+fn record_of(d: &Bound<'_, PyDict>) -> PyResult<((usize, usize), Result<PointRecord, String>)> {
+    let index = (item(d, "i")?, item(d, "j")?);
+    if let Some(error) = item::<Option<String>>(d, "error")? {
+        return Ok((index, Err(error)));
+    }
+    let outcome: String = item(d, "outcome")?;
+    let outcome = Outcome::from_str(&outcome).map_err(|e| value_error(e.to_string()))?;
+    let later = match (item::<Option<String>>(d, "later")?, item::<Option<f64>>(d, "t_later")?) {
+        (Some(e), Some(t)) => Some((LaterEvent::from_str(&e).map_err(|e| value_error(e.to_string()))?, t)),
+        (None, None) => None,
+        _ => return Err(value_error("a record has `later` and `t_later` both or neither")),
+    };
+    let integrator = Recomputed::from_str(&item::<String>(d, "integrator")?).map_err(value_error)?;
+    Ok((
+        index,
+        Ok(PointRecord {
+            outcome,
+            t_decided: item(d, "t_decided")?,
+            confirmed: item(d, "confirmed")?,
+            later,
+            kinks_final: item(d, "kinks_final")?,
+            antikinks_final: item(d, "antikinks_final")?,
+            energy_error: item(d, "energy_error")?,
+            integrator,
+        }),
+    ))
+}
+
+/// The values of an axis: ``"FROM:TO:COUNT"`` or ``"FROM:TO:COUNT:log"`` as on the
+/// ``phase-diagram`` command line, or a sequence of finite floats.
+///
+/// Raises:
+///     GridError: a malformed range or a value that is not finite.
+#[pyfunction]
+pub fn axis(py: Python<'_>, spec: &Bound<'_, PyAny>) -> PyResult<Vec<f64>> {
+    let axis = if spec.is_instance_of::<PyString>() {
+        Axis::from_str(&spec.extract::<String>()?)
+    } else {
+        Axis::from_values(spec.extract::<Vec<f64>>()?)
+    };
+    Ok(axis.map_err(|e| errors::grid(py, &e))?.values().to_vec())
+}
+
+fn grid(py: Python<'_>, xs: Vec<f64>, ys: Vec<f64>) -> PyResult<Grid> {
+    let axes = Axis::from_values(xs).and_then(|x| Ok((x, Axis::from_values(ys)?)));
+    let (x, y) = axes.map_err(|e| errors::grid(py, &e))?;
+    Grid::new(x, y).map_err(|e| errors::grid(py, &e))
+}
+
+/// A phase diagram's results file, opened and locked for one sweep (chain-sweep's
+/// ``ResultsFile``): created with its two-line preamble, or resumed if it holds part of the same
+/// sweep (the same grid ``xs`` x ``ys`` and ``run`` label), its unfinished last line cut off.
+#[pyclass(module = "rotor_chain._native")]
+pub struct ResultsFile {
+    file: Option<File<PointRecord>>,
+}
+
+impl ResultsFile {
+    fn open(&mut self) -> PyResult<&mut File<PointRecord>> {
+        self.file.as_mut().ok_or_else(|| value_error("the results file is closed"))
+    }
+}
+
+#[pymethods]
+impl ResultsFile {
+    #[new]
+    #[pyo3(signature = (xs, ys, path, run, *, retry_failed = false))]
+    fn new(
+        py: Python<'_>,
+        xs: Vec<f64>,
+        ys: Vec<f64>,
+        path: PathBuf,
+        run: String,
+        retry_failed: bool,
+    ) -> PyResult<Self> {
+        let grid = grid(py, xs, ys)?;
+        let mut options = SweepOptions::new("phase diagram", run);
+        options.retry_failed = retry_failed;
+        let file = py.detach(|| File::open(&grid, &path, &options)).map_err(|e| errors::sweep(py, &e))?;
+        Ok(Self { file: Some(file) })
+    }
+
+    /// The ``(i, j)`` the file lacks, in grid order.
+    fn missing(&mut self) -> PyResult<Vec<(usize, usize)>> {
+        Ok(self.open()?.missing())
+    }
+
+    /// What the file held when opened: ``total``, ``skipped`` (points already there),
+    /// ``failed_before``, ``retried``, ``repaired_bytes``, ``duplicates``.
+    fn summary<'py>(&mut self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let s = self.open()?.summary().clone();
+        let d = PyDict::new(py);
+        d.set_item("total", s.total)?;
+        d.set_item("skipped", s.skipped)?;
+        d.set_item("failed_before", s.failed_before)?;
+        d.set_item("retried", s.retried)?;
+        d.set_item("repaired_bytes", s.repaired_bytes)?;
+        d.set_item("duplicates", s.duplicates)?;
+        Ok(d)
+    }
+
+    /// Append one record dict as one whole line. A point outside the grid or already in the file
+    /// raises SweepError and writes nothing.
+    fn append(&mut self, py: Python<'_>, record: &Bound<'_, PyDict>) -> PyResult<()> {
+        let (index, outcome) = record_of(record)?;
+        self.open()?.append(index, &outcome).map_err(|e| errors::sweep(py, &e))
+    }
+
+    /// Sync the file to disk and release its lock.
+    fn close(&mut self, py: Python<'_>) -> PyResult<()> {
+        match self.file.take() {
+            Some(f) => f.finish().map(|_| ()).map_err(|e| errors::sweep(py, &e)),
+            None => Ok(()),
+        }
+    }
+
+    fn __enter__(slf: Py<Self>) -> Py<Self> {
+        slf
+    }
+
+    fn __exit__(
+        &mut self,
+        py: Python<'_>,
+        _kind: Option<Bound<'_, PyAny>>,
+        _value: Option<Bound<'_, PyAny>>,
+        _traceback: Option<Bound<'_, PyAny>>,
+    ) -> PyResult<bool> {
+        self.close(py)?;
+        Ok(false)
+    }
+}
+
+/// Every point of a results file (of ``phase-diagram``, ``rotor_chain.sweep.phase_diagram`` or
+/// ``phase-diagram merge``) as record dicts, failed points included, in file order.
+#[pyfunction]
+pub fn read_points<'py>(py: Python<'py>, path: PathBuf) -> PyResult<Vec<Bound<'py, PyDict>>> {
+    let points: Vec<Point<PointRecord>> =
+        py.detach(|| chain_sweep::read_points(&path)).map_err(|e| errors::sweep(py, &e))?;
+    points
+        .iter()
+        .map(|p| record_dict(py, (p.index.0, p.index.1, p.coords.0, p.coords.1), &p.outcome))
+        .collect()
+}

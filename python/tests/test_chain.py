@@ -1,0 +1,160 @@
+"""The binding's Chain against the Rust library's own numbers (rotor-chain-reference): energies,
+gradients, stiffness, lengths, tensions, compatibility and the branch solve to 1e-12; every
+builder error with the Rust message and its numbers."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import rotor_chain as rc
+from conftest import close
+
+CHAINS = [
+    dict(n=60, r=0.8, k=1.0e4, theta_bar=0.58),
+    dict(n=60, r=0.8, k=1.0e4, theta_bar=0.28, springs=[(29, 7.0e3, None)]),
+    dict(n=23, r=0.6, k=3.5, theta_bar=0.4, a=1.3, mass=2.5, law="quartic"),
+    dict(n=17, r=0.7, k=12.0, theta_bar=0.2, springs=[(3, None, 1.9), (8, 40.0, 1.75)], rotors=[(5, 0.55)]),
+    dict(n=2, r=0.45, k=1.0, theta_bar=0.5),
+]
+
+
+def make(spec):
+    springs = {p: {key: v for key, v in (("k", k), ("l0", l0)) if v is not None} for p, k, l0 in spec.get("springs", [])}
+    rotors = dict(spec.get("rotors", []))
+    kwargs = {key: spec[key] for key in ("a", "mass", "law") if key in spec}
+    return rc.Chain(spec["n"], spec["r"], spec["k"], spec["theta_bar"], springs=springs, rotors=rotors, **kwargs)
+
+
+def angles(spec, seed):
+    rng = np.random.default_rng(seed)
+    n, tb = spec["n"], spec["theta_bar"]
+    signs = np.where(np.arange(n) < n // 2, 1.0, -1.0)
+    return signs * tb + rng.normal(0.0, 0.15, n)
+
+
+@pytest.mark.parametrize("spec", CHAINS, ids=lambda s: f"n{s['n']}-{s.get('law', 'harmonic')}")
+def test_evaluation_matches_rust(spec, reference):
+    chain = make(spec)
+    thetas = [angles(spec, seed) for seed in range(4)]
+    try:
+        thetas.append(chain.kink(0.5 * (spec["n"] - 1)))
+    except rc.StaticsError as e:  # a rest-length impurity with no kink through it
+        assert e.variant == "Branch" and isinstance(e.__cause__, rc.BranchError)
+    results = reference([{"chain": spec, "op": "evaluate", "theta": t} for t in thetas])
+    for theta, result in zip(thetas, results):
+        ref = result["ok"]
+        close(chain.energy(theta), ref["energy"], what="energy")
+        close(chain.gradient(theta), ref["gradient"], what="gradient")
+        e, g = chain.energy_and_gradient(theta)
+        close(e, ref["energy_fused"], what="fused energy")
+        close(g, ref["gradient_fused"], what="fused gradient")
+        diag, off = chain.tangent_stiffness(theta)
+        close(diag, ref["stiffness"]["diag"], what="stiffness diag")
+        close(off, ref["stiffness"]["off"], what="stiffness off")
+        for name, method in (("material", chain.material_stiffness), ("stress", chain.stress_matrix)):
+            d, o = method(theta)
+            close(d, ref[name]["diag"], what=name)
+            close(o, ref[name]["off"], what=name)
+        h = chain.hessian(theta)
+        n = spec["n"]
+        dense = np.diag(ref["stiffness"]["diag"]) + np.diag(ref["stiffness"]["off"], 1) + np.diag(ref["stiffness"]["off"], -1)
+        close(h, dense, what="hessian")
+        assert h.shape == (n, n) and np.array_equal(h, h.T)
+        close(chain.spring_lengths(theta), ref["spring_lengths"], what="lengths")
+        close(chain.tensions(theta), ref["tensions"], what="tensions")
+        left, right = chain.compatibility(theta)
+        close(left, ref["compatibility"]["left"], what="C left")
+        close(right, ref["compatibility"]["right"], what="C right")
+        c = chain.compatibility(theta, dense=True)
+        assert c.shape == (n - 1, n)
+        close(np.diag(c), ref["compatibility"]["left"], what="dense C")
+        close(np.diag(c, 1), ref["compatibility"]["right"], what="dense C")
+        # Lists and integer-typed arrays are accepted as angles too.
+        assert chain.energy(list(theta)) == chain.energy(theta)
+
+
+def test_properties_and_the_constructor_round_trip():
+    spec = CHAINS[3]
+    chain = make(spec)
+    assert (chain.n_rotors, chain.n_springs, chain.theta_bar, chain.law) == (17, 16, 0.2, "harmonic")
+    assert chain.stiffness[8] == 40.0 and chain.stiffness[0] == 12.0
+    assert chain.rest_lengths[3] == 1.9 and chain.rotor_lengths[5] == 0.55
+    assert np.allclose(chain.inertia, chain.mass * chain.rotor_lengths**2)
+    again = eval(repr(chain), {"Chain": rc.Chain})
+    theta = angles(spec, 7)
+    assert again.energy(theta) == chain.energy(theta)
+    import pickle
+
+    assert pickle.loads(pickle.dumps(chain)).energy(theta) == chain.energy(theta)
+    assert np.array_equal(chain.uniform(-1), -0.2 * np.ones(17))
+
+
+@pytest.mark.parametrize("p,theta_p", [(0, 0.3), (10, 0.58), (30, -0.2), (58, 0.1), (20, 1.4), (59, 0.3)])
+def test_branch_solve_matches_rust(p, theta_p, reference):
+    spec = CHAINS[0]
+    chain = make(spec)
+    (result,) = reference([{"chain": spec, "op": "next_angles", "p": p, "theta_p": theta_p}])
+    if "ok" in result:
+        close(chain.next_angles(p, theta_p), result["ok"]["next"], what="next")
+        close(chain.previous_angles(p, theta_p), result["ok"]["previous"], what="previous")
+    else:
+        with pytest.raises(rc.BranchError) as info:
+            chain.next_angles(p, theta_p)
+        assert str(info.value) == result["error"]
+        assert isinstance(info.value, ValueError)
+
+
+def test_no_real_root_carries_its_numbers():
+    chain = make(CHAINS[0])
+    with pytest.raises(rc.BranchError) as info:
+        chain.next_angles(3, 1.5)
+    e = info.value
+    assert e.variant == "NoRealRoot" and e.spring == 3 and e.theta == 1.5
+    assert not (e.min <= e.distance <= e.max)
+    assert f"distances in [{e.min!r}, {e.max!r}]" in str(e)
+
+
+BAD = [
+    (dict(n=1, r=0.8, k=1e4, theta_bar=0.3), "TooFewRotors", {"n": 1}),
+    (dict(n=10, r=-0.8, k=1e4, theta_bar=0.3), "NotPositive", {"key": "r", "value": -0.8}),
+    (dict(n=10, r=0.8, k=float("nan"), theta_bar=0.3), "NotPositive", {"key": "k"}),
+    (dict(n=10, r=0.8, k=1e4, theta_bar=0.7), "OutsideFlipperPhase", {"theta_bar": 0.7, "r": 0.8}),
+    (dict(n=10, r=0.8, k=1e4, theta_bar=-0.1), "OutsideFlipperPhase", {"theta_bar": -0.1}),
+    (dict(n=10, r=0.8, k=1e4, theta_bar=0.3, mass=0.0), "NotPositive", {"key": "mass", "value": 0.0}),
+    (dict(n=10, r=0.8, k=1e4, theta_bar=0.3, a=0.0), "NotPositive", {"key": "a"}),
+    (dict(n=10, r=0.8, k=1e4, theta_bar=0.3, springs=[(9, 1.0, None)]), "IndexOutOfRange", {"index": 9, "count": 9, "kind": "spring"}),
+    (dict(n=10, r=0.8, k=1e4, theta_bar=0.3, springs=[(2, None, -1.0)]), "NotPositive", {"key": "l0"}),
+    (dict(n=10, r=0.8, k=1e4, theta_bar=0.3, rotors=[(10, 0.5)]), "IndexOutOfRange", {"kind": "rotor", "index": 10}),
+]
+
+
+@pytest.mark.parametrize("spec,variant,numbers", BAD, ids=[b[1] + str(k) for k, b in enumerate(BAD)])
+def test_builder_errors_are_the_rust_errors(spec, variant, numbers, reference):
+    (result,) = reference([{"chain": spec, "op": "build"}])
+    with pytest.raises(rc.ParameterError) as info:
+        make(spec)
+    e = info.value
+    assert isinstance(e, ValueError) and isinstance(e, rc.RotorChainError)
+    assert str(e) == result["error"]
+    assert e.variant == variant
+    for name, value in numbers.items():
+        assert getattr(e, name) == value, name
+        assert e.details[name] == value
+
+
+def test_python_side_misuse_is_a_clear_value_error():
+    chain = make(CHAINS[0])
+    with pytest.raises(ValueError, match="theta has 59 entries, the chain has 60 rotors"):
+        chain.energy(np.zeros(59))
+    with pytest.raises(ValueError, match=r"theta\[4\] = NaN is not finite"):
+        chain.gradient(np.where(np.arange(60) == 4, np.nan, 0.3))
+    with pytest.raises(ValueError, match="law must be one of 'harmonic', 'quartic', got 'cubic'"):
+        rc.Chain(10, 0.8, 1e4, 0.3, law="cubic")
+    with pytest.raises(ValueError, match="unknown key 'K'"):
+        rc.Chain(10, 0.8, 1e4, 0.3, springs={2: {"K": 1.0}})
+    with pytest.raises(rc.ParameterError, match="got -3") as info:
+        rc.Chain(-3, 0.8, 1e4, 0.3)
+    assert info.value.n == -3
+    with pytest.raises(rc.ParameterError, match="spring index -1 is out of range"):
+        rc.Chain(10, 0.8, 1e4, 0.3, springs={-1: {"k": 1.0}})

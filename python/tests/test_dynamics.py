@@ -1,0 +1,108 @@
+"""Dynamics through the binding against the Rust library's own runs (rotor-chain-reference):
+launch, propagation with Verlet and DOP853, and the paper's five named scattering points, with
+identical outcomes and decision times; dynamics errors with their numbers."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import rotor_chain as rc
+from conftest import close
+
+BASE = dict(n=60, r=0.8, k=1.0e4, theta_bar=0.28)
+
+# The paper's named points (Sec. VI; docs/dynamics.md §5): defect, v0, k_i/k, the paper's outcome.
+NAMED = [
+    ("kink", 4.0, 0.10, "transmitted"),
+    ("kink", 9.6, 0.01, "split"),
+    ("antikink", 4.0, 0.80, "transmitted"),
+    ("antikink", 4.0, 0.70, "trapped"),
+    ("antikink", 4.8, 0.20, "reflected"),
+]
+
+
+def with_impurity(ki):
+    spec = dict(BASE, springs=[(29, ki * BASE["k"], None)])
+    return spec, rc.Chain(60, 0.8, 1.0e4, 0.28, springs={29: {"k": ki * 1.0e4}})
+
+
+def test_launch_and_propagate_match_rust(reference):
+    c = rc.Chain(60, 0.8, 1.0e4, 0.28)
+    launches = [c.launch("kink", 44.0, 4.0), c.launch("antikink", 40.0, 2.5, "right")]
+    cases = [
+        {"chain": BASE, "op": "launch", "defect": "kink", "position": 44.0, "v0": 4.0, "direction": "left"},
+        {"chain": BASE, "op": "launch", "defect": "antikink", "position": 40.0, "v0": 2.5, "direction": "right"},
+    ]
+    for launch, ref in zip(launches, reference(cases)):
+        ref = ref["ok"]
+        close(launch.theta, ref["theta"], what="theta")
+        close(launch.omega, ref["omega"], what="omega")
+        close(launch.mode, ref["mode"], what="mode")
+        assert launch.position == pytest.approx(ref["position"], abs=1e-12)
+    kink = launches[0]
+    runs = [
+        c.propagate(kink.theta, kink.omega, t_max=1.5),
+        c.propagate(kink.theta, kink.omega, t_max=0.5, method="dop853"),
+        c.propagate(kink.theta, kink.omega, t_max=1.0, damping=0.5, absorbing_ends=True),
+    ]
+    cases = [
+        dict(op="propagate", t_max=1.5, method="verlet", damping=0.0, absorbing_ends=False),
+        dict(op="propagate", t_max=0.5, method="dop853", damping=0.0, absorbing_ends=False),
+        dict(op="propagate", t_max=1.0, method="verlet", damping=0.5, absorbing_ends=True),
+    ]
+    refs = reference([dict(case, chain=BASE, theta=kink.theta, omega=kink.omega) for case in cases])
+    for run, ref in zip(runs, refs):
+        ref = ref["ok"]
+        assert run.integrator == ref["integrator"] and run.steps == ref["steps"]
+        close(run.times, ref["times"], what="times")
+        close(run.kinetic, ref["kinetic"], what="kinetic energy")
+        close(run.theta, ref["theta"], what="final theta")
+        close(run.omega, ref["omega"], what="final omega")
+        close(run.energy_final, ref["energy_final"], what="final energy")
+        close(run.relative_energy_error, ref["relative_energy_error"], what="energy error")
+        assert [[(round(p, 9), q) for p, q in w] for w in run.walls] == [
+            [(round(p, 9), q) for p, q in w] for w in ref["walls"]
+        ]
+        assert run.wall_counts.shape == (len(ref["times"]), 2)
+
+
+@pytest.mark.parametrize("defect,v0,ki,paper", NAMED)
+def test_the_papers_named_points_scatter_as_in_rust(defect, v0, ki, paper, reference):
+    spec, c = with_impurity(ki)
+    got = c.scatter(defect, v0, 29)
+    (ref,) = reference(
+        [{"chain": spec, "op": "scatter", "defect": defect, "v0": v0, "impurity": 29, "method": "verlet", "absorbing_ends": False}]
+    )
+    ref = ref["ok"]
+    assert got.outcome == ref["outcome"] == paper
+    assert got.decided_at == ref["decided_at"]
+    assert (got.confirmed, got.later, got.later_at) == (ref["confirmed"], ref["later"], ref["later_at"])
+    close(got.run.theta, ref["run"]["theta"], what="final state")
+    close(got.run.kinetic, ref["run"]["kinetic"], what="kinetic energy")
+
+
+def test_dynamics_errors_carry_the_numbers():
+    c = rc.Chain(60, 0.8, 1.0e4, 0.28)
+    with pytest.raises(rc.DynamicsError) as info:
+        c.launch("kink", 44.0, -1.0)
+    assert (info.value.variant, info.value.v0) == ("BadSpeed", -1.0)
+    theta = c.kink(40.0)
+    with pytest.raises(rc.IntegrateError) as info:
+        c.propagate(theta, np.zeros(60), dt=-1e-3)
+    e = info.value
+    assert isinstance(e, rc.DynamicsError) and e.variant == "InvalidOption"
+    assert (e.name, e.value, e.rule) == ("dt", -1e-3, "positive and finite")
+    # A step 30 times the stability limit breaks the energy limit: the numbers say when and how much.
+    fast = c.launch("kink", 44.0, 6.0)
+    with pytest.raises(rc.IntegrateError) as info:
+        c.propagate(fast.theta, fast.omega, t_max=2.0, output_interval=0.1, dt=0.05)
+    e = info.value
+    assert e.variant in ("EnergyNotConserved", "NotFinite"), e
+    if e.variant == "EnergyNotConserved":
+        assert e.relative > e.limit == 0.1 and 0 < e.time <= 2.0
+    with pytest.raises(ValueError, match="method must be one of 'verlet', 'dop853'"):
+        c.propagate(theta, np.zeros(60), method="rk4")
+    with pytest.raises(rc.DynamicsError) as info:
+        c.scatter("kink", 4.0, 60)
+    assert (info.value.variant, info.value.spring, info.value.springs) == ("NoSuchSpring", 60, 59)

@@ -1,0 +1,89 @@
+"""Statics through the binding against the Rust library's own results (rotor-chain-reference):
+kink, antikink, Peierls-Nabarro minimum and saddle energies (1e-12), modes, Maxwell-Calladine
+counts, the continuum; statics errors with their numbers."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import rotor_chain as rc
+from conftest import close
+
+PAPER = dict(n=60, r=0.8, k=1.0e4, theta_bar=0.58)
+
+
+def chain(spec):
+    return rc.Chain(spec["n"], spec["r"], spec["k"], spec["theta_bar"])
+
+
+@pytest.mark.parametrize("theta_bar", [0.2, 0.45, 0.58])
+def test_peierls_nabarro_matches_rust(theta_bar, reference):
+    spec = dict(PAPER, theta_bar=theta_bar)
+    (ref,) = reference([{"chain": spec, "op": "peierls_nabarro"}])
+    ref = ref["ok"]
+    pn = chain(spec).peierls_nabarro()
+    close(pn.minimum_energy, ref["minimum_energy"], what="minimum")
+    close(pn.saddle_energy, ref["saddle_energy"], what="saddle")
+    close(pn.barrier, ref["barrier"], rtol=1e-9, what="barrier")  # a difference of two 1e3 numbers
+    assert pn.resolved == ref["resolved"]
+    close(pn.minimum.theta, ref["minimum_theta"], what="minimum profile")
+    close(pn.saddle.theta, ref["saddle_theta"], what="saddle profile")
+    if ref["resolved"]:  # wide antikinks (small theta_bar) have a barrier below rounding
+        assert (pn.minimum.kind, pn.saddle.kind, pn.saddle.is_saddle) == ("minimum", "saddle", True)
+        assert pn.minimum.index == 0 and pn.saddle.index == 1
+    # One of the two is the rotor-centred antikink, the other the spring-centred one.
+    centres = sorted([pn.rotor_centred.centre, pn.spring_centred.centre])
+    assert abs(centres[0] - 29) < 1e-6 and abs(centres[1] - 29.5) < 1e-6
+
+
+def test_kink_antikink_modes_and_counting_match_rust(reference):
+    c = chain(PAPER)
+    kink = c.kink(31.25)
+    antikink = c.antikink(33.0)
+    at_spring = c.antikink(29.5, relaxed=False)
+    cases = [
+        {"chain": PAPER, "op": "kink", "centre": 31.25},
+        {"chain": PAPER, "op": "antikink", "centre": 33.0, "relaxed": True},
+        {"chain": PAPER, "op": "antikink", "centre": 29.5, "relaxed": False},
+        {"chain": PAPER, "op": "modes", "theta": antikink.theta, "count": 6},
+        {"chain": PAPER, "op": "maxwell_calladine", "theta": kink},
+        {"chain": PAPER, "op": "maxwell_calladine", "theta": antikink.theta},
+        {"chain": PAPER, "op": "continuum"},
+    ]
+    k, a, s, m, mc_kink, mc_antikink, cont = [r["ok"] for r in reference(cases)]
+    close(kink, k["theta"], what="kink")
+    assert c.energy(kink) < 1e-20 * 1e4
+    assert rc.domain_walls(kink) == [(pytest.approx(31.25, abs=1e-9), "kink")]
+    close(antikink.theta, a["theta"], what="antikink")
+    close(antikink.energy, a["energy"], what="antikink energy")
+    assert antikink.centre == pytest.approx(a["centre"], abs=1e-12)
+    close(at_spring.theta, s["theta"], what="antikink at 29.5")
+    assert at_spring.index == s["index"] == 1
+    modes = c.modes(antikink.theta, 6)
+    close(modes.omega_squared, m["omega_squared"], what="omega^2")
+    close(modes.frequencies, m["frequencies"], what="frequencies")
+    close(np.abs(modes.vectors), np.abs(np.array(m["vectors"])), what="mode shapes")
+    assert len(modes) == 6 and "translation" in modes.kinds
+    for got, ref in ((c.maxwell_calladine(kink), mc_kink), (c.maxwell_calladine(antikink.theta), mc_antikink)):
+        assert (got.rank, got.n_zero_modes, got.n_self_stresses) == (ref["rank"], ref["zero_modes"], ref["self_stresses"])
+        assert got.index == 1 == ref["zero_modes"] - ref["self_stresses"]
+        close(got.singular_values, ref["singular_values"], what="singular values")
+        assert got.zero_modes.shape == (got.n_zero_modes, 60)
+        assert got.self_stresses.shape == (got.n_self_stresses, 59)
+    continuum = c.continuum()
+    close(continuum.antikink_energy, cont["antikink_energy"], what="continuum antikink energy")
+    close(continuum.width, cont["width"], what="width")
+    close(continuum.sound_speed, cont["sound_speed"], what="sound speed")
+
+
+def test_statics_errors_carry_the_numbers():
+    c = chain(PAPER)
+    with pytest.raises(rc.StaticsError) as info:
+        c.kink(75.0)
+    e = info.value
+    assert (e.variant, e.centre, e.n) == ("CentreOutOfRange", 75.0, 60)
+    assert isinstance(e, RuntimeError)
+    assert str(e) == "centre 75 is outside the chain: it must lie in [0, 59] for 60 rotors"
+    with pytest.raises(ValueError, match="ends must be one of 'held', 'free'"):
+        c.peierls_nabarro(ends="fixed")

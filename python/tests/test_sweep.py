@@ -1,0 +1,149 @@
+"""rotor_chain.sweep on one machine against the `phase-diagram` command (Rust): identical records,
+the same resumable CSV file (each resumes the other's), the same point errors; settings errors
+with their numbers; the GIL released during long computations."""
+
+from __future__ import annotations
+
+import threading
+import time
+
+import numpy as np
+import pytest
+
+import rotor_chain as rc
+from rotor_chain import sweep
+from cli_results import cli_records, line_count, preamble, read_csv, run_cli
+
+ANTIKINK = ("antikink", "0.05:3:4:log", "0.5:12:4")
+KINK = ("kink", "0.01:1:3:log", "4:10:3")
+
+
+@pytest.mark.parametrize("grid", [ANTIKINK, KINK], ids=["antikink", "kink"])
+def test_records_equal_the_clis(grid, phase_diagram_cli, tmp_path):
+    expected = cli_records(phase_diagram_cli, tmp_path / "cli.csv", *grid)
+    records = sweep.phase_diagram(*grid, threads=2)
+    assert records == expected  # every field, floats bit for bit
+    assert len(records) == 16 if grid is ANTIKINK else 9
+    assert {r["outcome"] for r in records} <= set(sweep.OUTCOMES)
+    ki, v0, outcomes = sweep.outcome_grid(records)
+    assert outcomes.shape == (len(v0), len(ki)) and "" not in outcomes
+
+
+def test_the_file_is_the_clis_and_each_resumes_the_other(phase_diagram_cli, tmp_path):
+    whole = cli_records(phase_diagram_cli, tmp_path / "cli.csv", *ANTIKINK)
+    out = tmp_path / "pd.csv"
+    seen = []
+
+    def stop_after_first_chunk(done, total):
+        seen.append((done, total))
+        raise KeyboardInterrupt
+
+    with pytest.raises(KeyboardInterrupt):
+        sweep.phase_diagram(*ANTIKINK, out=out, chunk_size=5, progress=stop_after_first_chunk)
+    assert seen == [(5, 16)] and line_count(out) == 2 + 5
+    assert preamble(out) == preamble(tmp_path / "cli.csv")
+    # The command resumes the file Python started...
+    done = run_cli(phase_diagram_cli, out, *ANTIKINK)
+    assert done.returncode == 0, done.stderr
+    assert "16 points: 11 computed now (0 failed), 5 already done" in done.stderr
+    assert read_csv(out) == whole
+    # ...and Python finds it complete: nothing computed, every record returned.
+    calls = []
+    assert sweep.phase_diagram(*ANTIKINK, out=out, progress=lambda d, t: calls.append(d)) == whole
+    assert calls == []
+    # Python resumes a file the command started (a shard file would be refused: another part).
+    out2 = tmp_path / "pd2.csv"
+    partial = run_cli(phase_diagram_cli, out2, "antikink", "0.05:3:4:log", "0.5:12:4", "--shard", "0/1")
+    assert partial.returncode == 0
+    assert sweep.read_results(tmp_path / "pd2.shard-0-of-1.csv") == whole
+
+
+def test_point_errors_are_the_clis(phase_diagram_cli, tmp_path):
+    # A stiff chain (k = 1e5) and a Verlet step 15 times the default: the energy budget breaks.
+    settings = dict(k=1.0e5, dt=0.008, recompute=False)
+    cli = cli_records(
+        phase_diagram_cli, tmp_path / "bad.csv", "antikink", "0.7:0.7:1", "4:4:1", "--k", "1e5", "--dt", "0.008", "--no-recompute"
+    )
+    assert cli[0]["error"] is not None
+    with pytest.raises(rc.PointError) as info:
+        sweep.point("antikink", 0.7, 4.0, **settings)
+    e = info.value
+    assert str(e) == cli[0]["error"]
+    assert e.variant in ("EnergyBudget", "Run"), e
+    if e.variant == "EnergyBudget":
+        assert e.error > e.tolerance == 5e-3 and e.integrator == "verlet"
+    else:
+        assert isinstance(e.__cause__, rc.DynamicsError)
+    # In a sweep the failure is recorded, not raised, with the same text.
+    (record,) = sweep.phase_diagram("antikink", [0.7], [4.0], **settings)
+    assert record == cli[0]
+
+
+def test_settings_errors_carry_the_numbers(phase_diagram_cli, tmp_path):
+    with pytest.raises(rc.ConfigError) as info:
+        sweep.phase_diagram("antikink", "0.1:1:2", "1:2:2", theta_bar=0.7)
+    assert info.value.variant == "Chain" and isinstance(info.value.__cause__, rc.ParameterError)
+    assert info.value.__cause__.variant == "OutsideFlipperPhase"
+    with pytest.raises(rc.ConfigError) as info:
+        sweep.phase_diagram("antikink", "0.1:1:2", "1:2:2", n=12)
+    assert (info.value.name, info.value.value) == ("n", 12.0)
+    with pytest.raises(rc.ConfigError, match="must be > 0") as info:
+        sweep.phase_diagram("kink", "0:1:3", "1:2:2")
+    assert (info.value.name, info.value.value) == ("k_i/k", 0.0)
+    with pytest.raises(rc.ConfigError, match="every launch speed must be >= 0, got -1.0"):
+        sweep.phase_diagram("kink", "0.1:1:3", [-1.0, 2.0])
+    with pytest.raises(rc.GridError) as info:
+        sweep.phase_diagram("kink", "0.1:1:0", "1:2:2")
+    assert (info.value.variant, info.value.count) == ("EmptyAxis", 0)
+    with pytest.raises(ValueError, match="defect must be one of 'kink', 'antikink', got 'soliton'"):
+        sweep.phase_diagram("soliton", "0.1:1:3", "1:2:2")
+    # A file of another run is refused, untouched, with both labels.
+    other = tmp_path / "other.csv"
+    assert run_cli(phase_diagram_cli, other, "kink", "0.1:1:2", "1:2:2", "--theta-bar", "0.3").returncode == 0
+    before = other.read_bytes()
+    with pytest.raises(rc.SweepError) as info:
+        sweep.phase_diagram("kink", "0.1:1:2", "1:2:2", out=other)
+    e = info.value
+    assert e.variant == "RunMismatch" and e.path == str(other)
+    assert "theta_bar=0.3" in e.found and "theta_bar=0.28" in e.expected
+    assert other.read_bytes() == before
+
+
+def _main_thread_progress(call) -> tuple:
+    """Run ``call`` in a thread; count the main thread's loop iterations while it runs. With the
+    GIL held by ``call`` the main thread could not run at all."""
+    started, finished = threading.Event(), threading.Event()
+
+    def worker():
+        started.set()
+        call()
+        finished.set()
+
+    thread = threading.Thread(target=worker)
+    thread.start()
+    started.wait()
+    t0, count = time.perf_counter(), 0
+    while not finished.is_set():
+        count += 1
+    elapsed = time.perf_counter() - t0
+    thread.join()
+    return count, elapsed
+
+
+@pytest.mark.parametrize("what", ["sweep points", "propagate", "peierls_nabarro"])
+def test_long_computations_release_the_gil(what):
+    if what == "sweep points":
+        d = rc._native.PhaseDiagram("antikink")
+        pts = [(0, j, 0.7, 4.0 + 0.1 * j) for j in range(6)]
+        call = lambda: d.compute_points(pts, 1)  # noqa: E731
+    elif what == "propagate":
+        c = rc.Chain(2000, 0.8, 1.0e4, 0.28)
+        theta = c.kink(1000.0)
+        call = lambda: c.propagate(theta, np.zeros(2000), t_max=1.0)  # noqa: E731
+    else:
+        c = rc.Chain(3000, 0.8, 1.0e4, 0.2)
+        call = lambda: c.peierls_nabarro()  # noqa: E731
+    count, elapsed = _main_thread_progress(call)
+    assert elapsed > 0.05, f"{what} took only {elapsed:.3f} s: too short to tell"
+    # The main thread ran its loop throughout (millions of iterations per second when free).
+    assert count > 10_000 * elapsed, f"{what}: {count} iterations in {elapsed:.2f} s"
