@@ -1,0 +1,35 @@
+//! Why a no-alloc analysis could not be carried out. Every variant carries the numbers that
+//! explain it, widened to `f64` for an `f32` chain (exactly).
+
+use crate::BranchError;
+
+/// Building a kink, launching it or stepping it went wrong.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum EmbeddedError {
+    /// The chain and the arrays disagree on the number of rotors.
+    #[error("the chain has {rotors} rotors, but the arrays hold {expected} angles")]
+    WrongRotorCount { rotors: usize, expected: usize },
+    /// A parameter outside its range (a time step, a launch speed).
+    #[error("{name} = {value} must be {rule}")]
+    InvalidParameter { name: &'static str, value: f64, rule: &'static str },
+    /// The kink centre is not inside the chain.
+    #[error("kink centre {centre} is outside the chain: need 0 <= centre <= {max}")]
+    CentreOutOfRange { centre: f64, max: f64 },
+    /// The branch solve found no angle that puts a spring at rest length.
+    #[error("branch solve: {0}")]
+    Branch(#[from] BranchError),
+    /// The compatibility matrix has no zero mode through the kink: a spring whose length does not
+    /// depend on the next rotor's angle (`C[p][p+1] = 0`) stops the construction of the mode.
+    #[error(
+        "no translation mode: spring {spring} has compatibility entries C[p][p] = {left}, \
+         C[p][p+1] = {right}, so its zero mode cannot be continued past it"
+    )]
+    NoTranslationMode { spring: usize, left: f64, right: f64 },
+    /// A rotor with zero, negative or non-finite moment of inertia has no dynamics.
+    #[error("rotor {index} has moment of inertia {inertia}: it must be positive and finite")]
+    BadInertia { index: usize, inertia: f64 },
+    /// A number of the state became NaN or infinite (an unstable time step, or a NaN force).
+    #[error("{what}[{index}] = {value} is not finite after step {step}")]
+    NotFinite { what: &'static str, step: u32, index: usize, value: f64 },
+}
