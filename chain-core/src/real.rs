@@ -43,7 +43,9 @@ pub trait Real:
 {
     /// `"f64"` or `"f32"`, as written in the attribute's `float = ..` key.
     const NAME: &'static str;
+    /// `0`.
     const ZERO: Self;
+    /// `1`.
     const ONE: Self;
     /// The distance from 1 to the next larger number: `2^-52` or `2^-23`.
     const EPSILON: Self;
@@ -60,11 +62,16 @@ pub trait Real:
     /// The largest integer not above `self`, as an index (`self` must be finite and `>= 0`).
     fn floor_index(self) -> usize;
 
+    /// The square root (`sqrt` or `sqrtf`).
     fn sqrt(self) -> Self;
+    /// `(sin self, cos self)`, through [`crate::math`] or [`crate::math::single`].
     fn sin_cos(self) -> (Self, Self);
+    /// The angle of the point `(x, self)`, in `(-pi, pi]`.
     fn atan2(self, x: Self) -> Self;
+    /// The largest integer not above `self`.
     fn floor(self) -> Self;
 
+    /// The absolute value.
     #[inline(always)]
     fn abs(self) -> Self {
         if self < Self::ZERO { -self } else { self }
@@ -76,6 +83,7 @@ pub trait Real:
         if self >= other || other != other { self } else { other }
     }
 
+    /// Neither NaN nor infinite.
     #[inline(always)]
     #[allow(clippy::eq_op)]
     fn is_finite(self) -> bool {

@@ -36,7 +36,9 @@ impl Charge {
 /// A domain wall: where it is (in rotor indices, fractional) and which kind.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Wall<T = f64> {
+    /// Position in rotor indices, fractional (paper Appendix C).
     pub position: T,
+    /// Kink or antikink.
     pub charge: Charge,
 }
 
