@@ -118,7 +118,9 @@ pub fn previous_angles<T: Real>(
                 max,
             }
         }
-        BranchError::Degenerate { spring, .. } => BranchError::Degenerate { spring, theta: theta_next.widen() },
+        BranchError::Degenerate { spring, .. } => {
+            BranchError::Degenerate { spring, theta: theta_next.widen() }
+        }
         other => other,
     })
 }
@@ -230,7 +232,10 @@ mod tests {
             let t32 = theta as f32;
             for (f64_roots, f32_roots) in [
                 (next_angles(1, A, R, R, f64::from(l), f64::from(t32)), next_angles(1, a, r, r, l, t32)),
-                (previous_angles(1, A, R, R, f64::from(l), f64::from(t32)), previous_angles(1, a, r, r, l, t32)),
+                (
+                    previous_angles(1, A, R, R, f64::from(l), f64::from(t32)),
+                    previous_angles(1, a, r, r, l, t32),
+                ),
             ] {
                 match (f64_roots, f32_roots) {
                     (Ok(x), Ok(y)) => {

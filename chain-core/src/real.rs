@@ -79,6 +79,7 @@ pub trait Real:
 
     /// The larger of the two; `other` if `self` is NaN.
     #[inline(always)]
+    #[allow(clippy::eq_op)]
     fn max(self, other: Self) -> Self {
         if self >= other || other != other { self } else { other }
     }

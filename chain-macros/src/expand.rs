@@ -124,7 +124,9 @@ fn check_unrolled_size(cx: &Ctxt, model: &Model) {
     if model.n > largest {
         let remedy = match model.float {
             Float::F64 => "give `unroll = 0` to use the per-spring kernel in a loop",
-            Float::F32 => "a chain declared with `float = f32` is unrolled only, so compute this one in `f64`",
+            Float::F32 => {
+                "a chain declared with `float = f32` is unrolled only, so compute this one in `f64`"
+            }
         };
         let message = format!(
             "this law is too large to unroll {} rotors: one spring's derivation has {law} terms \

@@ -130,8 +130,7 @@ impl Model {
             Node::Symbol(s) => Some(g.symbol_name(s).to_owned()),
             _ => None,
         };
-        let program =
-            lower_with(&g, &[lbar], &leaf, Schedule::DepthFirst).expect("every symbol is a field");
+        let program = lower_with(&g, &[lbar], &leaf, Schedule::DepthFirst).expect("every symbol is a field");
         let ty = self.float.name();
         let steps = program.render_into("l", self.float, &math_prefix(self.float), &["lbar".to_owned()]);
         format!("{{\nlet mut lbar: {ty};\n{steps}lbar\n}}").parse().expect("rest length source parses")

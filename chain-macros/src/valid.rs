@@ -100,8 +100,7 @@ impl FloatFields {
         if let Fields::Named(named) = &item.fields {
             for f in &named.named {
                 let Some(ident) = &f.ident else { continue };
-                let typed =
-                    matches!(&f.ty, Type::Path(p) if p.qself.is_none() && is_float_path(&p.path, float.name()));
+                let typed = matches!(&f.ty, Type::Path(p) if p.qself.is_none() && is_float_path(&p.path, float.name()));
                 if typed {
                     float_fields.push(ident.unraw().to_string());
                 }
@@ -341,7 +340,12 @@ pub fn validate(cx: &Ctxt, mut spec: Spec, item: &ItemStruct) -> Option<Model> {
     }
     let law = spec.law.as_ref().and_then(|l| law::parse(cx, &l.key, l.value.clone()));
     if let (Some(keyed), Some(n)) = (&spec.float, n) {
-        check_single_precision_strategy(cx, keyed, n, spec.unroll.as_ref().map_or(DEFAULT_UNROLL, |u| u.value));
+        check_single_precision_strategy(
+            cx,
+            keyed,
+            n,
+            spec.unroll.as_ref().map_or(DEFAULT_UNROLL, |u| u.value),
+        );
     }
 
     Some(Model {
@@ -370,7 +374,9 @@ fn check_single_precision_strategy(cx: &Ctxt, float: &Keyed<Float>, n: usize, un
     let remedy = if n <= MAX_UNROLL {
         format!("give `unroll = {n}` (at most {MAX_UNROLL}) or compute in `f64`")
     } else {
-        format!("the largest unrolled chain has {MAX_UNROLL} rotors, so compute a chain of {n} rotors in `f64`")
+        format!(
+            "the largest unrolled chain has {MAX_UNROLL} rotors, so compute a chain of {n} rotors in `f64`"
+        )
     };
     cx.error_spanned_by(
         &float.tokens,

@@ -335,7 +335,14 @@ impl Program {
     }
 
     /// The register program; `typed`: the registers are declared with their type.
-    fn registers(&self, prefix: &str, ty: Float, math: &str, sinks: &[Option<String>], typed: bool) -> String {
+    fn registers(
+        &self,
+        prefix: &str,
+        ty: Float,
+        math: &str,
+        sinks: &[Option<String>],
+        typed: bool,
+    ) -> String {
         const NEVER: usize = usize::MAX;
         // The last step that reads each temporary (NEVER: only outputs read it).
         let mut last_use = vec![NEVER; self.steps.len()];
@@ -566,6 +573,9 @@ mod tests {
         let (g, x, outs) = recurrence(3);
         let p = lower(&g, &outs, &|id| (id == x).then(|| "x".to_owned())).unwrap();
         let src = p.render_into("r", Float::F32, "m::", &["out[0]".to_owned()]);
-        assert!(src.contains("let mut r0: f32;") && src.contains("2.0f32 * x") && !src.contains("f64"), "{src}");
+        assert!(
+            src.contains("let mut r0: f32;") && src.contains("2.0f32 * x") && !src.contains("f64"),
+            "{src}"
+        );
     }
 }

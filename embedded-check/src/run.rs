@@ -105,7 +105,11 @@ impl<T: Real> Sample<T> {
     }
 
     /// The sample of `stepper`'s state.
-    pub fn of<M: FloatChain<T> + ?Sized, const N: usize>(model: &M, stepper: &Verlet<T, N>, time: f64) -> Self {
+    pub fn of<M: FloatChain<T> + ?Sized, const N: usize>(
+        model: &M,
+        stepper: &Verlet<T, N>,
+        time: f64,
+    ) -> Self {
         let mut walls = [Wall { position: T::ZERO, charge: Charge::Kink }; MAX_WALLS];
         let mut wall_count = 0;
         for wall in domain_walls(stepper.theta()) {
@@ -187,7 +191,10 @@ where
 
 /// The kink of `scenario` (centre, speed) with a Verlet stepper at its `dt`, before the first
 /// step.
-pub fn launched_kink<T, M, const N: usize>(model: &M, scenario: &Scenario) -> Result<Verlet<T, N>, EmbeddedError>
+pub fn launched_kink<T, M, const N: usize>(
+    model: &M,
+    scenario: &Scenario,
+) -> Result<Verlet<T, N>, EmbeddedError>
 where
     T: Real,
     M: FloatChain<T> + ?Sized,

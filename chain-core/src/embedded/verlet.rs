@@ -77,13 +77,13 @@ impl<T: Real, const N: usize> Verlet<T, N> {
         for (((t, w), g), c) in
             self.theta.iter_mut().zip(&mut self.omega).zip(&self.gradient).zip(&self.half_kick)
         {
-            *w = *w - *c * *g;
-            *t = *t + dt * *w;
+            *w -= *c * *g;
+            *t += dt * *w;
         }
         model.gradient_into(&self.theta, &mut self.gradient);
         let mut finite = true;
         for ((w, g), c) in self.omega.iter_mut().zip(&self.gradient).zip(&self.half_kick) {
-            *w = *w - *c * *g;
+            *w -= *c * *g;
             finite &= w.is_finite();
         }
         self.steps = self.steps.saturating_add(1);

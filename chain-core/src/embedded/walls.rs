@@ -75,11 +75,8 @@ impl<T: Real> Iterator for DomainWalls<'_, T> {
             if let Some((i, ti)) = previous
                 && (ti > T::ZERO) != (t > T::ZERO)
             {
-                let position = if j == i + 1 {
-                    T::of_index(i) + ti / (ti - t)
-                } else {
-                    T::of_index(i + j) / T::of(2.0)
-                };
+                let position =
+                    if j == i + 1 { T::of_index(i) + ti / (ti - t) } else { T::of_index(i + j) / T::of(2.0) };
                 return Some(Wall { position, charge: Charge::of_left(ti) });
             }
         }

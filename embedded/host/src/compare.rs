@@ -57,7 +57,8 @@ impl Tolerated for f64 {
 /// `libm` run), 6.4e-6 and 4.4e-6 with the platform's (test `accuracy.rs`); the bounds leave a
 /// margin of about 3.5.
 impl Tolerated for f32 {
-    const TOLERANCE: Tolerance = Tolerance { position: 16.0 * 16.0 * F32_EPSILON, energy: 16.0 * F32_EPSILON };
+    const TOLERANCE: Tolerance =
+        Tolerance { position: 16.0 * 16.0 * F32_EPSILON, energy: 16.0 * F32_EPSILON };
     const ACCURACY: Tolerance = Tolerance { position: 3e-5, energy: 2e-5 };
 }
 

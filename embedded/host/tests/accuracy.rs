@@ -7,9 +7,11 @@
 //! measured worst cases (printed with `--nocapture`) with a margin of about 4, written in units
 //! of `f32::EPSILON` (`1.19e-7`) where the quantity is a rounding error.
 
-use embedded_check::{Chain16, Chain16F32, FloatChain, Real, Verlet, domain_walls, kink_into, launch_velocities};
-use embedded_check::report::Header;
 use embedded_check::Scenario;
+use embedded_check::report::Header;
+use embedded_check::{
+    Chain16, Chain16F32, FloatChain, Real, Verlet, domain_walls, kink_into, launch_velocities,
+};
 use embedded_host::{Tolerated, compare_accuracy, host_run};
 use rotor_chain::prelude::*;
 
@@ -33,24 +35,38 @@ impl SplitMix {
     }
 }
 
+/// The shortest spring the random configurations allow, in units of `a`. With `a = 1` and
+/// `r = 0.8` two tips can meet (`l = 0`), where the derivatives of `l` carry `1 / l` and every
+/// rounding error, in `f64` as in `f32`, is amplified without bound; a chain in use stays far
+/// from it (in the uniform states and in a kink every spring is at its rest length, 1.70 a).
+const SHORTEST_SPRING: f64 = 0.5;
+
 /// Random `f32` configurations of 16 rotors: half anywhere in `[-pi, pi)`, half near the two
 /// uniform states `+-theta_bar` (where a kink lives and the springs are near rest length, the
-/// case of cancellation in `l - l0`).
+/// case of cancellation in `l - l0`); those with a spring shorter than [`SHORTEST_SPRING`] are
+/// drawn again.
 fn configurations(count: usize) -> Vec<[f32; 16]> {
-    let mut rng = SplitMix(0x5EED_F32F_64);
-    (0..count)
-        .map(|k| {
-            core::array::from_fn(|_| {
-                let theta = if k % 2 == 0 {
-                    rng.uniform(-core::f64::consts::PI, core::f64::consts::PI)
-                } else {
-                    let sign = if rng.uniform(0.0, 1.0) < 0.5 { -1.0 } else { 1.0 };
-                    sign * 0.58 + rng.uniform(-0.05, 0.05)
-                };
-                theta as f32
-            })
-        })
-        .collect()
+    let mut rng = SplitMix(0x5EED_0F32);
+    let mut out = Vec::with_capacity(count);
+    for k in 0..100 * count {
+        if out.len() == count {
+            break;
+        }
+        let theta: [f32; 16] = core::array::from_fn(|_| {
+            let theta = if k % 2 == 0 {
+                rng.uniform(-core::f64::consts::PI, core::f64::consts::PI)
+            } else {
+                let sign = if rng.uniform(0.0, 1.0) < 0.5 { -1.0 } else { 1.0 };
+                sign * 0.58 + rng.uniform(-0.05, 0.05)
+            };
+            theta as f32
+        });
+        if Chain16.spring_lengths(&widen(&theta)).iter().all(|&l| l >= SHORTEST_SPRING) {
+            out.push(theta);
+        }
+    }
+    assert_eq!(out.len(), count, "too few configurations with every spring >= {SHORTEST_SPRING}");
+    out
 }
 
 fn widen<const N: usize>(theta: &[f32; N]) -> [f64; N] {
@@ -65,7 +81,7 @@ const R: f64 = 0.8;
 #[test]
 fn energy_and_gradient_agree_with_f64_to_a_few_f32_roundings() {
     let (mut energy, mut gradient) = (0.0f64, 0.0f64);
-    for theta in configurations(2000) {
+    for theta in configurations(20_000) {
         let wide = widen(&theta);
         let e32 = f64::from(Chain16F32.energy(&theta));
         let e64 = Chain16.energy(&wide);
@@ -85,13 +101,13 @@ fn energy_and_gradient_agree_with_f64_to_a_few_f32_roundings() {
         gradient / EPS
     );
     assert!(energy < 4.0 * EPS, "energy error {energy:.3e} k a^2 per spring");
-    assert!(gradient < 64.0 * EPS, "gradient error {gradient:.3e} k a r");
+    assert!(gradient < 16.0 * EPS, "gradient error {gradient:.3e} k a r");
 }
 
 #[test]
 fn tangent_stiffness_agrees_with_f64() {
     let mut worst = 0.0f64;
-    for theta in configurations(500) {
+    for theta in configurations(5_000) {
         let wide = widen(&theta);
         let h32 = Chain16F32.tangent_stiffness(&theta);
         let h64 = Chain16.tangent_stiffness(&wide);
@@ -101,8 +117,11 @@ fn tangent_stiffness_agrees_with_f64() {
             worst = worst.max((f64::from(*x) - y).abs() / y.abs().max(K * R * R));
         }
     }
-    println!("tangent stiffness: |K32 - K64| <= {worst:.2e} of max(|K64|, k r^2) ({:.1} f32 eps)", worst / EPS);
-    assert!(worst < 512.0 * EPS, "tangent stiffness error {worst:.3e} of max(|K64|, k r^2)");
+    println!(
+        "tangent stiffness: |K32 - K64| <= {worst:.2e} of max(|K64|, k r^2) ({:.1} f32 eps)",
+        worst / EPS
+    );
+    assert!(worst < 64.0 * EPS, "tangent stiffness error {worst:.3e} of max(|K64|, k r^2)");
 }
 
 #[test]

@@ -89,7 +89,8 @@ fn translation_mode_stretches_no_spring_to_first_order() {
         Chain16.spring_lengths_into(theta, &mut l);
         l
     };
-    let moved: Vec<f64> = (0..16).map(|i| theta[i] + h * e[i] / FloatChain::rotor_length(&Chain16, i)).collect();
+    let moved: Vec<f64> =
+        (0..16).map(|i| theta[i] + h * e[i] / FloatChain::rotor_length(&Chain16, i)).collect();
     let stretch = max_difference(&lengths(&moved), &lengths(&theta));
     assert!(stretch < 1e-10, "springs stretched by {stretch} for a displacement of {h}");
     // A generic direction stretches them at first order.
