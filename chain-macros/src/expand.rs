@@ -744,6 +744,39 @@ mod tests {
         insta::assert_snapshot!(pretty(out));
     }
 
+    /// An `f32` chain's generated methods compute in `f32` throughout: single-precision math
+    /// paths, `f32` literals and arrays, no `f64` in any method body but `check()` (whose rules are
+    /// `chain-geometry`'s, in `f64`), and `FloatChain<f32>` instead of `ChainModel`.
+    #[test]
+    fn an_f32_chain_computes_in_f32() {
+        let out = expand(
+            quote!(n = 3, r = 0.8, theta_bar = 0.58, k = k_imp, float = f32),
+            quote!(
+                pub struct Tiny {
+                    pub k_imp: f32,
+                }
+            ),
+        );
+        let text = pretty(out);
+        assert!(text.contains("math::single::sin_cos_into"), "{text}");
+        assert!(text.contains("FloatChain<f32> for Tiny"), "{text}");
+        assert!(!text.contains("ChainModel for Tiny"), "{text}");
+        for method in ["energy", "gradient", "tangent_stiffness", "compatibility", "next_angles"] {
+            let start =
+                text.find(&format!("pub fn {method}(")).unwrap_or_else(|| panic!("no {method}: {text}"));
+            let body = &text[start..];
+            let end = body[1..].find("pub fn ").map_or(body.len(), |e| e + 1);
+            // The code, without the doc comments that precede the next method.
+            let body: String = body[..end]
+                .lines()
+                .filter(|l| !l.trim_start().starts_with("///"))
+                .collect::<Vec<_>>()
+                .join("\n");
+            assert!(!body.contains("f64"), "{method} mentions f64:\n{body}");
+            assert!(body.contains("f32"), "{method} does not mention f32:\n{body}");
+        }
+    }
+
     #[test]
     fn looped_expansion_uses_the_kernel_module() {
         let out = expand(
