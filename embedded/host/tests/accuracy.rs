@@ -234,3 +234,93 @@ fn the_firmware_scenario_in_f32_is_within_the_documented_accuracy_of_f64() {
     let agreement = compare_accuracy::<f32, _, 16>(&Chain16, &text).unwrap();
     println!("firmware scenario, f32 against f64: {agreement} (bound {:?})", f32::ACCURACY);
 }
+
+/// Every kind of declaration in both types: a user law (with `exp`, `sqrt`, `powi`), a rest length
+/// and a stiffness read from fields, a spring override with its own rest length, and a rotor
+/// override. The `f32` chain's fields hold the `f64` chain's values rounded to `f32`, so the
+/// two chains are the same model up to the rounding of its numbers to `f32`.
+#[rotor_chain(n = 12, r = 0.8, rest_length = lbar, k = k_all,
+              law = k * l0 * l0 * ((l - l0) / l0).powi(2) * (1.0 + 0.1 * ((l - l0) / l0).exp()) / l.sqrt(),
+              spring(4, k = 2.0e4, l0 = 1.65), rotor(7, r = 0.75))]
+struct Declared {
+    lbar: f64,
+    k_all: f64,
+}
+
+#[rotor_chain(n = 12, r = 0.8, rest_length = lbar, k = k_all, float = f32,
+              law = k * l0 * l0 * ((l - l0) / l0).powi(2) * (1.0 + 0.1 * ((l - l0) / l0).exp()) / l.sqrt(),
+              spring(4, k = 2.0e4, l0 = 1.65), rotor(7, r = 0.75))]
+struct DeclaredF32 {
+    lbar: f32,
+    k_all: f32,
+}
+
+#[test]
+fn other_declarations_agree_with_f64_too() {
+    let (lbar, k) = (1.7f32, 1.0e4f32);
+    let c32 = DeclaredF32 { lbar, k_all: k };
+    let c64 = Declared { lbar: f64::from(lbar), k_all: f64::from(k) };
+    c32.check().unwrap();
+    c64.check().unwrap();
+    // theta_bar is derived in f64 from the f32 chain's values (`r` rounded to f32), so it agrees
+    // to an f32 rounding of theta_bar, not bit for bit.
+    let theta_bar = (f64::from(c32.theta_bar()) - c64.theta_bar()).abs();
+    assert!(theta_bar < 2.0 * EPS, "theta_bar differs by {theta_bar:.3e}");
+    let mut rng = SplitMix(0xDEC1_A2ED);
+    let (mut energy, mut gradient) = (0.0f64, 0.0f64);
+    let mut tried = 0;
+    for _ in 0..100_000 {
+        if tried == 5_000 {
+            break;
+        }
+        let theta: [f32; 12] = core::array::from_fn(|_| {
+            let sign = if rng.uniform(0.0, 1.0) < 0.5 { -1.0 } else { 1.0 };
+            (sign * 0.58 + rng.uniform(-0.2, 0.2)) as f32
+        });
+        let wide = widen(&theta);
+        if c64.spring_lengths(&wide).iter().any(|&l| l < SHORTEST_SPRING) {
+            continue;
+        }
+        tried += 1;
+        energy = energy.max((f64::from(c32.energy(&theta)) - c64.energy(&wide)).abs() / (11.0 * K));
+        for (x, y) in c32.gradient(&theta).iter().zip(&c64.gradient(&wide)) {
+            gradient = gradient.max((f64::from(*x) - y).abs() / (K * R));
+        }
+    }
+    assert_eq!(tried, 5_000, "too few configurations with every spring >= {SHORTEST_SPRING}");
+    // The branch solve of the overridden spring and of an ordinary one, both directions. Near the
+    // edge of a map's domain (tangent circles) a root moves as the square root of its inputs, so
+    // the f32 roots there carry tens of ulps.
+    let mut branch = 0.0f64;
+    for p in [3, 4, 6, 7] {
+        for k in 0..=40 {
+            let t = (0.3 + 0.5 * f64::from(k) / 40.0) as f32;
+            let pairs = [
+                (c32.next_angles(p, t), ChainModel::next_angles(&c64, p, f64::from(t))),
+                (c32.previous_angles(p, t), ChainModel::previous_angles(&c64, p, f64::from(t))),
+            ];
+            for pair in pairs {
+                match pair {
+                    (Ok(x), Ok(y)) => {
+                        for (x, y) in x.iter().zip(&y) {
+                            branch = branch.max((f64::from(*x) - y).abs());
+                        }
+                    }
+                    // Outside the map's domain in both types (the inverse map past its range).
+                    (Err(_), Err(_)) => {}
+                    (x, y) => panic!("spring {p}, theta {t}: f32 {x:?}, f64 {y:?}"),
+                }
+            }
+        }
+    }
+    println!(
+        "user law and overrides: energy {:.1} ulps of k a^2 per spring, gradient {:.1} ulps of k a r, \
+         branch solve {:.1} ulps (rad)",
+        energy / EPS,
+        gradient / EPS,
+        branch / EPS
+    );
+    assert!(energy < 4.0 * EPS, "energy error {energy:.3e}");
+    assert!(gradient < 16.0 * EPS, "gradient error {gradient:.3e}");
+    assert!(branch < 256.0 * EPS, "branch solve error {branch:.3e} rad");
+}
