@@ -28,12 +28,14 @@
 //!
 //! The model, its sign conventions and the keys of the attribute are documented in
 //! `docs/theory.md` and `docs/macro.md`. With default features off the crate is `#![no_std]`
-//! without allocation (math from `libm`), and so is the code the macro generates.
+//! without allocation (math from `libm`), and so is the code the macro generates; a chain declared
+//! with `float = f32` computes in single precision for microcontrollers (`docs/embedded.md`,
+//! [`embedded`]).
 #![cfg_attr(not(feature = "std"), no_std)]
 
 pub use chain_core::{
-    Bidiagonal, BranchError, ChainModel, ParameterError, Tridiagonal, banded, branch, error, geometry,
-    kernel, math, model, simd,
+    Bidiagonal, BranchError, ChainModel, ParameterError, Real, Tridiagonal, banded, branch, embedded, error,
+    geometry, kernel, math, model, real, simd,
 };
 #[cfg(feature = "alloc")]
 pub use chain_core::{ChainBuilder, Law, RuntimeChain, dynamics, linalg, runtime, statics};
@@ -53,7 +55,10 @@ pub mod prelude {
 /// `#[rotor_chain]` reaches its dependencies, so users depend on this crate alone.
 #[doc(hidden)]
 pub mod __private {
-    pub use chain_core::{Bidiagonal, ChainModel, ParameterError, Tridiagonal, geometry, kernel, math};
+    pub use chain_core::embedded::{EmbeddedError, FloatChain, Verlet};
+    pub use chain_core::{
+        Bidiagonal, BranchError, ChainModel, ParameterError, Tridiagonal, branch, geometry, kernel, math,
+    };
     pub use nalgebra::SMatrix;
 
     /// The body of every stub the macro emits beside its compile errors (so that calls on an
@@ -69,7 +74,7 @@ pub mod __private {
     /// If `theta` does not have exactly `N` angles (a programming error: the chain has `N` rotors).
     #[inline(always)]
     #[track_caller]
-    pub fn as_array<const N: usize>(theta: &[f64]) -> &[f64; N] {
+    pub fn as_array<T, const N: usize>(theta: &[T]) -> &[T; N] {
         match theta.try_into() {
             Ok(a) => a,
             Err(_) => {

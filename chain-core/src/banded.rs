@@ -2,107 +2,97 @@
 //! neighbouring rotors, paper Eq. `eq:prestress8`) and the bidiagonal compatibility matrix.
 //!
 //! Fixed-size forms carry their sizes in the type: `N` rotors and `M = N - 1` springs (stable Rust
-//! cannot write `N - 1` in a type, so the macro writes both numbers out).
+//! cannot write `N - 1` in a type, so the macro writes both numbers out), and their float type `T`:
+//! `f64` unless the chain was declared with `float = f32`.
 
 use nalgebra::SMatrix;
 
+use crate::real::Real;
+
 /// A symmetric tridiagonal `N x N` matrix: `diag[i] = K[i][i]`, `off[i] = K[i][i+1] = K[i+1][i]`.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Tridiagonal<const N: usize, const M: usize> {
-    pub diag: [f64; N],
-    pub off: [f64; M],
+pub struct Tridiagonal<const N: usize, const M: usize, T = f64> {
+    pub diag: [T; N],
+    pub off: [T; M],
 }
 
 /// The bidiagonal `M x N` compatibility matrix `C[p][i] = dl_p / d(r_i theta_i)` (paper
 /// Introduction and Appendix D, whose `n_p` are its entries): row `p` has `left[p]` in column `p` and `right[p]` in column `p + 1`.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Bidiagonal<const M: usize, const N: usize> {
-    pub left: [f64; M],
-    pub right: [f64; M],
+pub struct Bidiagonal<const M: usize, const N: usize, T = f64> {
+    pub left: [T; M],
+    pub right: [T; M],
 }
 
-impl<const N: usize, const M: usize> Tridiagonal<N, M> {
-    pub fn new(diag: [f64; N], off: [f64; M]) -> Self {
+impl<const N: usize, const M: usize, T: Real> Tridiagonal<N, M, T> {
+    pub fn new(diag: [T; N], off: [T; M]) -> Self {
         const { assert!(M + 1 == N, "a chain of N rotors has N - 1 springs") };
         Self { diag, off }
     }
 
     /// Entry `(i, j)`; zero outside the band.
-    pub fn get(&self, i: usize, j: usize) -> f64 {
+    pub fn get(&self, i: usize, j: usize) -> T {
         tridiagonal_entry(&self.diag, &self.off, i, j)
     }
 
     /// The dense matrix.
-    pub fn to_dense(&self) -> SMatrix<f64, N, N> {
-        let mut m = SMatrix::<f64, N, N>::zeros();
-        for i in 0..N {
-            m[(i, i)] = self.diag[i];
-        }
-        for i in 0..M {
-            m[(i, i + 1)] = self.off[i];
-            m[(i + 1, i)] = self.off[i];
-        }
-        m
+    pub fn to_dense(&self) -> SMatrix<T, N, N> {
+        SMatrix::from_fn(|i, j| self.get(i, j))
     }
 
     /// `K x`.
-    pub fn mul_vec(&self, x: &[f64; N]) -> [f64; N] {
-        let mut y = [0.0; N];
+    pub fn mul_vec(&self, x: &[T; N]) -> [T; N] {
+        let mut y = [T::ZERO; N];
         tridiagonal_mul(&self.diag, &self.off, x, &mut y);
         y
     }
 
     /// `x^T K x`.
-    pub fn quadratic_form(&self, x: &[f64; N]) -> f64 {
-        self.mul_vec(x).iter().zip(x).map(|(a, b)| a * b).sum()
+    pub fn quadratic_form(&self, x: &[T; N]) -> T {
+        self.mul_vec(x).iter().zip(x).fold(T::ZERO, |s, (&a, &b)| s + a * b)
     }
 }
 
-impl<const M: usize, const N: usize> Bidiagonal<M, N> {
-    pub fn new(left: [f64; M], right: [f64; M]) -> Self {
+impl<const M: usize, const N: usize, T: Real> Bidiagonal<M, N, T> {
+    pub fn new(left: [T; M], right: [T; M]) -> Self {
         const { assert!(M + 1 == N, "a chain of N rotors has N - 1 springs") };
         Self { left, right }
     }
 
     /// Entry `(p, i)`; zero outside the band.
-    pub fn get(&self, p: usize, i: usize) -> f64 {
+    pub fn get(&self, p: usize, i: usize) -> T {
         if p >= M {
-            0.0
+            T::ZERO
         } else if i == p {
             self.left[p]
         } else if i == p + 1 {
             self.right[p]
         } else {
-            0.0
+            T::ZERO
         }
     }
 
     /// The dense `M x N` matrix.
-    pub fn to_dense(&self) -> SMatrix<f64, M, N> {
-        let mut m = SMatrix::<f64, M, N>::zeros();
-        for p in 0..M {
-            m[(p, p)] = self.left[p];
-            m[(p, p + 1)] = self.right[p];
-        }
-        m
+    pub fn to_dense(&self) -> SMatrix<T, M, N> {
+        SMatrix::from_fn(|p, i| self.get(p, i))
     }
 }
 
 /// Entry `(i, j)` of the symmetric tridiagonal matrix with the given bands.
-pub fn tridiagonal_entry(diag: &[f64], off: &[f64], i: usize, j: usize) -> f64 {
+pub fn tridiagonal_entry<T: Real>(diag: &[T], off: &[T], i: usize, j: usize) -> T {
     if i == j {
-        diag.get(i).copied().unwrap_or(0.0)
+        diag.get(i).copied().unwrap_or(T::ZERO)
     } else if i + 1 == j {
-        off.get(i).copied().unwrap_or(0.0)
+        off.get(i).copied().unwrap_or(T::ZERO)
     } else if j + 1 == i {
-        off.get(j).copied().unwrap_or(0.0)
+        off.get(j).copied().unwrap_or(T::ZERO)
     } else {
-        0.0
+        T::ZERO
     }
 }
 
 /// `y = K x` for the symmetric tridiagonal `K` with the given bands.
-pub fn tridiagonal_mul(diag: &[f64], off: &[f64], x: &[f64], y: &mut [f64]) {
+pub fn tridiagonal_mul<T: Real>(diag: &[T], off: &[T], x: &[T], y: &mut [T]) {
     let n = diag.len();
     for i in 0..n {
         let mut s = diag[i] * x[i];

@@ -28,84 +28,98 @@
 //! read from the right into a spring read from the left with `theta -> -theta` and the rotor
 //! lengths swapped.
 
-use nalgebra::{Complex, ComplexField};
-
 use crate::error::BranchError;
-use crate::math;
+use crate::real::Real;
 
 /// Both angles `theta_{p+1}` that put spring `p` at rest length `l0` for the given `theta_p`,
-/// flipper branch first. `spring` only labels errors.
-pub fn next_angles(
+/// flipper branch first. `spring` only labels errors. Generic over the float type: an `f32` chain
+/// solves in `f32` (its errors carry the numbers widened to `f64`, exactly).
+///
+/// The quadratic is solved in real arithmetic. With `c = a - z1`, `d^2 = |c|^2` and
+/// `beta = r2^2 + d^2 - l0^2`, the product of its leading and constant coefficients is
+/// `conj(c) c r2^2 = d^2 r2^2`, real, so its discriminant `beta^2 - 4 d^2 r2^2` is real too; where
+/// the circles meet it is `<= 0`, `sqrt(disc) = i s` with
+/// `s^2 = (2 d r2 - beta)(2 d r2 + beta)` (factored: no cancellation between two squares), and
+/// the roots are `w0 = q / conj(c) = q c / d^2` and `w1 = c r2^2 / q` with `q = -(beta + i s) / 2`.
+pub fn next_angles<T: Real>(
     spring: usize,
-    a: f64,
-    r1: f64,
-    r2: f64,
-    l0: f64,
-    theta: f64,
-) -> Result<[f64; 2], BranchError> {
+    a: T,
+    r1: T,
+    r2: T,
+    l0: T,
+    theta: T,
+) -> Result<[T; 2], BranchError> {
     if !theta.is_finite() {
-        return Err(BranchError::NotFinite { spring, theta });
+        return Err(BranchError::NotFinite { spring, theta: theta.widen() });
     }
-    let (s, co) = math::sin_cos(theta);
-    let z1 = Complex::new(r1 * s, r1 * co);
-    let c = Complex::new(a, 0.0) - z1;
-    let distance = c.norm_sqr().sqrt();
+    let (s, co) = theta.sin_cos();
+    // c = a - z1, z1 = i r1 e^{-i theta} = (r1 sin theta, r1 cos theta).
+    let (cx, cy) = (a - r1 * s, -(r1 * co));
+    let d2 = cx * cx + cy * cy;
+    let distance = d2.sqrt();
     let (min, max) = ((r2 - l0).abs(), r2 + l0);
     // Circles that touch within rounding still have one (double) root; allow a few ulps.
-    let slack = 8.0 * f64::EPSILON * max;
+    let slack = T::of(8.0) * T::EPSILON * max;
     if !(distance >= min - slack && distance <= max + slack) {
         return Err(BranchError::NoRealRoot {
             spring,
-            theta,
-            distance,
-            rotor_length: r2,
-            rest_length: l0,
-            min,
-            max,
+            theta: theta.widen(),
+            distance: distance.widen(),
+            rotor_length: r2.widen(),
+            rest_length: l0.widen(),
+            min: min.widen(),
+            max: max.widen(),
         });
     }
-    // conj(c) w^2 + beta w + c r2^2 = 0, solved without cancellation: q = -(beta + sign sqrt(disc)) / 2.
-    let qa = c.conj();
-    let beta = Complex::new(r2 * r2 + c.norm_sqr() - l0 * l0, 0.0);
-    let qc = c * (r2 * r2);
-    let disc = beta * beta - qa * qc * 4.0;
-    let root = ComplexField::sqrt(disc);
-    let root = if (beta.conj() * root).re >= 0.0 { root } else { -root };
-    let q = (beta + root) * -0.5;
-    let w = [q / qa, qc / q];
+    if d2 == T::ZERO {
+        // Tip p on pivot p + 1 (then r2 = l0 within the slack): every angle is a root.
+        return Err(BranchError::Degenerate { spring, theta: theta.widen() });
+    }
+    let r22 = r2 * r2;
+    let beta = r22 + d2 - l0 * l0;
+    let reach = T::of(2.0) * distance * r2;
+    // Rounding can leave s^2 slightly negative for touching circles: the double root.
+    let s2 = (reach - beta) * (reach + beta);
+    let root = if s2 > T::ZERO { s2.sqrt() } else { T::ZERO };
+    let half = T::of(0.5);
+    let (qx, qy) = (-(half * beta), -(half * root));
+    // w0 = q c / d^2; w1 = c r2^2 conj(q) / |q|^2.
+    let w0 = ((qx * cx - qy * cy) / d2, (qx * cy + qy * cx) / d2);
+    let q2 = qx * qx + qy * qy;
+    let w1 = (r22 * (cx * qx + cy * qy) / q2, r22 * (cy * qx - cx * qy) / q2);
     // theta_{p+1} from w = -i r2 e^{i theta}:  r2 sin theta = Re w, r2 cos theta = -Im w.
-    let angle = |w: Complex<f64>| math::atan2(w.re, -w.im);
-    // Orientation of tip p+1 relative to the directed line tip p -> pivot p+1.
-    let side = |w: Complex<f64>| {
-        let v = c; // from tip p to pivot p+1
-        let u = c + w; // from tip p to tip p+1
-        v.re * u.im - v.im * u.re
-    };
-    let (first, second) = if side(w[0]) <= side(w[1]) { (w[0], w[1]) } else { (w[1], w[0]) };
+    let angle = |(wx, wy): (T, T)| wx.atan2(-wy);
+    // Orientation of tip p+1 relative to the directed line tip p -> pivot p+1: the cross
+    // product of c (tip p to pivot p + 1) with c + w (tip p to tip p + 1).
+    let side = |(wx, wy): (T, T)| cx * wy - cy * wx;
+    let (first, second) = if side(w0) <= side(w1) { (w0, w1) } else { (w1, w0) };
     Ok([angle(first), angle(second)])
 }
 
 /// Both angles `theta_p` that put spring `p` at rest length `l0` for the given `theta_{p+1}`,
 /// flipper branch first: the inverse of [`next_angles`].
-pub fn previous_angles(
+pub fn previous_angles<T: Real>(
     spring: usize,
-    a: f64,
-    r1: f64,
-    r2: f64,
-    l0: f64,
-    theta_next: f64,
-) -> Result<[f64; 2], BranchError> {
+    a: T,
+    r1: T,
+    r2: T,
+    l0: T,
+    theta_next: T,
+) -> Result<[T; 2], BranchError> {
     next_angles(spring, a, r2, r1, l0, -theta_next).map(|[x, y]| [-x, -y]).map_err(|e| match e {
         BranchError::NoRealRoot { spring, distance, rotor_length, rest_length, min, max, .. } => {
             BranchError::NoRealRoot {
                 spring,
-                theta: theta_next,
+                theta: theta_next.widen(),
                 distance,
                 rotor_length,
                 rest_length,
                 min,
                 max,
             }
+        }
+        BranchError::Degenerate { spring, .. } => {
+            BranchError::Degenerate { spring, theta: theta_next.widen() }
         }
         other => other,
     })
@@ -115,6 +129,7 @@ pub fn previous_angles(
 mod tests {
     use super::*;
     use chain_geometry::{rest_length, spring_length};
+    use nalgebra::Complex;
 
     const A: f64 = 1.0;
     const R: f64 = 0.8;
@@ -175,7 +190,7 @@ mod tests {
     #[test]
     fn paper_coefficients_have_the_same_roots() {
         // The paper's A, B, C (Appendix A, r1 = r2 = r) evaluated literally.
-        let (theta, l0) = (0.3, 1.7);
+        let (theta, l0) = (0.3f64, 1.7);
         let z1 = Complex::new(R * theta.sin(), R * theta.cos());
         let a = Complex::new(A, 0.0);
         let den = a - z1;
@@ -202,5 +217,63 @@ mod tests {
             other => panic!("unexpected {other:?}"),
         }
         assert!(matches!(next_angles(0, A, R, R, 1.7, f64::NAN), Err(BranchError::NotFinite { .. })));
+    }
+
+    #[test]
+    fn the_f32_solve_agrees_with_the_f64_solve_to_f32_rounding() {
+        // Both roots, forward and inverse, over angles on both sides of the kink: the f32 solve
+        // is the same arithmetic in single precision, so its angles are within a few f32 ulps
+        // (of the angle, rad) times the map's slope, at most 15.2 here.
+        let l0 = rest_length(A, R, 0.58);
+        let (a, r, l) = (A as f32, R as f32, l0 as f32);
+        let mut worst = 0.0f64;
+        for k in 0..=200 {
+            let theta = -0.9 + 1.8 * f64::from(k) / 200.0;
+            let t32 = theta as f32;
+            for (f64_roots, f32_roots) in [
+                (next_angles(1, A, R, R, f64::from(l), f64::from(t32)), next_angles(1, a, r, r, l, t32)),
+                (
+                    previous_angles(1, A, R, R, f64::from(l), f64::from(t32)),
+                    previous_angles(1, a, r, r, l, t32),
+                ),
+            ] {
+                match (f64_roots, f32_roots) {
+                    (Ok(x), Ok(y)) => {
+                        for (x, y) in x.iter().zip(y) {
+                            worst = worst.max((x - f64::from(y)).abs());
+                        }
+                    }
+                    (Err(_), Err(_)) => {}
+                    (x, y) => panic!("theta {theta}: f64 {x:?}, f32 {y:?}"),
+                }
+            }
+        }
+        assert!(worst < 64.0 * f64::from(f32::EPSILON), "largest difference {worst:.3e} rad");
+        // The uniform state is a fixed point in f32 too, to f32 rounding.
+        let [z, _] = next_angles(0, a, r, r, l, 0.58f32).unwrap();
+        assert!((z - 0.58).abs() < 8.0 * f32::EPSILON, "{z}");
+    }
+
+    #[test]
+    fn f32_errors_carry_the_numbers_widened() {
+        let err = next_angles(2, 1.0f32, 0.8, 0.8, 5.0, 0.25).unwrap_err();
+        match err {
+            BranchError::NoRealRoot { spring, theta, rest_length, .. } => {
+                assert_eq!((spring, theta, rest_length), (2, 0.25, 5.0));
+            }
+            other => panic!("unexpected {other:?}"),
+        }
+        let err = previous_angles(4, 1.0f32, 0.8, 0.8, 1.7, f32::INFINITY).unwrap_err();
+        assert_eq!(err, BranchError::NotFinite { spring: 4, theta: f64::NEG_INFINITY });
+    }
+
+    #[test]
+    fn a_tip_on_the_next_pivot_is_degenerate_not_nan() {
+        // a = 0 and r1 = 0: tip p sits on pivot p + 1, at distance r2 = l0 from every point of
+        // rotor p + 1's circle.
+        let err = next_angles(0, 0.0f64, 0.0, 0.8, 0.8, 0.3).unwrap_err();
+        assert_eq!(err, BranchError::Degenerate { spring: 0, theta: 0.3 });
+        let err = previous_angles(5, 0.0f32, 0.8, 0.0, 0.8, 0.25).unwrap_err();
+        assert_eq!(err, BranchError::Degenerate { spring: 5, theta: 0.25 });
     }
 }

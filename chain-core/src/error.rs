@@ -1,4 +1,5 @@
-//! Errors of the model layer. Each carries the numbers that explain it.
+//! Errors of the model layer. Each carries the numbers that explain it, as `f64`: an `f32`
+//! chain's branch solve widens its numbers (exactly) into the same errors.
 
 pub use chain_geometry::ParameterError;
 
@@ -26,4 +27,11 @@ pub enum BranchError {
     NotFinite { spring: usize, theta: f64 },
     #[error("spring index {spring} is out of range: the chain has {springs} springs")]
     NoSuchSpring { spring: usize, springs: usize },
+    /// The tip of rotor `p` sits exactly on the pivot of rotor `p + 1` (and the spring's rest
+    /// length equals that rotor's length): every angle puts the spring at rest, none is singled out.
+    #[error(
+        "spring {spring}: for theta = {theta} the known tip sits on the other rotor's pivot, so \
+         every angle of that rotor puts the spring at rest length"
+    )]
+    Degenerate { spring: usize, theta: f64 },
 }

@@ -1,6 +1,6 @@
 //! Model layer of `rotor-chain`: the [`ChainModel`] trait every analysis is generic over, the
-//! runtime-sized [`RuntimeChain`], banded stiffness types, and the branch solve of paper
-//! Appendix A.
+//! runtime-sized [`RuntimeChain`], banded stiffness types, the branch solve of paper
+//! Appendix A, and the no-alloc pieces of a dynamics run in `f64` or `f32` ([`embedded`]).
 //!
 //! `no_std` without allocation when default features are off (math from `libm`); the `alloc`
 //! feature adds the runtime-sized chain and dense conversions, `std` the platform math.
@@ -13,12 +13,14 @@ pub mod banded;
 pub mod branch;
 #[cfg(feature = "alloc")]
 pub mod dynamics;
+pub mod embedded;
 pub mod error;
 pub mod kernel;
 #[cfg(feature = "alloc")]
 pub mod linalg;
 pub mod math;
 pub mod model;
+pub mod real;
 #[cfg(feature = "alloc")]
 pub mod runtime;
 pub mod simd;
@@ -29,5 +31,6 @@ pub use banded::{Bidiagonal, Tridiagonal};
 pub use chain_geometry as geometry;
 pub use error::{BranchError, ParameterError};
 pub use model::ChainModel;
+pub use real::Real;
 #[cfg(feature = "alloc")]
 pub use runtime::{ChainBuilder, Law, RuntimeChain};

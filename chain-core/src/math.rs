@@ -103,3 +103,122 @@ pub fn sign(x: f64) -> f64 {
         x * 0.0
     }
 }
+
+/// The single-precision functions of chains declared with `float = f32` (generated code calls
+/// them through `__private::math::single`), and of the `f32` branch solve: `std`'s `f32` methods
+/// when the `std` feature is on, `libm`'s `sinf`, `cosf`, `sqrtf`, ... otherwise, as for `f64`.
+/// The signatures never widen to `f64`, but the implementations may: `libm`'s `sincosf`, `sinf`
+/// and `cosf` (a port of musl's) reduce the argument and evaluate their polynomial kernels in
+/// `f64`, so on a Cortex-M4F, whose FPU is single precision, they link the soft-float `f64`
+/// multiply and add. Measured under QEMU (docs/embedded.md) they are most of an `f32` Verlet
+/// step's instructions; `sqrtf` and the arithmetic of the generated code are pure `f32`. `powi`
+/// with `|n| > 2^24` also computes in `f64` (below).
+pub mod single {
+    #[cfg(feature = "std")]
+    mod imp {
+        /// `(sin x, cos x)`.
+        #[inline(always)]
+        pub fn sin_cos(x: f32) -> (f32, f32) {
+            x.sin_cos()
+        }
+        /// The square root.
+        #[inline(always)]
+        pub fn sqrt(x: f32) -> f32 {
+            x.sqrt()
+        }
+        /// The sine.
+        #[inline(always)]
+        pub fn sin(x: f32) -> f32 {
+            x.sin()
+        }
+        /// The cosine.
+        #[inline(always)]
+        pub fn cos(x: f32) -> f32 {
+            x.cos()
+        }
+        /// `e^x`.
+        #[inline(always)]
+        pub fn exp(x: f32) -> f32 {
+            x.exp()
+        }
+        /// The natural logarithm.
+        #[inline(always)]
+        pub fn ln(x: f32) -> f32 {
+            x.ln()
+        }
+        /// `x^n`.
+        #[inline(always)]
+        pub fn powi(x: f32, n: i32) -> f32 {
+            x.powi(n)
+        }
+        /// The angle of the point `(x, y)`, in `(-pi, pi]`.
+        #[inline(always)]
+        pub fn atan2(y: f32, x: f32) -> f32 {
+            y.atan2(x)
+        }
+    }
+
+    #[cfg(not(feature = "std"))]
+    mod imp {
+        /// `(sin x, cos x)`.
+        #[inline(always)]
+        pub fn sin_cos(x: f32) -> (f32, f32) {
+            libm::sincosf(x)
+        }
+        /// The square root.
+        #[inline(always)]
+        pub fn sqrt(x: f32) -> f32 {
+            libm::sqrtf(x)
+        }
+        /// The sine.
+        #[inline(always)]
+        pub fn sin(x: f32) -> f32 {
+            libm::sinf(x)
+        }
+        /// The cosine.
+        #[inline(always)]
+        pub fn cos(x: f32) -> f32 {
+            libm::cosf(x)
+        }
+        /// `e^x`.
+        #[inline(always)]
+        pub fn exp(x: f32) -> f32 {
+            libm::expf(x)
+        }
+        /// The natural logarithm.
+        #[inline(always)]
+        pub fn ln(x: f32) -> f32 {
+            libm::logf(x)
+        }
+        /// `powf` with the exponent as an `f32`, exact for `|n| <= 2^24`; beyond, the `f32`
+        /// exponent would be rounded, so the power is taken in `f64` and rounded once.
+        #[inline(always)]
+        pub fn powi(x: f32, n: i32) -> f32 {
+            if n.unsigned_abs() <= 1 << 24 {
+                libm::powf(x, n as f32)
+            } else {
+                libm::pow(f64::from(x), f64::from(n)) as f32
+            }
+        }
+        /// The angle of the point `(x, y)`, in `(-pi, pi]`.
+        #[inline(always)]
+        pub fn atan2(y: f32, x: f32) -> f32 {
+            libm::atan2f(y, x)
+        }
+    }
+
+    pub use imp::*;
+
+    /// `sin[i], cos[i] = sin_cos(theta[i])` for every angle: the `f32` twin of
+    /// [`super::sin_cos_into`], one scalar call per angle (the vector `sin_cos` is `f64` only).
+    ///
+    /// # Panics
+    /// If `sin` or `cos` is shorter than `theta` (a programming error).
+    #[inline]
+    pub fn sin_cos_into(theta: &[f32], sin: &mut [f32], cos: &mut [f32]) {
+        assert!(sin.len() >= theta.len() && cos.len() >= theta.len(), "one sine and one cosine per angle");
+        for ((t, s), c) in theta.iter().zip(sin.iter_mut()).zip(cos.iter_mut()) {
+            (*s, *c) = sin_cos(*t);
+        }
+    }
+}

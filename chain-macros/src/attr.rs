@@ -8,6 +8,7 @@
 
 use std::collections::BTreeSet;
 
+use chain_symbolic::Float;
 use proc_macro2::{Delimiter, Span, TokenStream, TokenTree};
 use quote::ToTokens;
 use syn::Ident;
@@ -16,8 +17,8 @@ use syn::ext::IdentExt;
 use crate::ctxt::Ctxt;
 
 /// Every key the attribute accepts, for "did you mean" suggestions.
-pub const KEYS: [&str; 11] =
-    ["n", "a", "r", "theta_bar", "rest_length", "k", "mass", "unroll", "law", "spring", "rotor"];
+pub const KEYS: [&str; 12] =
+    ["n", "a", "r", "theta_bar", "rest_length", "k", "mass", "unroll", "law", "float", "spring", "rotor"];
 
 /// A parameter value: a float literal folded into the generated code, or a struct field read
 /// at run time.
@@ -78,6 +79,8 @@ pub struct Spec {
     pub unroll: Option<Keyed<usize>>,
     /// The law's tokens, parsed by [`crate::law::parse`] in validation.
     pub law: Option<Keyed<TokenStream>>,
+    /// The float type the chain computes in (`f64` if absent).
+    pub float: Option<Keyed<Float>>,
     pub springs: Vec<SpringOverride>,
     pub rotors: Vec<RotorOverride>,
     /// Tokens of the whole attribute, for errors about missing keys (empty for a bare
@@ -191,6 +194,58 @@ fn parse_value(cx: &Ctxt, tokens: &[TokenTree]) -> Option<Value> {
     }
 }
 
+/// `f32` or `f64` (also as `core::primitive::f32` or `std::primitive::f32`). Anything else is an
+/// error at the value, with the supported type it most likely meant.
+fn parse_float(cx: &Ctxt, tokens: &[TokenTree]) -> Option<Float> {
+    let tokens = unwrap_invisible(tokens.to_vec());
+    let stream: TokenStream = tokens.iter().cloned().collect();
+    const SUPPORTED: &str = "a chain computes in `f64` (the default) or `f32`";
+    if let Ok(path) = syn::parse2::<syn::Path>(stream.clone()) {
+        let names: Vec<String> = path.segments.iter().map(|s| s.ident.unraw().to_string()).collect();
+        let names: Vec<&str> = names.iter().map(String::as_str).collect();
+        match names.as_slice() {
+            ["f64"] | ["core" | "std", "primitive", "f64"] => return Some(Float::F64),
+            ["f32"] | ["core" | "std", "primitive", "f32"] => return Some(Float::F32),
+            _ => {}
+        }
+        let last = names.last().copied().unwrap_or_default();
+        let hint = match last.to_ascii_lowercase().as_str() {
+            "f32" => Some("f32"),
+            "f64" => Some("f64"),
+            // Narrower than any supported type: the narrowest one.
+            "f16" | "bf16" | "half" | "f8" | "single" | "float" => Some("f32"),
+            "f128" | "f80" | "double" => Some("f64"),
+            other => suggest(other, &["f64", "f32"]),
+        };
+        let written = compact_path(&names);
+        let message = match hint {
+            Some(h) => format!("unsupported float type `{written}`: {SUPPORTED}; did you mean `{h}`?"),
+            None => format!("unsupported float type `{written}`: {SUPPORTED}"),
+        };
+        cx.error_spanned_by(stream, message);
+        return None;
+    }
+    let message = match tokens.as_slice() {
+        [TokenTree::Literal(lit)] => match syn::Lit::new(lit.clone()) {
+            syn::Lit::Str(text) => {
+                format!("`float` takes a type, not a string: write `float = {}` without quotes", text.value())
+            }
+            syn::Lit::Int(i) if i.base10_digits() == "32" || i.base10_digits() == "64" => {
+                format!("`float` takes a type, not a number: did you mean `f{}`?", i.base10_digits())
+            }
+            _ => format!("`float` takes a type, not a literal: {SUPPORTED}, e.g. `float = f32`"),
+        },
+        _ => format!("expected a float type after `float =`: {SUPPORTED}, e.g. `float = f32`"),
+    };
+    cx.error_spanned_by(stream, message);
+    None
+}
+
+/// A path as written, `a::b::c`.
+fn compact_path(names: &[&str]) -> String {
+    names.join("::")
+}
+
 fn parse_usize(cx: &Ctxt, tokens: &[TokenTree], what: &str) -> Option<usize> {
     let tokens = unwrap_invisible(tokens.to_vec());
     if let [TokenTree::Literal(lit)] = tokens.as_slice()
@@ -227,6 +282,7 @@ pub fn parse(cx: &Ctxt, attr: TokenStream) -> Spec {
         mass: None,
         unroll: None,
         law: None,
+        float: None,
         springs: Vec::new(),
         rotors: Vec::new(),
         tokens: attr.clone(),
@@ -305,6 +361,11 @@ fn parse_name_value(cx: &Ctxt, spec: &mut Spec, key: Ident, value: &[TokenTree])
             }
         }
         "law" => set_once(cx, &mut spec.law, Keyed { key, value: tokens.clone(), tokens }, ""),
+        "float" => {
+            if let Some(float) = parse_float(cx, value) {
+                set_once(cx, &mut spec.float, Keyed { key, value: float, tokens }, "");
+            }
+        }
         "spring" | "rotor" => {
             let inner = if name == "spring" { "k" } else { "r" };
             cx.error_spanned_by(&key, format!("`{name}` takes arguments: `{name}(index, {inner} = ..)`"))

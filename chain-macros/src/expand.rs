@@ -17,7 +17,7 @@
 
 use chain_symbolic::chain::{ChainOutputs, Kernel};
 use chain_symbolic::lower::{Schedule, lower_with};
-use chain_symbolic::{Graph, Id, SpringLaw};
+use chain_symbolic::{Float, Graph, Id, SpringLaw};
 use proc_macro2::{Ident, Span, TokenStream};
 use quote::{format_ident, quote};
 use syn::ItemStruct;
@@ -25,7 +25,7 @@ use syn::ItemStruct;
 use crate::attr;
 use crate::ctxt::Ctxt;
 use crate::fallback::{self, Stubs};
-use crate::model::{PRIVATE, math_prefix, value_tokens};
+use crate::model::{PRIVATE, float_type, math_prefix, value_tokens_f64};
 use crate::valid::{self, Model, Uniform};
 
 /// The stack a generated method may use in a debug build, its caller's copy of the result
@@ -51,11 +51,12 @@ pub(crate) enum Returns {
     Dense = 9,
 }
 
-/// Whether a method returning `values` `f64`s of the kind `returns` fits [`STACK_BUDGET`] beside
-/// [`EVALUATION_STACK`]: arrays up to 49152 values (`gradient` of 49152 rotors), banded matrices
-/// up to 32768 values (16384 rotors), the dense Hessian up to 104 rotors.
-pub(crate) fn fits_on_stack(values: usize, returns: Returns) -> bool {
-    values.saturating_mul(8).saturating_mul(returns as usize) <= STACK_BUDGET - EVALUATION_STACK
+/// Whether a method returning `values` numbers of type `float` of the kind `returns` fits
+/// [`STACK_BUDGET`] beside [`EVALUATION_STACK`]: in `f64`, arrays up to 49152 values (`gradient`
+/// of 49152 rotors), banded matrices up to 32768 values (16384 rotors), the dense Hessian up to
+/// 104 rotors (147 in `f32`).
+pub(crate) fn fits_on_stack(values: usize, returns: Returns, float: Float) -> bool {
+    values.saturating_mul(float.bytes()).saturating_mul(returns as usize) <= STACK_BUDGET - EVALUATION_STACK
 }
 
 pub fn expand(attr: TokenStream, item: TokenStream) -> TokenStream {
@@ -67,11 +68,11 @@ pub fn expand(attr: TokenStream, item: TokenStream) -> TokenStream {
             let (err, stubs) = match &other {
                 syn::Item::Enum(e) => (
                     syn::Error::new_spanned(e.enum_token, "#[rotor_chain] goes on a struct, not an enum"),
-                    Some(Stubs::new(&e.ident, &e.generics, None)),
+                    Some(Stubs::new(&e.ident, &e.generics, None, Float::F64)),
                 ),
                 syn::Item::Union(u) => (
                     syn::Error::new_spanned(u.union_token, "#[rotor_chain] goes on a struct, not a union"),
-                    Some(Stubs::new(&u.ident, &u.generics, None)),
+                    Some(Stubs::new(&u.ident, &u.generics, None, Float::F64)),
                 ),
                 other => (syn::Error::new_spanned(other, "#[rotor_chain] goes on a struct"), None),
             };
@@ -85,11 +86,12 @@ pub fn expand(attr: TokenStream, item: TokenStream) -> TokenStream {
     let cx = Ctxt::new();
     let spec = attr::parse(&cx, attr);
     let n = spec.n.as_ref().map(|n| n.value).filter(|&n| chain_geometry::check_rotor_count(n).is_ok());
+    let float = spec.float.as_ref().map_or(Float::F64, |f| f.value);
     let model = valid::validate(&cx, spec, &parsed);
     if let Some(model) = &model {
         check_unrolled_size(&cx, model);
     }
-    let stubs = || Stubs::new(&parsed.ident, &parsed.generics, n);
+    let stubs = || Stubs::new(&parsed.ident, &parsed.generics, n, float);
     match cx.check() {
         Err(errors) => fallback::emit(&item, Some(&stubs()), errors),
         Ok(()) => match model {
@@ -120,10 +122,16 @@ fn check_unrolled_size(cx: &Ctxt, model: &Model) {
     let law = model.spring_cost();
     let largest = valid::MAX_UNROLL.saturating_mul(harmonic) / law.max(1);
     if model.n > largest {
+        let remedy = match model.float {
+            Float::F64 => "give `unroll = 0` to use the per-spring kernel in a loop",
+            Float::F32 => {
+                "a chain declared with `float = f32` is unrolled only, so compute this one in `f64`"
+            }
+        };
         let message = format!(
             "this law is too large to unroll {} rotors: one spring's derivation has {law} terms \
              ({harmonic} for the harmonic law), so chains of at most {largest} rotors are unrolled \
-             with it; give `unroll = 0` to use the per-spring kernel in a loop",
+             with it; {remedy}",
             model.n,
         );
         match &model.law_tokens {
@@ -179,8 +187,8 @@ enum Shape<'a> {
 /// few registers, each output stored into its place as soon as it is known. The outputs are
 /// visited rotor by rotor (the two bands of a matrix interleaved), so the values a rotor's
 /// outputs share die before the next rotor's are computed.
-fn unrolled_body(g: &Graph, out: &ChainOutputs, shape: Shape) -> TokenStream {
-    let (n, p) = (out.n, PRIVATE);
+fn unrolled_body(g: &Graph, out: &ChainOutputs, shape: Shape, float: Float) -> TokenStream {
+    let (n, p, ty, math) = (out.n, PRIVATE, float.name(), math_prefix(float));
     let m = n - 1;
     let place = |name: &str, k: usize, id: Id| (id, format!("{name}[{k}usize]"));
     let interleave = |a: (&str, &[Id]), b: (&str, &[Id])| -> Vec<(Id, String)> {
@@ -194,19 +202,19 @@ fn unrolled_body(g: &Graph, out: &ChainOutputs, shape: Shape) -> TokenStream {
             .collect()
     };
     let (decls, outputs, value): (String, Vec<(Id, String)>, String) = match shape {
-        Shape::Scalar(id) => ("let mut out = 0.0f64;".into(), vec![(id, "out".into())], "out".into()),
+        Shape::Scalar(id) => (format!("let mut out = 0.0{ty};"), vec![(id, "out".into())], "out".into()),
         Shape::Array(ids) => (
-            format!("let mut out = [0.0f64; {}];", ids.len()),
+            format!("let mut out = [0.0{ty}; {}];", ids.len()),
             ids.iter().enumerate().map(|(k, &id)| place("out", k, id)).collect(),
             "out".into(),
         ),
         Shape::Tridiagonal(diag, off) => (
-            format!("let mut diag = [0.0f64; {n}];\nlet mut off = [0.0f64; {m}];"),
+            format!("let mut diag = [0.0{ty}; {n}];\nlet mut off = [0.0{ty}; {m}];"),
             interleave(("diag", diag), ("off", off)),
             format!("{p}::Tridiagonal::new(diag, off)"),
         ),
         Shape::Bidiagonal(left, right) => (
-            format!("let mut left = [0.0f64; {m}];\nlet mut right = [0.0f64; {m}];"),
+            format!("let mut left = [0.0{ty}; {m}];\nlet mut right = [0.0{ty}; {m}];"),
             interleave(("left", left), ("right", right)),
             format!("{p}::Bidiagonal::new(left, right)"),
         ),
@@ -215,10 +223,10 @@ fn unrolled_body(g: &Graph, out: &ChainOutputs, shape: Shape) -> TokenStream {
     let namer = out.leaf_namer(g);
     let program =
         lower_with(g, &ids, &namer, Schedule::DepthFirst).expect("every symbol is a field or an angle");
-    let steps = program.render_into("t", "f64", &math_prefix(), &sinks);
+    let steps = program.render_into("t", float, &math, &sinks);
     parse_block(&format!(
-        "let mut s = [0.0f64; {n}];\nlet mut c = [0.0f64; {n}];\n\
-         {p}::math::sin_cos_into(theta, &mut s, &mut c);\n{decls}\n{steps}{value}"
+        "let mut s = [0.0{ty}; {n}];\nlet mut c = [0.0{ty}; {n}];\n\
+         {math}sin_cos_into(theta, &mut s, &mut c);\n{decls}\n{steps}{value}"
     ))
 }
 
@@ -237,9 +245,9 @@ struct Bodies {
 
 fn unrolled_bodies(model: &Model) -> Bodies {
     let (g, out) = model.unrolled_outputs();
-    let body = |shape| Some(unrolled_body(&g, &out, shape));
+    let body = |shape| Some(unrolled_body(&g, &out, shape, model.float));
     Bodies {
-        energy: unrolled_body(&g, &out, Shape::Scalar(out.energy)),
+        energy: unrolled_body(&g, &out, Shape::Scalar(out.energy), model.float),
         gradient: body(Shape::Array(&out.gradient)),
         tangent_stiffness: body(Shape::Tridiagonal(&out.hessian_diag, &out.hessian_off)),
         material: body(Shape::Tridiagonal(&out.material_diag, &out.material_off)),
@@ -269,7 +277,7 @@ fn looped_bodies(model: &Model) -> (Bodies, TokenStream) {
         }
     };
     let lbar = model.rest_length_tokens();
-    let theta = quote!(#p::as_array::<#n>(theta));
+    let theta = quote!(#p::as_array::<f64, #n>(theta));
     // The default rest length is computed once per call, not once per spring.
     let params = quote!(|p: usize| self.__rotor_chain_spring(lbar, p));
     let call = |driver: &str, kernel: &str, outs: TokenStream| -> TokenStream {
@@ -300,7 +308,7 @@ fn looped_bodies(model: &Model) -> (Bodies, TokenStream) {
     let t = quote!(#p::ChainModel);
     // One local, the result itself, filled in place.
     let blocks = |method: TokenStream| {
-        fits_on_stack(n + m, Returns::Banded).then(|| {
+        fits_on_stack(n + m, Returns::Banded, Float::F64).then(|| {
             quote!({
                 let mut result = #p::Tridiagonal::new([0.0f64; #n], [0.0f64; #m]);
                 #t::#method(self, theta, &mut result.diag, &mut result.off);
@@ -309,7 +317,7 @@ fn looped_bodies(model: &Model) -> (Bodies, TokenStream) {
         })
     };
     let per_spring = |method: TokenStream| {
-        fits_on_stack(m, Returns::Array).then(|| {
+        fits_on_stack(m, Returns::Array, Float::F64).then(|| {
             quote!({
                 let mut out = [0.0f64; #m];
                 #t::#method(self, theta, &mut out);
@@ -319,7 +327,7 @@ fn looped_bodies(model: &Model) -> (Bodies, TokenStream) {
     };
     let bodies = Bodies {
         energy: quote!({ #t::energy(self, theta) }),
-        gradient: fits_on_stack(n, Returns::Array).then(|| {
+        gradient: fits_on_stack(n, Returns::Array, Float::F64).then(|| {
             quote!({
                 let mut out = [0.0f64; #n];
                 #t::gradient_into(self, theta, &mut out);
@@ -331,7 +339,7 @@ fn looped_bodies(model: &Model) -> (Bodies, TokenStream) {
         stress: blocks(quote!(stress_matrix_into)),
         lengths: per_spring(quote!(spring_lengths_into)),
         tensions: per_spring(quote!(tensions_into)),
-        compatibility: fits_on_stack(2 * m, Returns::Banded).then(|| {
+        compatibility: fits_on_stack(2 * m, Returns::Banded, Float::F64).then(|| {
             quote!({
                 let mut result = #p::Bidiagonal::new([0.0f64; #m], [0.0f64; #m]);
                 #t::compatibility_into(self, theta, &mut result.left, &mut result.right);
@@ -383,33 +391,35 @@ fn unrolled_trait_bodies(ident: &Ident) -> TokenStream {
     }
 }
 
+/// The run-time rules of `check()`: `chain-geometry`'s, in `f64` (the values of an `f32` chain
+/// widen exactly).
 fn check_body(model: &Model) -> TokenStream {
     let p = private();
-    let (a, r, k, mass) =
-        (value_tokens(&model.a), value_tokens(&model.r), value_tokens(&model.k), value_tokens(&model.mass));
+    let value = |v| value_tokens_f64(v, model.float);
+    let (a, r, k, mass) = (value(&model.a), value(&model.r), value(&model.k), value(&model.mass));
     let uniform = match &model.uniform {
         Uniform::ThetaBar(tb) => {
-            let tb = value_tokens(tb);
+            let tb = value(tb);
             quote!(g::check_flipper_phase(#a, #r, #tb)?;)
         }
         Uniform::RestLength(rl) => {
-            let rl = value_tokens(rl);
+            let rl = value(rl);
             quote!(g::check_flipper_phase(#a, #r, g::theta_bar_from_rest_length(#a, #r, #rl)?)?;)
         }
     };
     let springs = model.springs.values().flat_map(|(k, l0)| {
         let k = k.as_ref().map(|v| {
-            let v = value_tokens(v);
+            let v = value(v);
             quote!(g::check_positive(g::Key::Stiffness, #v)?;)
         });
         let l0 = l0.as_ref().map(|v| {
-            let v = value_tokens(v);
+            let v = value(v);
             quote!(g::check_positive(g::Key::RestLength, #v)?;)
         });
         k.into_iter().chain(l0)
     });
     let rotors = model.rotors.values().map(|v| {
-        let v = value_tokens(v);
+        let v = value(v);
         quote!(g::check_positive(g::Key::RotorLength, #v)?;)
     });
     quote!({
@@ -425,10 +435,125 @@ fn check_body(model: &Model) -> TokenStream {
     })
 }
 
+/// The items that differ between the float types: for `f64`, `impl ChainModel` (the slice
+/// methods, the accessors and, through the trait, the branch solve); for `f32`, which the
+/// analyses do not take, the accessors and the branch solve as inherent `f32` methods and
+/// `impl FloatChain<f32>` for the no-alloc analyses. `ident`'s inherent array methods exist.
+struct FloatItems {
+    inherent: TokenStream,
+    traits: TokenStream,
+}
+
+fn float_items(ident: &Ident, model: &Model, trait_bodies: TokenStream) -> FloatItems {
+    let p = private();
+    let n = model.n;
+    let a = model.value(&model.a);
+    let mass = model.value(&model.mass);
+    let lbar = model.rest_length_tokens();
+    let theta_bar = model.theta_bar_tokens();
+    match model.float {
+        Float::F64 => FloatItems {
+            inherent: TokenStream::new(),
+            traits: quote! {
+                #[automatically_derived]
+                #[allow(clippy::all, clippy::pedantic)]
+                impl #p::ChainModel for #ident {
+                    fn rotor_count(&self) -> usize { #n }
+                    fn lattice_spacing(&self) -> f64 { #a }
+                    fn rotor_length(&self, i: usize) -> f64 { self.__rotor_chain_rotor_length(i) }
+                    fn mass(&self) -> f64 { #mass }
+                    fn theta_bar(&self) -> f64 { #theta_bar }
+                    fn stiffness(&self, p: usize) -> f64 { self.__rotor_chain_stiffness(p) }
+                    fn rest_length(&self, p: usize) -> f64 { self.__rotor_chain_rest_length(#lbar, p) }
+                    #trait_bodies
+                }
+            },
+        },
+        Float::F32 => {
+            let m = model.springs();
+            let t = float_type(model.float);
+            // The branch solve of spring `p` (paper Appendix A) in f32.
+            let solve = |direction: TokenStream| {
+                quote!({
+                    if p >= #m {
+                        return Err(#p::BranchError::NoSuchSpring { spring: p, springs: #m });
+                    }
+                    #p::branch::#direction(
+                        p,
+                        #a,
+                        self.__rotor_chain_rotor_length(p),
+                        self.__rotor_chain_rotor_length(p + 1),
+                        self.__rotor_chain_rest_length(#lbar, p),
+                        theta,
+                    )
+                })
+            };
+            let (next, previous) = (solve(quote!(next_angles)), solve(quote!(previous_angles)));
+            let result = quote!(::core::result::Result<[#t; 2], #p::BranchError>);
+            FloatItems {
+                inherent: quote! {
+                    /// Number of rotors `n`.
+                    pub fn rotor_count(&self) -> usize { #n }
+                    /// Number of springs `n - 1`.
+                    pub fn spring_count(&self) -> usize { #m }
+                    /// Lattice spacing `a`.
+                    pub fn lattice_spacing(&self) -> #t { #a }
+                    /// Length `r_i` of rotor `i`.
+                    pub fn rotor_length(&self, i: usize) -> #t { self.__rotor_chain_rotor_length(i) }
+                    /// Tip mass `M`.
+                    pub fn mass(&self) -> #t { #mass }
+                    /// Moment of inertia `M r_i^2` of rotor `i`.
+                    pub fn inertia(&self, i: usize) -> #t {
+                        let r = self.__rotor_chain_rotor_length(i);
+                        #mass * r * r
+                    }
+                    /// Equilibrium angle `theta_bar` of the uniform states.
+                    pub fn theta_bar(&self) -> #t { #theta_bar }
+                    /// Stiffness `k_p` of spring `p`.
+                    pub fn stiffness(&self, p: usize) -> #t { self.__rotor_chain_stiffness(p) }
+                    /// Rest length `l0_p` of spring `p`.
+                    pub fn rest_length(&self, p: usize) -> #t { self.__rotor_chain_rest_length(#lbar, p) }
+                    /// Both `theta_{p+1}` that put spring `p` at its rest length given `theta_p`
+                    /// (paper Appendix A), flipper branch first, solved in `f32`.
+                    pub fn next_angles(&self, p: usize, theta: #t) -> #result #next
+                    /// Both `theta_p` that put spring `p` at its rest length given `theta_{p+1}`:
+                    /// the inverse map, solved in `f32`.
+                    pub fn previous_angles(&self, p: usize, theta: #t) -> #result #previous
+                },
+                traits: quote! {
+                    #[automatically_derived]
+                    #[allow(clippy::all, clippy::pedantic)]
+                    impl #p::FloatChain<#t> for #ident {
+                        fn rotor_count(&self) -> usize { #n }
+                        fn rotor_length(&self, i: usize) -> #t { #ident::rotor_length(self, i) }
+                        fn inertia(&self, i: usize) -> #t { #ident::inertia(self, i) }
+                        fn energy(&self, theta: &[#t]) -> #t { #ident::energy(self, #p::as_array(theta)) }
+                        fn gradient_into(&self, theta: &[#t], out: &mut [#t]) {
+                            out.copy_from_slice(&#ident::gradient(self, #p::as_array(theta)));
+                        }
+                        fn compatibility_into(&self, theta: &[#t], left: &mut [#t], right: &mut [#t]) {
+                            let c = #ident::compatibility(self, #p::as_array(theta));
+                            left.copy_from_slice(&c.left);
+                            right.copy_from_slice(&c.right);
+                        }
+                        fn next_angles(&self, p: usize, theta: #t) -> #result {
+                            #ident::next_angles(self, p, theta)
+                        }
+                        fn previous_angles(&self, p: usize, theta: #t) -> #result {
+                            #ident::previous_angles(self, p, theta)
+                        }
+                    }
+                },
+            }
+        }
+    }
+}
+
 fn emit(item: &ItemStruct, model: &Model) -> TokenStream {
     let p = private();
     let ident = &item.ident;
-    let (n, m) = (model.n, model.springs());
+    let (n, m, float) = (model.n, model.springs(), model.float);
+    let t = float_type(float);
     let (bodies, trait_bodies) = if model.unrolled() {
         (unrolled_bodies(model), unrolled_trait_bodies(ident))
     } else {
@@ -446,27 +571,27 @@ fn emit(item: &ItemStruct, model: &Model) -> TokenStream {
         support,
     } = bodies;
 
-    let a = value_tokens(&model.a);
-    let mass = value_tokens(&model.mass);
-    let lbar = model.rest_length_tokens();
-    let theta_bar = model.theta_bar_tokens();
+    let a = model.value(&model.a);
     let (idx_i, idx_p) = (format_ident!("i"), format_ident!("p"));
-    let rotor_overrides = model.rotors.iter().map(|(i, v)| (*i, value_tokens(v))).collect();
-    let rotor_length = indexed(&idx_i, n, "rotor", rotor_overrides, value_tokens(&model.r));
+    let rotor_overrides = model.rotors.iter().map(|(i, v)| (*i, model.value(v))).collect();
+    let rotor_length = indexed(&idx_i, n, "rotor", rotor_overrides, model.value(&model.r));
     let k_overrides =
-        model.springs.iter().filter_map(|(i, (k, _))| k.as_ref().map(|v| (*i, value_tokens(v)))).collect();
-    let stiffness = indexed(&idx_p, m, "spring", k_overrides, value_tokens(&model.k));
+        model.springs.iter().filter_map(|(i, (k, _))| k.as_ref().map(|v| (*i, model.value(v)))).collect();
+    let stiffness = indexed(&idx_p, m, "spring", k_overrides, model.value(&model.k));
     let l0_overrides =
-        model.springs.iter().filter_map(|(i, (_, l0))| l0.as_ref().map(|v| (*i, value_tokens(v)))).collect();
+        model.springs.iter().filter_map(|(i, (_, l0))| l0.as_ref().map(|v| (*i, model.value(v)))).collect();
     let rest_length = indexed(&idx_p, m, "spring", l0_overrides, quote!(lbar));
     let check = check_body(model);
     let strategy =
         if model.unrolled() { "unrolled straight-line code" } else { "the per-spring kernel in a loop" };
-    let doc_strategy = format!(" Generated by `#[rotor_chain]` as {strategy}.");
-    let hessian = (fits_on_stack(n * n, Returns::Dense) && tangent_stiffness.is_some()).then(|| {
+    let doc_strategy = match float {
+        Float::F64 => format!(" Generated by `#[rotor_chain]` as {strategy}."),
+        Float::F32 => format!(" Generated by `#[rotor_chain]` as {strategy}, computing in `f32`."),
+    };
+    let hessian = (fits_on_stack(n * n, Returns::Dense, float) && tangent_stiffness.is_some()).then(|| {
         quote! {
             /// The dense Hessian `d2V/dtheta_i dtheta_j` (the tangent stiffness as an `n x n` matrix).
-            pub fn hessian(&self, theta: &[f64; #n]) -> #p::SMatrix<f64, #n, #n> {
+            pub fn hessian(&self, theta: &[#t; #n]) -> #p::SMatrix<#t, #n, #n> {
                 self.tangent_stiffness(theta).to_dense()
             }
         }
@@ -475,47 +600,64 @@ fn emit(item: &ItemStruct, model: &Model) -> TokenStream {
         quote! {
             /// `dV/dtheta_i` for every rotor (the forces are its negative).
             #[doc = #doc_strategy]
-            pub fn gradient(&self, theta: &[f64; #n]) -> [f64; #n] #body
+            pub fn gradient(&self, theta: &[#t; #n]) -> [#t; #n] #body
         }
     });
     let tangent_stiffness = tangent_stiffness.map(|body| {
         quote! {
             /// The tangent stiffness `d2V/dtheta_i dtheta_j`, tridiagonal (paper Eq. `eq:prestress8`).
             #[doc = #doc_strategy]
-            pub fn tangent_stiffness(&self, theta: &[f64; #n]) -> #p::Tridiagonal<#n, #m> #body
+            pub fn tangent_stiffness(&self, theta: &[#t; #n]) -> #p::Tridiagonal<#n, #m, #t> #body
         }
     });
     let material = material.map(|body| {
         quote! {
             /// The material part `sum_p g^_p a_p a_p^T` of the tangent stiffness, `a_p = dl_p/dtheta`
             /// (paper Appendix D).
-            pub fn material_stiffness(&self, theta: &[f64; #n]) -> #p::Tridiagonal<#n, #m> #body
+            pub fn material_stiffness(&self, theta: &[#t; #n]) -> #p::Tridiagonal<#n, #m, #t> #body
         }
     });
     let stress = stress.map(|body| {
         quote! {
             /// The stress matrix `sum_p S_p` (paper Appendix D): material part + stress matrix = tangent stiffness.
-            pub fn stress_matrix(&self, theta: &[f64; #n]) -> #p::Tridiagonal<#n, #m> #body
+            pub fn stress_matrix(&self, theta: &[#t; #n]) -> #p::Tridiagonal<#n, #m, #t> #body
         }
     });
     let lengths = lengths.map(|body| {
         quote! {
             /// Spring lengths `l_p`.
-            pub fn spring_lengths(&self, theta: &[f64; #n]) -> [f64; #m] #body
+            pub fn spring_lengths(&self, theta: &[#t; #n]) -> [#t; #m] #body
         }
     });
     let tensions = tensions.map(|body| {
         quote! {
             /// Spring tensions `t_p = dlaw/dl` at the current lengths.
-            pub fn tensions(&self, theta: &[f64; #n]) -> [f64; #m] #body
+            pub fn tensions(&self, theta: &[#t; #n]) -> [#t; #m] #body
         }
     });
     let compatibility = compatibility.map(|body| {
         quote! {
             /// The compatibility matrix `C[p][i] = dl_p / d(r_i theta_i)` (bidiagonal).
-            pub fn compatibility(&self, theta: &[f64; #n]) -> #p::Bidiagonal<#m, #n> #body
+            pub fn compatibility(&self, theta: &[#t; #n]) -> #p::Bidiagonal<#m, #n, #t> #body
         }
     });
+    // The stepper holds four arrays of `n` numbers, returned by value.
+    let verlet = fits_on_stack(4 * n, Returns::Array, float).then(|| {
+        quote! {
+            /// A velocity-Verlet stepper (no heap, `no_std`) at angles `theta` and angular velocities
+            /// `omega`, with time step `dt`: call `step(&chain)` on it. The same stepper serves every
+            /// chain, `f64` and `f32` (`rotor_chain::embedded::Verlet`).
+            pub fn verlet(
+                &self,
+                theta: [#t; #n],
+                omega: [#t; #n],
+                dt: #t,
+            ) -> ::core::result::Result<#p::Verlet<#t, #n>, #p::EmbeddedError> {
+                #p::Verlet::new(self, theta, omega, dt)
+            }
+        }
+    });
+    let FloatItems { inherent: float_inherent, traits } = float_items(ident, model, trait_bodies);
 
     quote! {
         const _: () = {
@@ -531,7 +673,7 @@ fn emit(item: &ItemStruct, model: &Model) -> TokenStream {
 
                 /// Potential energy `V = sum_p law(l_p)`.
                 #[doc = #doc_strategy]
-                pub fn energy(&self, theta: &[f64; #n]) -> f64 #energy
+                pub fn energy(&self, theta: &[#t; #n]) -> #t #energy
 
                 #gradient
                 #tangent_stiffness
@@ -541,6 +683,8 @@ fn emit(item: &ItemStruct, model: &Model) -> TokenStream {
                 #lengths
                 #tensions
                 #compatibility
+                #verlet
+                #float_inherent
 
                 /// Checks the parameters against the chain's rules at run time (literal values were
                 /// already checked at compile time; this covers values read from fields).
@@ -548,20 +692,20 @@ fn emit(item: &ItemStruct, model: &Model) -> TokenStream {
 
                 #[doc(hidden)]
                 #[inline(always)]
-                fn __rotor_chain_rotor_length(&self, i: usize) -> f64 #rotor_length
+                fn __rotor_chain_rotor_length(&self, i: usize) -> #t #rotor_length
 
                 #[doc(hidden)]
                 #[inline(always)]
-                fn __rotor_chain_stiffness(&self, p: usize) -> f64 #stiffness
+                fn __rotor_chain_stiffness(&self, p: usize) -> #t #stiffness
 
                 #[doc(hidden)]
                 #[inline(always)]
-                fn __rotor_chain_rest_length(&self, lbar: f64, p: usize) -> f64 #rest_length
+                fn __rotor_chain_rest_length(&self, lbar: #t, p: usize) -> #t #rest_length
 
                 /// `[a, r_p, r_{p+1}, k_p, l0_p]` of spring `p`, given the default rest length `lbar`.
                 #[doc(hidden)]
                 #[inline(always)]
-                fn __rotor_chain_spring(&self, lbar: f64, p: usize) -> [f64; 5] {
+                fn __rotor_chain_spring(&self, lbar: #t, p: usize) -> [#t; 5] {
                     [
                         #a,
                         self.__rotor_chain_rotor_length(p),
@@ -572,18 +716,7 @@ fn emit(item: &ItemStruct, model: &Model) -> TokenStream {
                 }
             }
 
-            #[automatically_derived]
-            #[allow(clippy::all, clippy::pedantic)]
-            impl #p::ChainModel for #ident {
-                fn rotor_count(&self) -> usize { #n }
-                fn lattice_spacing(&self) -> f64 { #a }
-                fn rotor_length(&self, i: usize) -> f64 { self.__rotor_chain_rotor_length(i) }
-                fn mass(&self) -> f64 { #mass }
-                fn theta_bar(&self) -> f64 { #theta_bar }
-                fn stiffness(&self, p: usize) -> f64 { self.__rotor_chain_stiffness(p) }
-                fn rest_length(&self, p: usize) -> f64 { self.__rotor_chain_rest_length(#lbar, p) }
-                #trait_bodies
-            }
+            #traits
         };
     }
 }
@@ -609,6 +742,39 @@ mod tests {
             ),
         );
         insta::assert_snapshot!(pretty(out));
+    }
+
+    /// An `f32` chain's generated methods compute in `f32` throughout: single-precision math
+    /// paths, `f32` literals and arrays, no `f64` in any method body but `check()` (whose rules are
+    /// `chain-geometry`'s, in `f64`), and `FloatChain<f32>` instead of `ChainModel`.
+    #[test]
+    fn an_f32_chain_computes_in_f32() {
+        let out = expand(
+            quote!(n = 3, r = 0.8, theta_bar = 0.58, k = k_imp, float = f32),
+            quote!(
+                pub struct Tiny {
+                    pub k_imp: f32,
+                }
+            ),
+        );
+        let text = pretty(out);
+        assert!(text.contains("math::single::sin_cos_into"), "{text}");
+        assert!(text.contains("FloatChain<f32> for Tiny"), "{text}");
+        assert!(!text.contains("ChainModel for Tiny"), "{text}");
+        for method in ["energy", "gradient", "tangent_stiffness", "compatibility", "next_angles"] {
+            let start =
+                text.find(&format!("pub fn {method}(")).unwrap_or_else(|| panic!("no {method}: {text}"));
+            let body = &text[start..];
+            let end = body[1..].find("pub fn ").map_or(body.len(), |e| e + 1);
+            // The code, without the doc comments that precede the next method.
+            let body: String = body[..end]
+                .lines()
+                .filter(|l| !l.trim_start().starts_with("///"))
+                .collect::<Vec<_>>()
+                .join("\n");
+            assert!(!body.contains("f64"), "{method} mentions f64:\n{body}");
+            assert!(body.contains("f32"), "{method} does not mention f32:\n{body}");
+        }
     }
 
     #[test]

@@ -6,23 +6,26 @@
 //! (`n` itself invalid), and bodies that call `__private::invalid_chain()`: the crate does not
 //! compile, because of the errors, so no stub can run.
 
+use chain_symbolic::Float;
 use proc_macro2::{Ident, TokenStream};
 use quote::quote;
 use syn::Generics;
 
 use crate::expand::{Returns, fits_on_stack};
-use crate::model::PRIVATE;
+use crate::model::{PRIVATE, float_type};
 
-/// What the stubs are generated for: the item's name and generics, and `n` if it is valid.
+/// What the stubs are generated for: the item's name and generics, `n` if it is valid, and the
+/// float type (`f64` unless `float = f32` was given and valid).
 pub struct Stubs {
     ident: Ident,
     generics: Generics,
     n: Option<usize>,
+    float: Float,
 }
 
 impl Stubs {
-    pub fn new(ident: &Ident, generics: &Generics, n: Option<usize>) -> Self {
-        Self { ident: ident.clone(), generics: generics.clone(), n }
+    pub fn new(ident: &Ident, generics: &Generics, n: Option<usize>, float: Float) -> Self {
+        Self { ident: ident.clone(), generics: generics.clone(), n, float }
     }
 
     fn tokens(&self) -> TokenStream {
@@ -42,15 +45,17 @@ impl Stubs {
         };
         let m_value = n_value - 1;
         // The methods the real expansion would have for this `n` (all of them for an unknown `n`).
-        let exists = |values: usize, result| self.n.is_none_or(|_| fits_on_stack(values, result));
-        let theta = quote!(theta: &[f64; #n_ty]);
+        let exists = |values: usize, result| self.n.is_none_or(|_| fits_on_stack(values, result, self.float));
+        let t = float_type(self.float);
+        let theta = quote!(theta: &[#t; #n_ty]);
         let method = |name: TokenStream, values: usize, returns, ret: TokenStream, generics: &TokenStream| {
             exists(values, returns).then(|| quote!(pub fn #name #generics (&self, #theta) -> #ret #body))
         };
-        let tridiagonal = quote!(#p::Tridiagonal<#n_ty, #m_ty>);
+        let tridiagonal = quote!(#p::Tridiagonal<#n_ty, #m_ty, #t>);
+        let verlet = quote!(::core::result::Result<#p::Verlet<#t, #n_ty>, #p::EmbeddedError>);
         let methods = [
-            Some(quote!(pub fn energy #generic_n (&self, #theta) -> f64 #body)),
-            method(quote!(gradient), n_value, Returns::Array, quote!([f64; #n_ty]), &generic_n),
+            Some(quote!(pub fn energy #generic_n (&self, #theta) -> #t #body)),
+            method(quote!(gradient), n_value, Returns::Array, quote!([#t; #n_ty]), &generic_n),
             method(
                 quote!(tangent_stiffness),
                 n_value + m_value,
@@ -66,24 +71,28 @@ impl Stubs {
                 &generic_nm,
             ),
             method(quote!(stress_matrix), n_value + m_value, Returns::Banded, tridiagonal, &generic_nm),
-            method(quote!(spring_lengths), m_value, Returns::Array, quote!([f64; #m_ty]), &generic_nm),
-            method(quote!(tensions), m_value, Returns::Array, quote!([f64; #m_ty]), &generic_nm),
+            method(quote!(spring_lengths), m_value, Returns::Array, quote!([#t; #m_ty]), &generic_nm),
+            method(quote!(tensions), m_value, Returns::Array, quote!([#t; #m_ty]), &generic_nm),
             method(
                 quote!(compatibility),
                 2 * m_value,
                 Returns::Banded,
-                quote!(#p::Bidiagonal<#m_ty, #n_ty>),
+                quote!(#p::Bidiagonal<#m_ty, #n_ty, #t>),
                 &generic_nm,
             ),
             method(
                 quote!(hessian),
                 n_value * n_value,
                 Returns::Dense,
-                quote!(#p::SMatrix<f64, #n_ty, #n_ty>),
+                quote!(#p::SMatrix<#t, #n_ty, #n_ty>),
                 &generic_n,
             ),
+            exists(4 * n_value, Returns::Array).then(|| {
+                quote!(pub fn verlet #generic_n (&self, theta: [#t; #n_ty], omega: [#t; #n_ty], dt: #t) -> #verlet #body)
+            }),
         ];
         let methods = methods.into_iter().flatten();
+        let (float_methods, float_trait) = self.float_items(&body);
         quote! {
             const _: () = {
                 #[automatically_derived]
@@ -92,29 +101,78 @@ impl Stubs {
                     pub const N: usize = #n_value;
                     pub const SPRINGS: usize = #m_value;
                     #(#methods)*
+                    #float_methods
                     pub fn check(&self) -> ::core::result::Result<(), #p::ParameterError> #body
                 }
 
-                #[automatically_derived]
-                #[allow(unused_variables, clippy::all, clippy::pedantic)]
-                impl #impl_generics #p::ChainModel for #ident #ty_generics #where_clause {
-                    fn rotor_count(&self) -> usize #body
-                    fn lattice_spacing(&self) -> f64 #body
-                    fn rotor_length(&self, i: usize) -> f64 #body
-                    fn mass(&self) -> f64 #body
-                    fn theta_bar(&self) -> f64 #body
-                    fn stiffness(&self, p: usize) -> f64 #body
-                    fn rest_length(&self, p: usize) -> f64 #body
-                    fn energy(&self, theta: &[f64]) -> f64 #body
-                    fn gradient_into(&self, theta: &[f64], out: &mut [f64]) #body
-                    fn tangent_stiffness_into(&self, theta: &[f64], diag: &mut [f64], off: &mut [f64]) #body
-                    fn material_stiffness_into(&self, theta: &[f64], diag: &mut [f64], off: &mut [f64]) #body
-                    fn stress_matrix_into(&self, theta: &[f64], diag: &mut [f64], off: &mut [f64]) #body
-                    fn spring_lengths_into(&self, theta: &[f64], out: &mut [f64]) #body
-                    fn tensions_into(&self, theta: &[f64], out: &mut [f64]) #body
-                    fn compatibility_into(&self, theta: &[f64], left: &mut [f64], right: &mut [f64]) #body
-                }
+                #float_trait
             };
+        }
+    }
+
+    /// The stubs of the items that differ between the float types (`expand::float_items`).
+    fn float_items(&self, body: &TokenStream) -> (TokenStream, TokenStream) {
+        let p: TokenStream = PRIVATE.parse().expect("path");
+        let ident = &self.ident;
+        let (impl_generics, ty_generics, where_clause) = self.generics.split_for_impl();
+        match self.float {
+            Float::F64 => (
+                TokenStream::new(),
+                quote! {
+                    #[automatically_derived]
+                    #[allow(unused_variables, clippy::all, clippy::pedantic)]
+                    impl #impl_generics #p::ChainModel for #ident #ty_generics #where_clause {
+                        fn rotor_count(&self) -> usize #body
+                        fn lattice_spacing(&self) -> f64 #body
+                        fn rotor_length(&self, i: usize) -> f64 #body
+                        fn mass(&self) -> f64 #body
+                        fn theta_bar(&self) -> f64 #body
+                        fn stiffness(&self, p: usize) -> f64 #body
+                        fn rest_length(&self, p: usize) -> f64 #body
+                        fn energy(&self, theta: &[f64]) -> f64 #body
+                        fn gradient_into(&self, theta: &[f64], out: &mut [f64]) #body
+                        fn tangent_stiffness_into(&self, theta: &[f64], diag: &mut [f64], off: &mut [f64]) #body
+                        fn material_stiffness_into(&self, theta: &[f64], diag: &mut [f64], off: &mut [f64]) #body
+                        fn stress_matrix_into(&self, theta: &[f64], diag: &mut [f64], off: &mut [f64]) #body
+                        fn spring_lengths_into(&self, theta: &[f64], out: &mut [f64]) #body
+                        fn tensions_into(&self, theta: &[f64], out: &mut [f64]) #body
+                        fn compatibility_into(&self, theta: &[f64], left: &mut [f64], right: &mut [f64]) #body
+                    }
+                },
+            ),
+            Float::F32 => {
+                let t = float_type(self.float);
+                let result = quote!(::core::result::Result<[#t; 2], #p::BranchError>);
+                (
+                    quote! {
+                        pub fn rotor_count(&self) -> usize #body
+                        pub fn spring_count(&self) -> usize #body
+                        pub fn lattice_spacing(&self) -> #t #body
+                        pub fn rotor_length(&self, i: usize) -> #t #body
+                        pub fn mass(&self) -> #t #body
+                        pub fn inertia(&self, i: usize) -> #t #body
+                        pub fn theta_bar(&self) -> #t #body
+                        pub fn stiffness(&self, p: usize) -> #t #body
+                        pub fn rest_length(&self, p: usize) -> #t #body
+                        pub fn next_angles(&self, p: usize, theta: #t) -> #result #body
+                        pub fn previous_angles(&self, p: usize, theta: #t) -> #result #body
+                    },
+                    quote! {
+                        #[automatically_derived]
+                        #[allow(unused_variables, clippy::all, clippy::pedantic)]
+                        impl #impl_generics #p::FloatChain<#t> for #ident #ty_generics #where_clause {
+                            fn rotor_count(&self) -> usize #body
+                            fn rotor_length(&self, i: usize) -> #t #body
+                            fn inertia(&self, i: usize) -> #t #body
+                            fn energy(&self, theta: &[#t]) -> #t #body
+                            fn gradient_into(&self, theta: &[#t], out: &mut [#t]) #body
+                            fn compatibility_into(&self, theta: &[#t], left: &mut [#t], right: &mut [#t]) #body
+                            fn next_angles(&self, p: usize, theta: #t) -> #result #body
+                            fn previous_angles(&self, p: usize, theta: #t) -> #result #body
+                        }
+                    },
+                )
+            }
         }
     }
 }

@@ -4,9 +4,10 @@
 
 use chain_geometry as geo;
 use chain_symbolic::chain::{ChainOutputs, Kernel};
-use chain_symbolic::{Graph, Id, SpringLaw, SpringParams};
+use chain_symbolic::lower::{Schedule, lower_with};
+use chain_symbolic::{Float, Graph, Id, Node, SpringLaw, SpringParams};
 use proc_macro2::TokenStream;
-use quote::quote;
+use quote::{format_ident, quote};
 
 use crate::attr::Value;
 use crate::valid::{Model, Uniform};
@@ -14,9 +15,19 @@ use crate::valid::{Model, Uniform};
 /// The hidden path through which generated code reaches its support items.
 pub const PRIVATE: &str = "::rotor_chain::__private";
 
-/// The math functions' path prefix in rendered source.
-pub fn math_prefix() -> String {
-    format!("{PRIVATE}::math::")
+/// The path prefix of `float`'s math functions in rendered source: `math::` for `f64`,
+/// `math::single::` for `f32`.
+pub fn math_prefix(float: Float) -> String {
+    match float {
+        Float::F64 => format!("{PRIVATE}::math::"),
+        Float::F32 => format!("{PRIVATE}::math::single::"),
+    }
+}
+
+/// The float type as a Rust type.
+pub fn float_type(float: Float) -> TokenStream {
+    let ty = format_ident!("{}", float.name());
+    quote!(#ty)
 }
 
 /// The graph node of a parameter value.
@@ -27,21 +38,30 @@ pub fn value_node(g: &mut Graph, v: &Value) -> Id {
     }
 }
 
-/// The Rust expression of a parameter value.
-pub fn value_tokens(v: &Value) -> TokenStream {
+/// The Rust expression of a parameter value, in the chain's float type (literals were rounded to
+/// it in validation, fields are declared in it).
+pub fn value_tokens(v: &Value, float: Float) -> TokenStream {
     match v {
-        Value::Literal { value, .. } => {
-            let lit = proc_macro2::Literal::f64_suffixed(*value);
-            quote!(#lit)
-        }
+        Value::Literal { value, .. } => float_tokens(*value, float),
         Value::Field(ident) => quote!(self.#ident),
     }
 }
 
-/// A computed constant as a Rust expression (`f64::INFINITY` and `f64::NAN` where a literal
-/// cannot be written: parameters near `f64::MAX` can overflow the rest length).
-fn f64_tokens(x: f64) -> TokenStream {
-    chain_symbolic::lower::render_const(x).parse().unwrap_or_else(|_| quote!(::core::primitive::f64::NAN))
+/// The Rust expression of a parameter value as an `f64` (`f64::from(self.k)` for a field of an
+/// `f32` chain): for the rules of `chain-geometry`, which are checked in `f64`.
+pub fn value_tokens_f64(v: &Value, float: Float) -> TokenStream {
+    match (v, float) {
+        (Value::Literal { value, .. }, _) => float_tokens(*value, Float::F64),
+        (Value::Field(ident), Float::F64) => quote!(self.#ident),
+        (Value::Field(ident), Float::F32) => quote!(::core::primitive::f64::from(self.#ident)),
+    }
+}
+
+/// A computed constant as a Rust expression of type `float`, rounded to it (`f64::INFINITY` and
+/// `f64::NAN` where a literal cannot be written: parameters near `f64::MAX` can overflow the rest
+/// length).
+fn float_tokens(x: f64, float: Float) -> TokenStream {
+    float.render_const(x).parse().unwrap_or_else(|_| quote!(::core::primitive::f64::NAN))
 }
 
 impl Model {
@@ -79,34 +99,63 @@ impl Model {
         }
     }
 
-    /// The default rest length as a Rust expression.
+    /// A parameter value as a Rust expression of the chain's float type.
+    pub fn value(&self, v: &Value) -> TokenStream {
+        value_tokens(v, self.float)
+    }
+
+    /// The default rest length as a Rust expression of the chain's float type. An `f32` chain
+    /// whose rest length depends on fields computes it in `f32`, from the graph node the energy
+    /// uses (so the branch solve and the energy share it, and no `f64` routine is linked).
     pub fn rest_length_tokens(&self) -> TokenStream {
         let p: TokenStream = PRIVATE.parse().expect("path");
-        match &self.uniform {
-            Uniform::RestLength(v) => value_tokens(v),
-            Uniform::ThetaBar(tb) => match (self.literal_geometry(), tb.literal()) {
-                (Some((a, r)), Some(t)) => f64_tokens(geo::rest_length(a, r, t)),
+        match (&self.uniform, self.float) {
+            (Uniform::RestLength(v), _) => self.value(v),
+            (Uniform::ThetaBar(tb), float) => match (self.literal_geometry(), tb.literal()) {
+                (Some((a, r)), Some(t)) => float_tokens(geo::rest_length(a, r, t), float),
+                _ if float == Float::F32 => self.rest_length_program(),
                 _ => {
-                    let (a, r, t) = (value_tokens(&self.a), value_tokens(&self.r), value_tokens(tb));
+                    let (a, r, t) = (self.value(&self.a), self.value(&self.r), self.value(tb));
                     quote!(#p::geometry::rest_length(#a, #r, #t))
                 }
             },
         }
     }
 
-    /// `theta_bar` as a Rust expression. For a rest length read from a field that admits no
-    /// uniform state the expression is NaN; `check()` reports that case as an error.
+    /// The rest length node lowered to a block of the chain's float type.
+    fn rest_length_program(&self) -> TokenStream {
+        let mut g = Graph::new();
+        let lbar = self.rest_length_node(&mut g);
+        let leaf = |id: Id| match g.node(id) {
+            Node::Symbol(s) => Some(g.symbol_name(s).to_owned()),
+            _ => None,
+        };
+        let program = lower_with(&g, &[lbar], &leaf, Schedule::DepthFirst).expect("every symbol is a field");
+        let ty = self.float.name();
+        let steps = program.render_into("l", self.float, &math_prefix(self.float), &["lbar".to_owned()]);
+        format!("{{\nlet mut lbar: {ty};\n{steps}lbar\n}}").parse().expect("rest length source parses")
+    }
+
+    /// `theta_bar` as a Rust expression of the chain's float type. For a rest length read from a
+    /// field that admits no uniform state the expression is NaN; `check()` reports that case as an
+    /// error.
     pub fn theta_bar_tokens(&self) -> TokenStream {
         let p: TokenStream = PRIVATE.parse().expect("path");
+        let ty = float_type(self.float);
         match &self.uniform {
-            Uniform::ThetaBar(tb) => value_tokens(tb),
+            Uniform::ThetaBar(tb) => self.value(tb),
             Uniform::RestLength(rl) => match (self.literal_geometry(), rl.literal()) {
                 (Some((a, r)), Some(l)) => {
-                    f64_tokens(geo::theta_bar_from_rest_length(a, r, l).expect("validated"))
+                    float_tokens(geo::theta_bar_from_rest_length(a, r, l).expect("validated"), self.float)
                 }
                 _ => {
-                    let (a, r, l) = (value_tokens(&self.a), value_tokens(&self.r), value_tokens(rl));
-                    quote!(#p::geometry::theta_bar_from_rest_length(#a, #r, #l).unwrap_or(f64::NAN))
+                    let f = |v| value_tokens_f64(v, self.float);
+                    let (a, r, l) = (f(&self.a), f(&self.r), f(rl));
+                    let theta_bar = quote!(#p::geometry::theta_bar_from_rest_length(#a, #r, #l));
+                    match self.float {
+                        Float::F64 => quote!(#theta_bar.unwrap_or(f64::NAN)),
+                        Float::F32 => quote!(#theta_bar.map_or(#ty::NAN, |theta_bar| theta_bar as #ty)),
+                    }
                 }
             },
         }

@@ -7,6 +7,7 @@
 use std::collections::BTreeMap;
 
 use chain_geometry::{self as geo, IndexKind, Key, ParameterError};
+use chain_symbolic::Float;
 use proc_macro2::{Span, TokenStream};
 use syn::ext::IdentExt;
 use syn::{Fields, ItemStruct, Type};
@@ -48,6 +49,8 @@ pub struct Model {
     pub springs: BTreeMap<usize, (Option<Value>, Option<Value>)>,
     /// Rotor-length overrides by index.
     pub rotors: BTreeMap<usize, Value>,
+    /// The float type of every generated computation; literal values are rounded to it.
+    pub float: Float,
 }
 
 impl Model {
@@ -61,11 +64,15 @@ impl Model {
     }
 }
 
-/// `f64`, `core::primitive::f64` or `std::primitive::f64` (a type alias cannot be resolved by a macro).
-fn is_f64_path(path: &syn::Path) -> bool {
+/// `f64`, `core::primitive::f64` or `std::primitive::f64` (or the same for `f32`): the float type
+/// `ty` (a type alias cannot be resolved by a macro).
+fn is_float_path(path: &syn::Path, ty: &str) -> bool {
     let names: Vec<String> = path.segments.iter().map(|s| s.ident.unraw().to_string()).collect();
     let names: Vec<&str> = names.iter().map(String::as_str).collect();
-    matches!(names.as_slice(), ["f64"] | ["core" | "std", "primitive", "f64"])
+    match names.as_slice() {
+        [t] | ["core" | "std", "primitive", t] => *t == ty,
+        _ => false,
+    }
 }
 
 /// A type as written, without the token stream's spaces: `Option < f64 >` becomes `Option<f64>`.
@@ -77,58 +84,65 @@ fn compact(ty: &str) -> String {
     out.replace(',', ", ").replace(';', "; ")
 }
 
-/// The `f64` fields of the struct, and every named field with its type (for error messages).
-struct Fields64 {
-    f64_fields: Vec<String>,
+/// The fields of the struct in the chain's float type (`f64`, or `f32` for `float = f32`), and
+/// every named field with its type (for error messages).
+struct FloatFields {
+    float_fields: Vec<String>,
     all: BTreeMap<String, String>,
     struct_name: String,
+    float: Float,
 }
 
-impl Fields64 {
-    fn of(item: &ItemStruct) -> Self {
-        let mut f64_fields = Vec::new();
+impl FloatFields {
+    fn of(item: &ItemStruct, float: Float) -> Self {
+        let mut float_fields = Vec::new();
         let mut all = BTreeMap::new();
         if let Fields::Named(named) = &item.fields {
             for f in &named.named {
                 let Some(ident) = &f.ident else { continue };
-                let is_f64 = matches!(&f.ty, Type::Path(p) if p.qself.is_none() && is_f64_path(&p.path));
-                if is_f64 {
-                    f64_fields.push(ident.unraw().to_string());
+                let typed = matches!(&f.ty, Type::Path(p) if p.qself.is_none() && is_float_path(&p.path, float.name()));
+                if typed {
+                    float_fields.push(ident.unraw().to_string());
                 }
                 let ty = &f.ty;
                 all.insert(ident.unraw().to_string(), compact(&quote::quote!(#ty).to_string()));
             }
         }
-        Self { f64_fields, all, struct_name: item.ident.unraw().to_string() }
+        Self { float_fields, all, struct_name: item.ident.unraw().to_string(), float }
     }
 
     fn check(&self, cx: &Ctxt, v: &Value) {
         let Value::Field(ident) = v else { return };
         let name = ident.unraw().to_string();
-        if self.f64_fields.contains(&name) {
+        if self.float_fields.contains(&name) {
             return;
         }
-        if let Some(ty) = self.all.get(&name) {
-            cx.error_spanned_by(
-                ident,
-                format!(
-                    "field `{name}` has type `{ty}`, but a chain parameter must be a field declared `f64`"
+        let ty = self.float.name();
+        if let Some(declared) = self.all.get(&name) {
+            let message = match self.float {
+                Float::F64 => format!(
+                    "field `{name}` has type `{declared}`, but a chain parameter must be a field declared `f64`"
                 ),
-            );
+                Float::F32 => format!(
+                    "field `{name}` has type `{declared}`, but a parameter of a chain declared with \
+                     `float = f32` must be a field declared `f32`: the chain computes in `f32`"
+                ),
+            };
+            cx.error_spanned_by(ident, message);
             return;
         }
-        let known: Vec<&str> = self.f64_fields.iter().map(String::as_str).collect();
+        let known: Vec<&str> = self.float_fields.iter().map(String::as_str).collect();
         let hint = match suggest(&name, &known) {
             Some(s) => format!("; did you mean `{s}`?"),
-            None if known.is_empty() => format!("; `{}` has no `f64` fields", self.struct_name),
+            None if known.is_empty() => format!("; `{}` has no `{ty}` fields", self.struct_name),
             None => format!(
-                "; its `f64` fields are {}",
+                "; its `{ty}` fields are {}",
                 known.iter().map(|k| format!("`{k}`")).collect::<Vec<_>>().join(", ")
             ),
         };
         cx.error_spanned_by(
             ident,
-            format!("`{name}` is not a field of `{}`: a parameter is a float literal or the name of an `f64` field{hint}", self.struct_name),
+            format!("`{name}` is not a field of `{}`: a parameter is a float literal or the name of an `{ty}` field{hint}", self.struct_name),
         );
     }
 }
@@ -163,11 +177,13 @@ fn literal_or(v: &Option<Keyed<Value>>, default: f64) -> Option<f64> {
 
 /// Validates `spec` for the struct `item`. Returns the model if every required key is present
 /// (other errors are in `cx`).
-pub fn validate(cx: &Ctxt, spec: Spec, item: &ItemStruct) -> Option<Model> {
+pub fn validate(cx: &Ctxt, mut spec: Spec, item: &ItemStruct) -> Option<Model> {
     if !item.generics.params.is_empty() {
         cx.error_spanned_by(&item.generics, "#[rotor_chain] does not support generic structs");
     }
-    let fields = Fields64::of(item);
+    let float = spec.float.as_ref().map_or(Float::F64, |f| f.value);
+    round_literals(cx, &mut spec, float);
+    let fields = FloatFields::of(item, float);
     let values = [&spec.a, &spec.r, &spec.theta_bar, &spec.rest_length, &spec.k, &spec.mass];
     for v in values.into_iter().flatten() {
         fields.check(cx, &v.value);
@@ -323,6 +339,14 @@ pub fn validate(cx: &Ctxt, spec: Spec, item: &ItemStruct) -> Option<Model> {
         );
     }
     let law = spec.law.as_ref().and_then(|l| law::parse(cx, &l.key, l.value.clone()));
+    if let (Some(keyed), Some(n)) = (&spec.float, n) {
+        check_single_precision_strategy(
+            cx,
+            keyed,
+            n,
+            spec.unroll.as_ref().map_or(DEFAULT_UNROLL, |u| u.value),
+        );
+    }
 
     Some(Model {
         n: n?,
@@ -336,5 +360,63 @@ pub fn validate(cx: &Ctxt, spec: Spec, item: &ItemStruct) -> Option<Model> {
         law,
         springs,
         rotors,
+        float,
     })
+}
+
+/// An `f32` chain is unrolled code only: the looped strategy's kernel drivers are vectorised over
+/// `f64` lanes (`chain_core::kernel`), and a microcontroller's chain is small. A chain longer than
+/// its `unroll` is an error at the `float` key, saying how to resolve it.
+fn check_single_precision_strategy(cx: &Ctxt, float: &Keyed<Float>, n: usize, unroll: usize) {
+    if float.value != Float::F32 || n <= unroll {
+        return;
+    }
+    let remedy = if n <= MAX_UNROLL {
+        format!("give `unroll = {n}` (at most {MAX_UNROLL}) or compute in `f64`")
+    } else {
+        format!(
+            "the largest unrolled chain has {MAX_UNROLL} rotors, so compute a chain of {n} rotors in `f64`"
+        )
+    };
+    cx.error_spanned_by(
+        &float.tokens,
+        format!(
+            "a chain declared with `float = f32` is generated as unrolled code only (the per-spring loop \
+             computes in `f64` vector lanes), but n = {n} is more than `unroll` = {unroll}: {remedy}"
+        ),
+    );
+}
+
+/// For an `f32` chain, every literal parameter becomes the `f32` nearest to it, the value the chain
+/// computes with; the rules are then checked on that value. A literal beyond `f32`'s range, or a
+/// non-zero one that rounds to zero, is an error at the literal.
+fn round_literals(cx: &Ctxt, spec: &mut Spec, float: Float) {
+    if float == Float::F64 {
+        return;
+    }
+    let round = |v: &mut Keyed<Value>| {
+        let Value::Literal { value } = &mut v.value else { return };
+        let rounded = float.round(*value);
+        // After an error the value is left as written, so the rules add no second error about it.
+        if !rounded.is_finite() {
+            cx.error_spanned_by(&v.tokens, format!("literal out of range for `{}`", float.name()));
+        } else if rounded == 0.0 && *value != 0.0 {
+            cx.error_spanned_by(
+                &v.tokens,
+                format!("literal {value:e} is too small for `{}`: it rounds to 0", float.name()),
+            );
+        } else {
+            *value = rounded;
+        }
+    };
+    let Spec { a, r, theta_bar, rest_length, k, mass, springs, rotors, .. } = spec;
+    for v in [a, r, theta_bar, rest_length, k, mass].into_iter().flatten() {
+        round(v);
+    }
+    for s in springs {
+        s.k.iter_mut().chain(s.l0.iter_mut()).for_each(&round);
+    }
+    for ro in rotors {
+        ro.r.iter_mut().for_each(&round);
+    }
 }

@@ -20,7 +20,7 @@ pub mod lower;
 pub mod spring;
 
 pub use graph::{Graph, Id, Node};
-pub use lower::{Program, lower};
+pub use lower::{Float, Program, lower};
 pub use spring::{SpringLaw, SpringParams, SpringTerms};
 pub mod chain;
 pub use chain::{ChainOutputs, SpringSpec};

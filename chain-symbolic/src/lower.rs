@@ -169,28 +169,76 @@ fn depth_first(g: &Graph, outputs: &[Id], is_step: &dyn Fn(Id) -> bool) -> Vec<I
 }
 
 impl Operand {
-    fn render(&self, prefix: &str) -> String {
+    fn render(&self, prefix: &str, ty: Float) -> String {
         match self {
             Operand::Temp(i) => format!("{prefix}{i}"),
             Operand::Leaf(name) => name.clone(),
-            Operand::Const(c) => render_const(*c),
+            Operand::Const(c) => ty.render_const(*c),
         }
     }
 }
 
-/// A Rust expression for the constant `c` (exact: `{:?}` prints the shortest round-trip form;
-/// the non-finite values by their full path, which no user item can shadow).
-pub fn render_const(c: f64) -> String {
-    if c.is_nan() {
-        "::core::primitive::f64::NAN".to_owned()
-    } else if c.is_infinite() {
-        let name = if c > 0.0 { "INFINITY" } else { "NEG_INFINITY" };
-        format!("::core::primitive::f64::{name}")
-    } else if c < 0.0 {
-        format!("({c:?}f64)")
-    } else {
-        format!("{c:?}f64")
+/// The float type rendered code computes in: `f64` (the default of every chain) or `f32` (a chain
+/// declared with `float = f32`). The graph is the same for both: its constants are folded in
+/// `f64` and rounded once, to the nearest `f32`, where they are written out.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum Float {
+    #[default]
+    F64,
+    F32,
+}
+
+impl Float {
+    /// The Rust type: `"f64"` or `"f32"`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Float::F64 => "f64",
+            Float::F32 => "f32",
+        }
     }
+
+    /// Bytes per value.
+    pub fn bytes(self) -> usize {
+        match self {
+            Float::F64 => 8,
+            Float::F32 => 4,
+        }
+    }
+
+    /// `x` rounded to this type, as an `f64` (exact: every `f32` is an `f64`).
+    pub fn round(self, x: f64) -> f64 {
+        match self {
+            Float::F64 => x,
+            Float::F32 => f64::from(x as f32),
+        }
+    }
+
+    /// A Rust expression of this type for the constant `c`, rounded to the type: exact, since
+    /// `{:?}` prints the shortest digits that parse back to the same value; the non-finite values
+    /// by their full path, which no user item can shadow. A constant beyond `f32::MAX` is an `f32`
+    /// infinity, as the same value computed in `f32` would be.
+    pub fn render_const(self, c: f64) -> String {
+        let ty = self.name();
+        let c = self.round(c);
+        if c.is_nan() {
+            format!("::core::primitive::{ty}::NAN")
+        } else if c.is_infinite() {
+            let name = if c > 0.0 { "INFINITY" } else { "NEG_INFINITY" };
+            format!("::core::primitive::{ty}::{name}")
+        } else {
+            // `{:?}` of the value in its own type: the shortest digits for that type.
+            let digits = match self {
+                Float::F64 => format!("{c:?}"),
+                Float::F32 => format!("{:?}", c as f32),
+            };
+            if c < 0.0 { format!("({digits}{ty})") } else { format!("{digits}{ty}") }
+        }
+    }
+}
+
+/// A Rust expression for the `f64` constant `c`: [`Float::render_const`] for `f64`.
+pub fn render_const(c: f64) -> String {
+    Float::F64.render_const(c)
 }
 
 impl Expr {
@@ -254,11 +302,11 @@ impl Program {
             for name in sinks.iter().flatten() {
                 let _ = writeln!(out, "let {name};");
             }
-            out.push_str(&self.registers(&register_prefix, math, &sinks, ""));
+            out.push_str(&self.registers(&register_prefix, Float::F64, math, &sinks, false));
             return out;
         }
         let mut out = String::new();
-        let r = |o: &Operand| o.render(prefix);
+        let r = |o: &Operand| o.render(prefix, Float::F64);
         for (i, step) in self.steps.iter().enumerate() {
             let _ = writeln!(out, "let {prefix}{i} = {};", step.render(&r, math));
         }
@@ -267,24 +315,34 @@ impl Program {
 
     /// Rust source for output `k` (a temporary, a constant or a leaf) in [`Program::render`]'s names.
     pub fn render_output(&self, k: usize, prefix: &str) -> String {
-        self.outputs[k].render(prefix)
+        self.outputs[k].render(prefix, Float::F64)
     }
 
     /// Rust source that computes the program in a few reused `let mut {prefix}{k}: {ty}`
     /// registers (linear-scan allocation over last uses) and assigns output `k` to the place
     /// `sinks[k]` (for example `out[3]`) as soon as it is computed, so outputs hold no register.
+    /// Constants are written in `ty` (rounded to it), and `math` is the path prefix of `ty`'s
+    /// functions (`sqrt`, `sin`, ...).
     ///
     /// Why: rustc nests a scope for every `let`, and a function with a few thousand of them
     /// overflows its stack or LLVM's debug-info emission (see [`LET_LIMIT`]). Assignments open
     /// no scope, so a program of any length compiles; LLVM's SSA construction makes the
     /// optimised code the same as with `let`s. Scheduled [`Schedule::DepthFirst`], an unrolled
     /// chain needs a few dozen registers whatever its length.
-    pub fn render_into(&self, prefix: &str, ty: &str, math: &str, sinks: &[String]) -> String {
+    pub fn render_into(&self, prefix: &str, ty: Float, math: &str, sinks: &[String]) -> String {
         let sinks: Vec<Option<String>> = sinks.iter().cloned().map(Some).collect();
-        self.registers(prefix, math, &sinks, &format!(": {ty}"))
+        self.registers(prefix, ty, math, &sinks, true)
     }
 
-    fn registers(&self, prefix: &str, math: &str, sinks: &[Option<String>], ty: &str) -> String {
+    /// The register program; `typed`: the registers are declared with their type.
+    fn registers(
+        &self,
+        prefix: &str,
+        ty: Float,
+        math: &str,
+        sinks: &[Option<String>],
+        typed: bool,
+    ) -> String {
         const NEVER: usize = usize::MAX;
         // The last step that reads each temporary (NEVER: only outputs read it).
         let mut last_use = vec![NEVER; self.steps.len()];
@@ -302,7 +360,7 @@ impl Program {
             match o {
                 Operand::Temp(t) => sinks_of.entry(*t).or_default().push(sink),
                 other => {
-                    let _ = writeln!(late, "{sink} = {};", other.render(prefix));
+                    let _ = writeln!(late, "{sink} = {};", other.render(prefix, ty));
                 }
             }
         }
@@ -313,7 +371,7 @@ impl Program {
         for (i, step) in self.steps.iter().enumerate() {
             let r = |o: &Operand| match o {
                 Operand::Temp(t) => format!("{prefix}{}", register[*t]),
-                other => other.render(prefix),
+                other => other.render(prefix, ty),
             };
             let rhs = step.render(&r, math);
             // Operands that die here free their registers before the result takes one: the
@@ -340,8 +398,9 @@ impl Program {
             }
         }
         let mut decls = String::new();
+        let annotation = if typed { format!(": {}", ty.name()) } else { String::new() };
         for reg in 0..count {
-            let _ = writeln!(decls, "let mut {prefix}{reg}{ty};");
+            let _ = writeln!(decls, "let mut {prefix}{reg}{annotation};");
         }
         decls + &body + &late
     }
@@ -419,7 +478,7 @@ mod tests {
         let (g, x, outs) = recurrence(50);
         let p = lower(&g, &outs, &|id| (id == x).then(|| "x".to_owned())).unwrap();
         let sinks: Vec<String> = (0..outs.len()).map(|k| format!("out[{k}]")).collect();
-        let src = p.render_into("r", "f64", "", &sinks);
+        let src = p.render_into("r", Float::F64, "", &sinks);
         let registers = src.matches("let mut").count();
         assert!(registers <= 3, "{registers} registers for {} steps", p.steps.len());
         // Interpret the register program and compare with the graph's own evaluation.
@@ -463,9 +522,9 @@ mod tests {
         }
         let leaf = |id: Id| (id == x).then(|| "x".to_owned());
         let sinks: Vec<String> = (0..sums.len()).map(|k| format!("out[{k}]")).collect();
-        let arena = lower(&g, &sums, &leaf).unwrap().render_into("r", "f64", "", &sinks);
+        let arena = lower(&g, &sums, &leaf).unwrap().render_into("r", Float::F64, "", &sinks);
         let deep = lower_with(&g, &sums, &leaf, Schedule::DepthFirst).unwrap();
-        let src = deep.render_into("r", "f64", "", &sinks);
+        let src = deep.render_into("r", Float::F64, "", &sinks);
         assert!(arena.matches("let mut").count() >= 500);
         assert!(src.matches("let mut").count() <= 4, "{}", src.matches("let mut").count());
         let regs = interpret(&src);
@@ -498,5 +557,25 @@ mod tests {
         let e = g.mul(x, y);
         let err = lower(&g, &[e], &|id| (id == x).then(|| "x".to_owned())).unwrap_err();
         assert_eq!(err, "mystery");
+    }
+
+    #[test]
+    fn constants_are_written_in_the_chosen_type() {
+        assert_eq!(Float::F64.render_const(0.1), "0.1f64");
+        assert_eq!(Float::F32.render_const(0.1), "0.1f32");
+        // Rounded once to the nearest f32, then its shortest digits.
+        assert_eq!(Float::F32.render_const(1.0 / 3.0), "0.33333334f32");
+        assert_eq!(Float::F32.render_const(-2.5), "(-2.5f32)");
+        assert_eq!(Float::F32.render_const(1e300), "::core::primitive::f32::INFINITY");
+        assert_eq!(Float::F32.render_const(f64::NAN), "::core::primitive::f32::NAN");
+        assert_eq!(render_const(-1e300), "(-1e300f64)");
+
+        let (g, x, outs) = recurrence(3);
+        let p = lower(&g, &outs, &|id| (id == x).then(|| "x".to_owned())).unwrap();
+        let src = p.render_into("r", Float::F32, "m::", &["out[0]".to_owned()]);
+        assert!(
+            src.contains("let mut r0: f32;") && src.contains("2.0f32 * x") && !src.contains("f64"),
+            "{src}"
+        );
     }
 }

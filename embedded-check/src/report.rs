@@ -14,9 +14,9 @@
 use core::fmt;
 use core::str::{FromStr, SplitWhitespace};
 
-use crate::Real;
+use rotor_chain::embedded::{Charge, Real, Wall};
+
 use crate::run::{MAX_WALLS, Sample, Scenario, Summary};
-use crate::walls::{Charge, Wall};
 
 /// The first line of a run: what was run, on which chain size and float type.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -134,7 +134,7 @@ fn parse_sample<T: Real>(rest: &str) -> Result<Sample<T>, ParseError> {
     let kinetic = number(&mut fields, "kinetic")?;
     let potential = number(&mut fields, "potential")?;
     let wall_count: usize = number(&mut fields, "walls")?;
-    let mut walls = [Wall { position: T::zero(), charge: Charge::Kink }; MAX_WALLS];
+    let mut walls = [Wall { position: T::ZERO, charge: Charge::Kink }; MAX_WALLS];
     for slot in walls.iter_mut().take(wall_count) {
         let (name, position) = fields.next().and_then(|w| w.split_once('@')).ok_or(ParseError::Wall)?;
         let charge = match name {

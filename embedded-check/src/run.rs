@@ -5,11 +5,9 @@
 //! cannot drift apart: the only differences left between the Cortex-M run and the host run are
 //! the machine's arithmetic and its `sin`/`cos`/`atan2`/`sqrt`.
 
-use crate::kink::kink_into;
-use crate::launch::launch_velocities;
-use crate::verlet::Verlet;
-use crate::walls::{Charge, Wall, domain_walls};
-use crate::{Model, Real, RunError};
+use rotor_chain::embedded::{
+    Charge, EmbeddedError, FloatChain, Real, Verlet, Wall, domain_walls, kink_into, launch_velocities,
+};
 
 /// At most this many walls are recorded per sample ([`Sample::wall_count`] counts all of them).
 pub const MAX_WALLS: usize = 4;
@@ -47,13 +45,13 @@ impl Scenario {
         Scenario { centre: 4.25, v0: 2.0, dt: 1.953125e-3, steps: 1024, every: 64 };
 
     /// `Ok` if every parameter is in range for a chain of `n` rotors.
-    pub fn check(&self, n: usize) -> Result<(), RunError> {
+    pub fn check(&self, n: usize) -> Result<(), EmbeddedError> {
         let max = n.saturating_sub(1) as f64;
         if !(self.centre.is_finite() && (0.0..=max).contains(&self.centre)) {
-            return Err(RunError::CentreOutOfRange { centre: self.centre, max });
+            return Err(EmbeddedError::CentreOutOfRange { centre: self.centre, max });
         }
         let rule = |ok: bool, name, value, rule| {
-            if ok { Ok(()) } else { Err(RunError::InvalidScenario { name, value, rule }) }
+            if ok { Ok(()) } else { Err(EmbeddedError::InvalidParameter { name, value, rule }) }
         };
         rule(self.v0.is_finite() && self.v0 >= 0.0, "v0", self.v0, "finite and >= 0")?;
         rule(self.dt.is_finite() && self.dt > 0.0, "dt", self.dt, "positive and finite")?;
@@ -93,9 +91,26 @@ impl<T: Real> Sample<T> {
         self.kinetic + self.potential
     }
 
+    /// The same sample with every number widened to `f64` (exactly): to compare an `f32` run
+    /// with an `f64` one.
+    pub fn widen(&self) -> Sample<f64> {
+        Sample {
+            step: self.step,
+            time: self.time,
+            kinetic: self.kinetic.widen(),
+            potential: self.potential.widen(),
+            wall_count: self.wall_count,
+            walls: self.walls.map(|w| Wall { position: w.position.widen(), charge: w.charge }),
+        }
+    }
+
     /// The sample of `stepper`'s state.
-    pub fn of<M: Model<T> + ?Sized, const N: usize>(model: &M, stepper: &Verlet<T, N>, time: f64) -> Self {
-        let mut walls = [Wall { position: T::zero(), charge: Charge::Kink }; MAX_WALLS];
+    pub fn of<M: FloatChain<T> + ?Sized, const N: usize>(
+        model: &M,
+        stepper: &Verlet<T, N>,
+        time: f64,
+    ) -> Self {
+        let mut walls = [Wall { position: T::ZERO, charge: Charge::Kink }; MAX_WALLS];
         let mut wall_count = 0;
         for wall in domain_walls(stepper.theta()) {
             if let Some(slot) = walls.get_mut(wall_count) {
@@ -126,20 +141,32 @@ pub struct Summary<T> {
     pub max_energy_error: T,
 }
 
+impl<T: Real> Summary<T> {
+    /// The same summary widened to `f64` (exactly).
+    pub fn widen(&self) -> Summary<f64> {
+        Summary {
+            steps: self.steps,
+            energy_initial: self.energy_initial.widen(),
+            energy_final: self.energy_final.widen(),
+            max_energy_error: self.max_energy_error.widen(),
+        }
+    }
+}
+
 /// Builds the kink of `scenario` in `model`, launches it, steps it, and hands a [`Sample`] to
 /// `observer` at step 0, every `scenario.every` steps and after the last step.
 pub fn run<T, M, F, const N: usize>(
     model: &M,
     scenario: &Scenario,
     mut observer: F,
-) -> Result<Summary<T>, RunError>
+) -> Result<Summary<T>, EmbeddedError>
 where
     T: Real,
-    M: Model<T> + ?Sized,
+    M: FloatChain<T> + ?Sized,
     F: FnMut(&Sample<T>),
 {
     if model.rotor_count() != N {
-        return Err(RunError::WrongRotorCount { rotors: model.rotor_count(), expected: N });
+        return Err(EmbeddedError::WrongRotorCount { rotors: model.rotor_count(), expected: N });
     }
     scenario.check(N)?;
     let mut stepper = launched_kink::<T, M, N>(model, scenario)?;
@@ -147,7 +174,7 @@ where
     observer(&first);
     let energy_initial = first.energy();
     let mut summary =
-        Summary { steps: 0, energy_initial, energy_final: energy_initial, max_energy_error: T::zero() };
+        Summary { steps: 0, energy_initial, energy_final: energy_initial, max_energy_error: T::ZERO };
     for step in 1..=scenario.steps {
         stepper.step(model)?;
         if step % scenario.every == 0 || step == scenario.steps {
@@ -164,13 +191,16 @@ where
 
 /// The kink of `scenario` (centre, speed) with a Verlet stepper at its `dt`, before the first
 /// step.
-pub fn launched_kink<T, M, const N: usize>(model: &M, scenario: &Scenario) -> Result<Verlet<T, N>, RunError>
+pub fn launched_kink<T, M, const N: usize>(
+    model: &M,
+    scenario: &Scenario,
+) -> Result<Verlet<T, N>, EmbeddedError>
 where
     T: Real,
-    M: Model<T> + ?Sized,
+    M: FloatChain<T> + ?Sized,
 {
     scenario.check(N)?;
-    let mut theta = [T::zero(); N];
+    let mut theta = [T::ZERO; N];
     kink_into(model, T::of(scenario.centre), &mut theta)?;
     let omega = launch_velocities(model, &theta, T::of(scenario.v0))?;
     Verlet::new(model, theta, omega, T::of(scenario.dt))

@@ -16,6 +16,7 @@ use alloc::vec;
 use alloc::vec::Vec;
 
 use super::error::StaticsError;
+use crate::embedded::{self, EmbeddedError};
 use crate::model::ChainModel;
 
 /// The zero-energy kink of `model` centred at `centre` (in rotor indices, `0 <= centre <= n - 1`).
@@ -38,8 +39,8 @@ enum Wall {
     Reflected,
 }
 
-/// Builds a wall outward from its centre. For the kink, the forward map runs to the right and the
-/// inverse map to the left; the reflected wall swaps the two maps.
+/// Builds a wall outward from its centre: the no-alloc construction of `crate::embedded`
+/// ([`embedded::kink_into`], [`embedded::reflected_kink_into`]) into a `Vec`.
 fn wall_profile<M: ChainModel + ?Sized>(
     model: &M,
     centre: f64,
@@ -50,54 +51,17 @@ fn wall_profile<M: ChainModel + ?Sized>(
     if !(centre.is_finite() && (0.0..=max).contains(&centre)) {
         return Err(StaticsError::CentreOutOfRange { centre, n, max });
     }
-    // Spring p's map to the right (theta_p -> theta_{p+1}) and to the left.
-    let right = |p: usize, t: f64| -> Result<f64, StaticsError> {
-        Ok(match wall {
-            Wall::Kink => model.next_angles(p, t)?[0],
-            Wall::Reflected => model.previous_angles(p, t)?[0],
-        })
-    };
-    let left = |p: usize, t: f64| -> Result<f64, StaticsError> {
-        Ok(match wall {
-            Wall::Kink => model.previous_angles(p, t)?[0],
-            Wall::Reflected => model.next_angles(p, t)?[0],
-        })
-    };
-    let (i, f) = split(centre, n);
     let mut theta = vec![0.0; n];
-    if f > 0.0 {
-        // theta_i between 0 and the angle whose right neighbour is 0, chosen by bisection so that
-        // the interpolated sign change theta_i / (theta_i - theta_{i+1}) sits at i + f.
-        let end = left(i, 0.0)?;
-        let position = |t: f64| -> Result<f64, StaticsError> { Ok(t / (t - right(i, t)?)) };
-        let (mut near, mut far) = (0.0, end);
-        for _ in 0..200 {
-            let mid = 0.5 * (near + far);
-            if mid == near || mid == far {
-                break;
-            }
-            if position(mid)? < f {
-                near = mid;
-            } else {
-                far = mid;
-            }
-        }
-        theta[i] = 0.5 * (near + far);
+    let built = match wall {
+        Wall::Kink => embedded::kink_into(model, centre, &mut theta),
+        Wall::Reflected => embedded::reflected_kink_into(model, centre, &mut theta),
+    };
+    match built {
+        Ok(()) => Ok(theta),
+        Err(EmbeddedError::Branch(e)) => Err(StaticsError::Branch(e)),
+        // The centre and the length are checked above; a chain of one rotor has no wall.
+        Err(_) => Err(StaticsError::CentreOutOfRange { centre, n, max }),
     }
-    for p in i..n - 1 {
-        theta[p + 1] = right(p, theta[p])?;
-    }
-    for p in (0..i).rev() {
-        theta[p] = left(p, theta[p + 1])?;
-    }
-    Ok(theta)
-}
-
-/// `(i, f)` with `centre = i + f`, `0 <= f < 1`, `i + 1 < n` (a centre on the last rotor is
-/// `(n - 2, 1)` read as "rotor n - 1 vertical").
-fn split(centre: f64, n: usize) -> (usize, f64) {
-    let i = libm::floor(centre) as usize;
-    if i >= n - 1 { (n - 1, 0.0) } else { (i, centre - i as f64) }
 }
 
 /// The most steps [`mechanism_path`] takes.

@@ -8,47 +8,16 @@
 
 use alloc::vec::Vec;
 
-/// Kink or antikink.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Charge {
-    /// `+theta_bar` on the left, `-theta_bar` on the right: the zero-energy wall.
-    Kink,
-    /// `-theta_bar` on the left, `+theta_bar` on the right: stretches springs.
-    Antikink,
-}
-
-/// A domain wall: where it is (in rotor indices, fractional) and which kind.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Wall {
-    pub position: f64,
-    pub charge: Charge,
-}
+/// Kink or antikink, and a wall's position and charge: the no-alloc module's types (`f64` here).
+pub use crate::embedded::walls::{Charge, Wall};
 
 /// Every domain wall of `theta`, left to right: a sign change between two leaning rotors. A rotor
 /// exactly at zero leans neither way; a wall across one vertical rotor sits on it, across a run
 /// of them in its middle. A non-finite angle leans neither way either (read as zero), so no wall
-/// gets a NaN position (the analyses reject non-finite angles before they get here).
+/// gets a NaN position (the analyses reject non-finite angles before they get here). This is
+/// [`crate::embedded::domain_walls`], the no-alloc iterator, collected.
 pub fn domain_walls(theta: &[f64]) -> Vec<Wall> {
-    let mut walls = Vec::new();
-    // The last rotor that leans, and its angle.
-    let mut last: Option<(usize, f64)> = None;
-    for (j, &t) in theta.iter().enumerate() {
-        if !t.is_finite() || t == 0.0 {
-            continue;
-        }
-        if let Some((i, ti)) = last
-            && (ti > 0.0) != (t > 0.0)
-        {
-            let position = if j == i + 1 { i as f64 + ti / (ti - t) } else { (i + j) as f64 / 2.0 };
-            walls.push(Wall { position, charge: charge(ti) });
-        }
-        last = Some((j, t));
-    }
-    walls
-}
-
-fn charge(left: f64) -> Charge {
-    if left > 0.0 { Charge::Kink } else { Charge::Antikink }
+    crate::embedded::domain_walls(theta).collect()
 }
 
 /// `(kinks, antikinks)` in `theta`.

@@ -1,18 +1,28 @@
 //! What the two firmware binaries share: the chain and float type they run, and the exit to
 //! QEMU.
 //!
-//! The chain is chosen here, once: today the `f64` chain [`Chain16`]. An `f32` chain drops in by
-//! changing [`Chain`] and [`Float`] (under a cargo feature, so that CI builds both); the binaries
-//! and the host harness are generic over the float type.
+//! The chain is chosen here, once, by the cargo feature `f32`: without it the `f64` chain
+//! [`embedded_check::Chain16`] (soft-float on the Cortex-M4F), with it the same chain declared with
+//! `float = f32`, [`embedded_check::Chain16F32`] (the M4F's single-precision FPU). The binaries
+//! and the host harness are generic over the float type; `embedded/qemu-check` builds and runs
+//! both.
 #![no_std]
 
 use cortex_m_semihosting::debug;
 
 /// The chain the firmware runs.
+#[cfg(not(feature = "f32"))]
 pub use embedded_check::Chain16 as Chain;
+/// The chain the firmware runs.
+#[cfg(feature = "f32")]
+pub use embedded_check::Chain16F32 as Chain;
 
 /// The float type [`Chain`] computes in.
+#[cfg(not(feature = "f32"))]
 pub type Float = f64;
+/// The float type [`Chain`] computes in.
+#[cfg(feature = "f32")]
+pub type Float = f32;
 
 /// Rotors of [`Chain`].
 pub const N: usize = Chain::N;

@@ -1,17 +1,21 @@
 //! Firmware output against the host's run of the same computation.
 //!
 //! Both sides call [`embedded_check::run`] with [`Scenario::FIRMWARE`] on the same chain, so the
-//! only differences left are the machines' arithmetic and elementary functions. For `f64` they
-//! are the same IEEE-754 operations (soft-float on the Cortex-M4F, SSE2 on x86-64, both correctly
-//! rounded; Rust contracts nothing into FMAs), and `sin`/`cos`/`atan2`/`sqrt` come from the `libm`
-//! crate on the firmware and, on the host, from `libm` too, or from the platform's C library when
+//! only differences left are the machines' arithmetic and elementary functions. For `f64` and for
+//! `f32` they are the same IEEE-754 operations (soft-float for `f64` and the FPU for `f32` on the
+//! Cortex-M4F, SSE2 on x86-64, all correctly rounded; Rust contracts nothing into FMAs), and
+//! `sin`/`cos`/`atan2`/`sqrt` (`sinf`/`cosf`/... for `f32`) come from the `libm` crate on the
+//! firmware and, on the host, from `libm` too, or from the platform's C library when
 //! `rotor-chain`'s `std` feature is on (feature `platform-math`, or any build that unifies `std`
 //! in). The tolerance is per float type: [`Tolerated::TOLERANCE`].
+//!
+//! An `f32` run is also compared with the host's `f64` run of the same chain ([`compare_accuracy`]),
+//! within [`Tolerated::ACCURACY`]: what computing in `f32` costs in accuracy.
 
 use core::fmt;
 
 use embedded_check::report::{Header, ParseError, Record};
-use embedded_check::{Model, Real, RunError, Sample, Scenario, Summary, run};
+use embedded_check::{EmbeddedError, FloatChain, Real, Sample, Scenario, Summary, run};
 
 /// How far the firmware's numbers may lie from the host's.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -24,7 +28,10 @@ pub struct Tolerance {
 
 /// A float type with a documented firmware-against-host tolerance.
 pub trait Tolerated: Real {
+    /// The firmware against the host's run in the same float type.
     const TOLERANCE: Tolerance;
+    /// The firmware against the host's `f64` run of the same chain: the accuracy of this type.
+    const ACCURACY: Tolerance;
 }
 
 /// `f64`: measured on [`Scenario::FIRMWARE`] (1024 steps, 17 samples; `docs/embedded.md`). With
@@ -35,7 +42,28 @@ pub trait Tolerated: Real {
 /// itself is 8e-6 of `E0` at this step.
 impl Tolerated for f64 {
     const TOLERANCE: Tolerance = Tolerance { position: 1e-12, energy: 1e-12 };
+    const ACCURACY: Tolerance = Self::TOLERANCE;
 }
+
+/// `f32`: against the host's `f32` run, measured on [`Scenario::FIRMWARE`] as for `f64`: with
+/// `libm` on both sides every number is bit-identical (the M4F's FPU and SSE2 are both IEEE single
+/// precision, and `sinf`/`cosf`/`atan2f`/`sqrtf` are the same Rust code). The tolerance, 16 f32
+/// ulps of the largest quantity in each comparison, covers the platform's `sinf`/`cosf` on the host
+/// (feature `platform-math`).
+///
+/// Against the host's `f64` run ([`compare_accuracy`]): the accuracy of the `f32` chain on the
+/// firmware scenario, measured (docs/embedded.md) at 8.3e-6 sites in wall position and 5.2e-6 of
+/// `E0` in energy with `libm`'s `sinf`/`cosf` (the firmware under QEMU, bit-identical to the host's
+/// `libm` run), 6.4e-6 and 4.4e-6 with the platform's (test `accuracy.rs`); the bounds leave a
+/// margin of about 3.5.
+impl Tolerated for f32 {
+    const TOLERANCE: Tolerance =
+        Tolerance { position: 16.0 * 16.0 * F32_EPSILON, energy: 16.0 * F32_EPSILON };
+    const ACCURACY: Tolerance = Tolerance { position: 3e-5, energy: 2e-5 };
+}
+
+/// `f32::EPSILON` as an `f64`.
+const F32_EPSILON: f64 = f32::EPSILON as f64;
 
 /// The largest deviations found, and how the two runs compare.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -80,7 +108,7 @@ pub enum CompareError {
     #[error("no field `energy_bits=0x...` with 16 hex digits")]
     NoFinalEnergy,
     #[error("the host run failed: {0}")]
-    Host(#[from] RunError),
+    Host(#[from] EmbeddedError),
     #[error("the firmware printed {firmware} samples, the host computed {host}")]
     SampleCount { firmware: usize, host: usize },
     #[error(
@@ -100,10 +128,10 @@ pub enum CompareError {
 }
 
 /// The host's run of `scenario`: its samples and summary.
-pub fn host_run<T: Real, M: Model<T>, const N: usize>(
+pub fn host_run<T: Real, M: FloatChain<T>, const N: usize>(
     model: &M,
     scenario: &Scenario,
-) -> Result<(Vec<Sample<T>>, Summary<T>), RunError> {
+) -> Result<(Vec<Sample<T>>, Summary<T>), EmbeddedError> {
     let mut samples = Vec::new();
     let summary = run::<T, M, _, N>(model, scenario, |s| samples.push(*s))?;
     Ok((samples, summary))
@@ -111,7 +139,7 @@ pub fn host_run<T: Real, M: Model<T>, const N: usize>(
 
 /// The firmware's output `text` against the host's run of [`Scenario::FIRMWARE`] on `model`, in
 /// float type `T`, within `T`'s [`Tolerance`].
-pub fn compare<T: Tolerated, M: Model<T>, const N: usize>(
+pub fn compare<T: Tolerated, M: FloatChain<T>, const N: usize>(
     model: &M,
     text: &str,
 ) -> Result<Agreement, CompareError> {
@@ -126,6 +154,27 @@ pub fn compare<T: Tolerated, M: Model<T>, const N: usize>(
     }
     let (samples, summary) = host_run::<T, M, N>(model, &scenario)?;
     check::<T>(&firmware.samples, &firmware.summary, &samples, &summary, &T::TOLERANCE)
+}
+
+/// The firmware's output `text`, computed in `T`, against the host's `f64` run of
+/// [`Scenario::FIRMWARE`] on `reference` (the same chain in `f64`), within `T`'s
+/// [`Tolerated::ACCURACY`]: wall counts and charges must be equal, positions and energies close.
+pub fn compare_accuracy<T: Tolerated, M: FloatChain<f64>, const N: usize>(
+    reference: &M,
+    text: &str,
+) -> Result<Agreement, CompareError> {
+    let scenario = Scenario::FIRMWARE;
+    let firmware = read::<T>(text)?;
+    let expected = Header { n: N, float: T::NAME, scenario };
+    if firmware.header != expected {
+        return Err(CompareError::DifferentRun {
+            firmware: firmware.header.to_string(),
+            host: expected.to_string(),
+        });
+    }
+    let (samples, summary) = host_run::<f64, M, N>(reference, &scenario)?;
+    let widened: Vec<Sample<f64>> = firmware.samples.iter().map(Sample::widen).collect();
+    check::<f64>(&widened, &firmware.summary.widen(), &samples, &summary, &T::ACCURACY)
 }
 
 /// The `energy_bits=0x...` field of `verlet-cost`'s or `verlet-bare`'s output (the energy after the

@@ -3,8 +3,11 @@
 //! The firmware in `embedded/firmware` runs [`embedded_check::run`] under QEMU and prints its
 //! samples; [`compare`] runs the same function on the host, in the same float type, reads the
 //! firmware's text back and checks every number against the host's within the float type's
-//! [`Tolerance`]. The `compare-firmware` binary does this for a file of QEMU's output.
+//! [`Tolerance`]; an `f32` run is also checked against the host's `f64` run ([`compare_accuracy`]).
+//! The `compare-firmware` binary does this for a file of QEMU's output.
 
 pub mod compare;
 
-pub use compare::{Agreement, CompareError, Tolerance, Tolerated, compare, compare_final_energy, host_run};
+pub use compare::{
+    Agreement, CompareError, Tolerance, Tolerated, compare, compare_accuracy, compare_final_energy, host_run,
+};

@@ -2,8 +2,8 @@
 //! as bit-identical, and rejects every kind of disagreement with the numbers that show it.
 
 use embedded_check::report::Header;
-use embedded_check::{Chain16, Sample, Scenario, Summary};
-use embedded_host::{CompareError, Tolerated, compare, host_run};
+use embedded_check::{Chain16, Chain16F32, Sample, Scenario, Summary};
+use embedded_host::{CompareError, Tolerated, compare, compare_accuracy, host_run};
 
 /// The host run printed as the firmware prints it, after `edit` has changed the records.
 fn output(edit: impl FnOnce(&mut Header<'static>, &mut Vec<Sample<f64>>, &mut Summary<f64>)) -> String {
@@ -108,4 +108,35 @@ fn the_final_energy_of_the_cost_firmware_is_checked() {
         embedded_host::compare_final_energy("verlet-bare\n", &summary),
         Err(CompareError::NoFinalEnergy)
     ));
+}
+
+/// The host's `f32` run printed as the `f32` firmware prints it, after `edit`.
+fn output_f32(edit: impl FnOnce(&mut Vec<Sample<f32>>)) -> String {
+    let (mut samples, summary) = host_run::<f32, _, 16>(&Chain16F32, &Scenario::FIRMWARE).unwrap();
+    edit(&mut samples);
+    let mut text = format!("{}\n", Header { n: 16, float: "f32", scenario: Scenario::FIRMWARE });
+    samples.iter().for_each(|s| text += &format!("{s}\n"));
+    text + &format!("{summary}\n")
+}
+
+#[test]
+fn an_f32_run_is_checked_against_f32_and_its_accuracy_against_f64() {
+    // Unchanged: bit-identical to the host's f32 run, and within f32's accuracy of the f64 run.
+    let text = output_f32(|_| {});
+    assert!(compare::<f32, _, 16>(&Chain16F32, &text).unwrap().identical);
+    let accuracy = compare_accuracy::<f32, _, 16>(&Chain16, &text).unwrap();
+    assert!(!accuracy.identical && accuracy.position < f32::ACCURACY.position, "{accuracy}");
+    // A wall moved by twice the documented accuracy fails both checks, naming the sample.
+    let moved = output_f32(|samples| samples[11].walls[0].position += 2.0 * f32::ACCURACY.position as f32);
+    let error = compare::<f32, _, 16>(&Chain16F32, &moved).unwrap_err();
+    assert!(matches!(error, CompareError::Mismatch { index: 11, what: "wall position", .. }), "{error}");
+    let error = compare_accuracy::<f32, _, 16>(&Chain16, &moved).unwrap_err();
+    assert!(matches!(error, CompareError::Mismatch { index: 11, what: "wall position", .. }), "{error}");
+    // An energy off by twice the accuracy fails the accuracy check.
+    let heavier = output_f32(|samples| samples[4].kinetic *= 1.0 + 2.0 * f32::ACCURACY.energy as f32);
+    let error = compare_accuracy::<f32, _, 16>(&Chain16, &heavier).unwrap_err();
+    assert!(matches!(error, CompareError::Mismatch { index: 4, .. }), "{error}");
+    // An f64 output is not an f32 run.
+    let error = compare_accuracy::<f32, _, 16>(&Chain16, &output(|_, _, _| {})).unwrap_err();
+    assert!(matches!(error, CompareError::DifferentRun { .. }), "{error}");
 }

@@ -3,7 +3,7 @@
 //! eigenvector of the tangent stiffness, the library's Verlet and its DOP853.
 
 use embedded_check::{
-    Chain16, Model, Scenario, Verlet, domain_walls, kink_into, launch_velocities, run, translation_mode,
+    Chain16, FloatChain, Scenario, Verlet, domain_walls, kink_into, launch_velocities, run, translation_mode,
 };
 use rotor_chain::dynamics::integrate::{self, AdaptiveOptions, Flow, State, VerletOptions};
 use rotor_chain::dynamics::launch::{Direction, launch};
@@ -52,7 +52,7 @@ fn a_centre_outside_the_chain_is_an_error_with_the_numbers() {
     assert_eq!(error.to_string(), "kink centre 15.5 is outside the chain: need 0 <= centre <= 15");
     assert!(kink_into(&Chain16, f64::NAN, &mut theta).is_err());
     let error = kink_into(&Chain16, 3.0, &mut [0.0; 15]).unwrap_err();
-    assert_eq!(error.to_string(), "the chain has 16 rotors, but the run holds 15 angles");
+    assert_eq!(error.to_string(), "the chain has 16 rotors, but the arrays hold 15 angles");
 }
 
 #[test]
@@ -89,7 +89,8 @@ fn translation_mode_stretches_no_spring_to_first_order() {
         Chain16.spring_lengths_into(theta, &mut l);
         l
     };
-    let moved: Vec<f64> = (0..16).map(|i| theta[i] + h * e[i] / Model::rotor_length(&Chain16, i)).collect();
+    let moved: Vec<f64> =
+        (0..16).map(|i| theta[i] + h * e[i] / FloatChain::rotor_length(&Chain16, i)).collect();
     let stretch = max_difference(&lengths(&moved), &lengths(&theta));
     assert!(stretch < 1e-10, "springs stretched by {stretch} for a displacement of {h}");
     // A generic direction stretches them at first order.
@@ -199,7 +200,7 @@ fn a_non_finite_state_or_step_is_an_error_with_the_numbers() {
     kink_into(&Chain16, 4.25, &mut theta).unwrap();
     let mut omega = launch_velocities(&Chain16, &theta, 2.0).unwrap();
     let error = Verlet::new(&Chain16, theta, omega, 0.0).unwrap_err();
-    assert_eq!(error.to_string(), "scenario: dt = 0 must be positive and finite");
+    assert_eq!(error.to_string(), "dt = 0 must be positive and finite");
     omega[3] = f64::NAN;
     let error = Verlet::new(&Chain16, theta, omega, 1e-3).unwrap_err();
     assert_eq!(error.to_string(), "omega[3] = NaN is not finite after step 0");

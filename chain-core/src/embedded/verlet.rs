@@ -1,4 +1,6 @@
-//! Velocity Verlet (kick-drift-kick) for `I_i thetadd_i = -dV/dtheta_i`, in fixed-size arrays.
+//! Velocity Verlet (kick-drift-kick) for `I_i thetadd_i = -dV/dtheta_i`, in fixed-size arrays, in
+//! the chain's float type: the one stepper of `f64` and `f32` chains (each macro chain's
+//! `verlet()` returns it) and of the firmware.
 //!
 //! One step of length `dt`:
 //!
@@ -13,11 +15,11 @@
 //! Secs. I.1.4 and IX.8). The gradient at the end of a step is the one the next step starts with:
 //! a step costs **one gradient evaluation** and two sweeps over the rotors.
 //!
-//! The arithmetic is that of `chain_core::dynamics::integrate::verlet` without damping, in the
-//! same order, so that the two produce the same trajectory (the embedded-host tests compare them);
-//! that integrator keeps its state in `Vec`s and needs `alloc`.
+//! The arithmetic is that of `dynamics::integrate::verlet` without damping, in the same order, so
+//! that the two produce the same trajectory (a test compares them); that integrator adds damping,
+//! absorbing ends and output schedules, and keeps its state in `Vec`s.
 
-use crate::{Model, Real, RunError};
+use super::{EmbeddedError, FloatChain, Real};
 
 /// A chain's state `theta`, `omega = dtheta/dt` and the integrator's cached gradient.
 #[derive(Clone, Debug)]
@@ -34,32 +36,33 @@ pub struct Verlet<T, const N: usize> {
 
 impl<T: Real, const N: usize> Verlet<T, N> {
     /// A stepper at `(theta, omega)` with step `dt` (in the time unit `t` of paper Appendix B).
-    /// Stability needs `omega_max dt < 2` for the chain's fastest phonon.
-    pub fn new<M: Model<T> + ?Sized>(
+    /// Stability needs `omega_max dt < 2` for the chain's fastest phonon (`dynamics`'
+    /// `VerletOptions::stable_for` picks `dt` from a bound on it).
+    pub fn new<M: FloatChain<T> + ?Sized>(
         model: &M,
         theta: [T; N],
         omega: [T; N],
         dt: T,
-    ) -> Result<Self, RunError> {
+    ) -> Result<Self, EmbeddedError> {
         if model.rotor_count() != N {
-            return Err(RunError::WrongRotorCount { rotors: model.rotor_count(), expected: N });
+            return Err(EmbeddedError::WrongRotorCount { rotors: model.rotor_count(), expected: N });
         }
-        if !(dt > T::zero() && dt.is_finite()) {
-            return Err(RunError::InvalidScenario {
+        if !(dt > T::ZERO && dt.is_finite()) {
+            return Err(EmbeddedError::InvalidParameter {
                 name: "dt",
                 value: dt.widen(),
                 rule: "positive and finite",
             });
         }
-        let mut half_kick = [T::zero(); N];
+        let mut half_kick = [T::ZERO; N];
         for (i, c) in half_kick.iter_mut().enumerate() {
             let inertia = model.inertia(i);
-            if !(inertia > T::zero() && inertia.is_finite()) {
-                return Err(RunError::BadInertia { index: i, inertia: inertia.widen() });
+            if !(inertia > T::ZERO && inertia.is_finite()) {
+                return Err(EmbeddedError::BadInertia { index: i, inertia: inertia.widen() });
             }
-            *c = T::of(0.5) * dt * (T::one() / inertia);
+            *c = T::of(0.5) * dt * (T::ONE / inertia);
         }
-        let mut stepper = Self { theta, omega, gradient: [T::zero(); N], half_kick, dt, steps: 0 };
+        let mut stepper = Self { theta, omega, gradient: [T::ZERO; N], half_kick, dt, steps: 0 };
         stepper.check_finite("theta", &stepper.theta)?;
         stepper.check_finite("omega", &stepper.omega)?;
         model.gradient_into(&stepper.theta, &mut stepper.gradient);
@@ -69,21 +72,21 @@ impl<T: Real, const N: usize> Verlet<T, N> {
 
     /// One velocity-Verlet step. A state that is no longer finite is an error (and stays in the
     /// stepper for inspection).
-    pub fn step<M: Model<T> + ?Sized>(&mut self, model: &M) -> Result<(), RunError> {
+    pub fn step<M: FloatChain<T> + ?Sized>(&mut self, model: &M) -> Result<(), EmbeddedError> {
         let dt = self.dt;
         for (((t, w), g), c) in
             self.theta.iter_mut().zip(&mut self.omega).zip(&self.gradient).zip(&self.half_kick)
         {
-            *w = *w - *c * *g;
-            *t = *t + dt * *w;
+            *w -= *c * *g;
+            *t += dt * *w;
         }
         model.gradient_into(&self.theta, &mut self.gradient);
         let mut finite = true;
         for ((w, g), c) in self.omega.iter_mut().zip(&self.gradient).zip(&self.half_kick) {
-            *w = *w - *c * *g;
+            *w -= *c * *g;
             finite &= w.is_finite();
         }
-        self.steps += 1;
+        self.steps = self.steps.saturating_add(1);
         if !finite {
             // A NaN force gives a NaN velocity; an unstable step grows both until they overflow.
             self.check_finite("theta", &self.theta)?;
@@ -102,25 +105,35 @@ impl<T: Real, const N: usize> Verlet<T, N> {
         &self.omega
     }
 
-    /// Steps taken.
+    /// `dV/dtheta` at the current angles.
+    pub fn gradient(&self) -> &[T; N] {
+        &self.gradient
+    }
+
+    /// The time step.
+    pub fn dt(&self) -> T {
+        self.dt
+    }
+
+    /// Steps taken (saturating at `u32::MAX`).
     pub fn steps(&self) -> u32 {
         self.steps
     }
 
     /// Kinetic energy `T = sum_i I_i omega_i^2 / 2`.
-    pub fn kinetic_energy<M: Model<T> + ?Sized>(&self, model: &M) -> T {
-        T::of(0.5) * self.omega.iter().enumerate().fold(T::zero(), |s, (i, &w)| s + model.inertia(i) * w * w)
+    pub fn kinetic_energy<M: FloatChain<T> + ?Sized>(&self, model: &M) -> T {
+        T::of(0.5) * self.omega.iter().enumerate().fold(T::ZERO, |s, (i, &w)| s + model.inertia(i) * w * w)
     }
 
     /// Potential energy `V(theta)`.
-    pub fn potential_energy<M: Model<T> + ?Sized>(&self, model: &M) -> T {
+    pub fn potential_energy<M: FloatChain<T> + ?Sized>(&self, model: &M) -> T {
         model.energy(&self.theta)
     }
 
-    fn check_finite(&self, what: &'static str, v: &[T; N]) -> Result<(), RunError> {
+    fn check_finite(&self, what: &'static str, v: &[T; N]) -> Result<(), EmbeddedError> {
         match v.iter().position(|x| !x.is_finite()) {
             Some(index) => {
-                Err(RunError::NotFinite { what, step: self.steps, index, value: v[index].widen() })
+                Err(EmbeddedError::NotFinite { what, step: self.steps, index, value: v[index].widen() })
             }
             None => Ok(()),
         }

@@ -1,17 +1,18 @@
-//! Why a kink run could not be carried out. Every variant carries the numbers that explain it.
+//! Why a no-alloc analysis could not be carried out. Every variant carries the numbers that
+//! explain it, widened to `f64` for an `f32` chain (exactly).
 
-use rotor_chain::BranchError;
+use crate::BranchError;
 
-/// A kink run that went wrong: building the kink, launching it, or stepping it.
+/// Building a kink, launching it or stepping it went wrong.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 #[non_exhaustive]
-pub enum RunError {
-    /// The chain and the arrays of the run disagree on the number of rotors.
-    #[error("the chain has {rotors} rotors, but the run holds {expected} angles")]
+pub enum EmbeddedError {
+    /// The chain and the arrays disagree on the number of rotors.
+    #[error("the chain has {rotors} rotors, but the arrays hold {expected} angles")]
     WrongRotorCount { rotors: usize, expected: usize },
-    /// A scenario parameter outside its range.
-    #[error("scenario: {name} = {value} must be {rule}")]
-    InvalidScenario { name: &'static str, value: f64, rule: &'static str },
+    /// A parameter outside its range (a time step, a launch speed).
+    #[error("{name} = {value} must be {rule}")]
+    InvalidParameter { name: &'static str, value: f64, rule: &'static str },
     /// The kink centre is not inside the chain.
     #[error("kink centre {centre} is outside the chain: need 0 <= centre <= {max}")]
     CentreOutOfRange { centre: f64, max: f64 },

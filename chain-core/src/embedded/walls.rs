@@ -1,16 +1,13 @@
-//! Domain walls of a configuration without a heap (paper Appendix C).
+//! Domain walls of a configuration, without a heap (paper Appendix C).
 //!
 //! Angles are measured alternately from `+y` and `-y` (docs/theory.md), so a uniform state has one
 //! sign throughout and a domain wall is a sign change of `theta`. Its position interpolates
 //! linearly between the two rotors that lean opposite ways, `x = i + theta_i / (theta_i - theta_{i+1})`,
 //! so a vertical rotor sits exactly on the wall. A wall from `+` to `-` (left to right) is a
-//! **kink**, from `-` to `+` an **antikink**.
-//!
-//! This is `chain_core::statics::walls::domain_walls` as an iterator, with the same rule for
-//! vertical and non-finite rotors; that function collects into a `Vec`, which needs `alloc`. The embedded-host
-//! tests check that both give the same walls.
+//! **kink**, from `-` to `+` an **antikink**. `statics::walls::domain_walls` collects this
+//! iterator into a `Vec`.
 
-use crate::Real;
+use super::Real;
 
 /// Kink or antikink.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -22,7 +19,7 @@ pub enum Charge {
 }
 
 impl Charge {
-    /// `"kink"` or `"antikink"`, as printed in the firmware's output.
+    /// `"kink"` or `"antikink"`.
     pub const fn name(self) -> &'static str {
         match self {
             Charge::Kink => "kink",
@@ -30,21 +27,25 @@ impl Charge {
         }
     }
 
+    /// The charge of a wall whose left rotor leans at `left`.
     fn of_left<T: Real>(left: T) -> Self {
-        if left > T::zero() { Charge::Kink } else { Charge::Antikink }
+        if left > T::ZERO { Charge::Kink } else { Charge::Antikink }
     }
 }
 
 /// A domain wall: where it is (in rotor indices, fractional) and which kind.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Wall<T> {
+pub struct Wall<T = f64> {
+    /// Position in rotor indices, fractional (paper Appendix C).
     pub position: T,
+    /// Kink or antikink.
     pub charge: Charge,
 }
 
-/// The domain walls of `theta`, left to right. Rotors exactly at zero (vertical) and non-finite
-/// angles lean neither way: a wall across them sits in the middle between the two leaning rotors
-/// around them, and is counted once.
+/// The domain walls of `theta`, left to right: a sign change between two leaning rotors. A rotor
+/// exactly at zero leans neither way; a wall across one vertical rotor sits on it, across a run
+/// of them in its middle. A non-finite angle leans neither way either (read as zero), so no wall
+/// gets a NaN position.
 pub fn domain_walls<T: Real>(theta: &[T]) -> DomainWalls<'_, T> {
     DomainWalls { theta, next: 0, last: None }
 }
@@ -63,20 +64,19 @@ impl<T: Real> Iterator for DomainWalls<'_, T> {
     type Item = Wall<T>;
 
     fn next(&mut self) -> Option<Wall<T>> {
-        let zero = T::zero();
         while self.next < self.theta.len() {
             let j = self.next;
             let t = self.theta[j];
             self.next += 1;
-            if !t.is_finite() || t == zero {
+            if !t.is_finite() || t == T::ZERO {
                 continue;
             }
             let previous = self.last.replace((j, t));
             if let Some((i, ti)) = previous
-                && (ti > zero) != (t > zero)
+                && (ti > T::ZERO) != (t > T::ZERO)
             {
                 let position =
-                    if j == i + 1 { T::of(i as f64) + ti / (ti - t) } else { T::of((i + j) as f64 / 2.0) };
+                    if j == i + 1 { T::of_index(i) + ti / (ti - t) } else { T::of_index(i + j) / T::of(2.0) };
                 return Some(Wall { position, charge: Charge::of_left(ti) });
             }
         }

@@ -17,32 +17,35 @@
 //! away from the kink and no recurrence grows. `C` comes from the symbolic engine (the generated
 //! `compatibility`), so no derivative is taken here.
 //!
-//! As in `chain_core::dynamics::launch` (Appendix B), the mode is normalised in tip displacements,
+//! As in `dynamics::launch` (Appendix B), the mode is normalised in tip displacements,
 //! `sum_i e_i^2 = 1`, signed so that the profile moves towards rotor `n - 1`, and the launch is
 //! `r_i thetadot_i = v0 e_i`: the initial kinetic energy is exactly `M v0^2 / 2`. That function
 //! finds the same mode among the lowest eigenvectors of the tangent stiffness (it needs `alloc`);
-//! the embedded-host tests check that both agree.
+//! a test checks that both agree.
 
-use crate::{Model, Real, RunError};
+use super::{EmbeddedError, FloatChain, Real};
 
 /// The kink's translation mode at `theta` in tip displacements: `C e = 0`, `sum e_i^2 = 1`,
 /// pointing so that the kink moves towards rotor `n - 1`.
-pub fn translation_mode<T: Real, M: Model<T> + ?Sized, const N: usize>(
+pub fn translation_mode<T: Real, M: FloatChain<T> + ?Sized, const N: usize>(
     model: &M,
     theta: &[T; N],
-) -> Result<[T; N], RunError> {
+) -> Result<[T; N], EmbeddedError> {
     if model.rotor_count() != N || N < 2 {
-        return Err(RunError::WrongRotorCount { rotors: model.rotor_count(), expected: N });
+        return Err(EmbeddedError::WrongRotorCount { rotors: model.rotor_count(), expected: N });
     }
-    let zero = T::zero();
+    let zero = T::ZERO;
     let (mut left, mut right) = ([zero; N], [zero; N]);
     model.compatibility_into(theta, &mut left[..N - 1], &mut right[..N - 1]);
-    let no_mode =
-        |p: usize| RunError::NoTranslationMode { spring: p, left: left[p].widen(), right: right[p].widen() };
+    let no_mode = |p: usize| EmbeddedError::NoTranslationMode {
+        spring: p,
+        left: left[p].widen(),
+        right: right[p].widen(),
+    };
     // The rotor nearest the wall: the smallest |theta|.
     let start = (0..N).fold(0, |best, i| if theta[i].abs() < theta[best].abs() { i } else { best });
     let mut e = [zero; N];
-    e[start] = T::one();
+    e[start] = T::ONE;
     for p in start..N - 1 {
         e[p + 1] = -left[p] / right[p] * e[p];
         if !e[p + 1].is_finite() {
@@ -71,11 +74,14 @@ pub fn translation_mode<T: Real, M: Model<T> + ?Sized, const N: usize>(
 
 /// The kink at `theta` launched towards rotor `n - 1` with speed amplitude `v0` (tip speed, in
 /// `a / t`): the angular velocities `thetadot_i = v0 e_i / r_i` (Appendix B).
-pub fn launch_velocities<T: Real, M: Model<T> + ?Sized, const N: usize>(
+pub fn launch_velocities<T: Real, M: FloatChain<T> + ?Sized, const N: usize>(
     model: &M,
     theta: &[T; N],
     v0: T,
-) -> Result<[T; N], RunError> {
+) -> Result<[T; N], EmbeddedError> {
+    if !v0.is_finite() {
+        return Err(EmbeddedError::InvalidParameter { name: "v0", value: v0.widen(), rule: "finite" });
+    }
     let e = translation_mode(model, theta)?;
     Ok(core::array::from_fn(|i| v0 * e[i] / model.rotor_length(i)))
 }
