@@ -31,6 +31,8 @@
 //! without allocation (math from `libm`), and so is the code the macro generates.
 #![cfg_attr(not(feature = "std"), no_std)]
 
+#[cfg(feature = "std")]
+pub use chain_core::batch;
 pub use chain_core::{
     Bidiagonal, BranchError, ChainModel, ParameterError, Tridiagonal, banded, branch, error, geometry,
     kernel, math, model, simd,

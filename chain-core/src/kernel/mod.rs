@@ -305,7 +305,11 @@ impl<K: SpringFn<M>, S: Springs, F: Visit<M>, const M: usize> WithLanes for Driv
 }
 
 #[inline(always)]
-fn run<K: SpringFn<M>, const M: usize, F: Visit<M>>(theta: &[f64], springs: impl Springs, visit: F) -> F::Output {
+fn run<K: SpringFn<M>, const M: usize, F: Visit<M>>(
+    theta: &[f64],
+    springs: impl Springs,
+    visit: F,
+) -> F::Output {
     simd::dispatch(Drive::<K, _, _, M> { theta, springs, run: visit, kernel: core::marker::PhantomData })
 }
 
@@ -323,7 +327,9 @@ struct Outputs<'a, const E: usize, const G: usize, const B: usize, const S: usiz
     second: &'a mut [f64],
 }
 
-impl<const E: usize, const G: usize, const B: usize, const S: usize, const T: usize> Outputs<'_, E, G, B, S, T> {
+impl<const E: usize, const G: usize, const B: usize, const S: usize, const T: usize>
+    Outputs<'_, E, G, B, S, T>
+{
     fn new() -> Self {
         Self { gradient: &mut [], diag: &mut [], off: &mut [], first: &mut [], second: &mut [] }
     }

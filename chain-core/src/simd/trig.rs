@@ -113,10 +113,12 @@ fn polynomials<V: Trig>(x: V, t: V, hi: V, lo: V) -> (V, V) {
     let z = hi * hi;
     let hz = sp(0.5) * z;
     // sin(hi + lo) = hi + hi z S(z) + lo (1 - z/2)
-    let ps = z.mul_add(z.mul_add(z.mul_add(z.mul_add(z.mul_add(sp(S6), sp(S5)), sp(S4)), sp(S3)), sp(S2)), sp(S1));
+    let ps =
+        z.mul_add(z.mul_add(z.mul_add(z.mul_add(z.mul_add(sp(S6), sp(S5)), sp(S4)), sp(S3)), sp(S2)), sp(S1));
     let sin = hi + (hi * z).mul_add(ps, (-hz).mul_add(lo, lo));
     // cos(hi + lo) = w + ((1 - w) - z/2) + z^2 C(z) - hi lo, w = 1 - z/2
-    let pc = z.mul_add(z.mul_add(z.mul_add(z.mul_add(z.mul_add(sp(C6), sp(C5)), sp(C4)), sp(C3)), sp(C2)), sp(C1));
+    let pc =
+        z.mul_add(z.mul_add(z.mul_add(z.mul_add(z.mul_add(sp(C6), sp(C5)), sp(C4)), sp(C3)), sp(C2)), sp(C1));
     let w = sp(1.0) - hz;
     let w_err = (sp(1.0) - w) - hz;
     let cos = w + (z * z).mul_add(pc, (-hi).mul_add(lo, w_err));

@@ -327,7 +327,8 @@ impl Trig for F64x4 {
     fn unusual(x: F64x4, hi: F64x4) -> bool {
         unsafe {
             let sign = _mm256_set1_pd(-0.0);
-            let outside = _mm256_cmp_pd::<_CMP_NLE_UQ>(_mm256_andnot_pd(sign, x.0), _mm256_set1_pd(trig::LIMIT));
+            let outside =
+                _mm256_cmp_pd::<_CMP_NLE_UQ>(_mm256_andnot_pd(sign, x.0), _mm256_set1_pd(trig::LIMIT));
             let tiny = _mm256_cmp_pd::<_CMP_LT_OQ>(_mm256_andnot_pd(sign, hi.0), _mm256_set1_pd(trig::TINY));
             _mm256_movemask_pd(_mm256_or_pd(outside, tiny)) != 0
         }
