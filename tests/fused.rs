@@ -20,7 +20,15 @@ use proptest::prelude::*;
 use rotor_chain::prelude::*;
 use rotor_chain::simd::{self, Level};
 
-#[rotor_chain(n = 70, r = 0.8, theta_bar = 0.58, k = 1.0e4, spring(29, k = 100.0), rotor(12, r = 0.7))]
+#[rotor_chain(
+    n = 70,
+    r = 0.8,
+    theta_bar = 0.58,
+    k = 1.0e4,
+    unroll = 128,
+    spring(29, k = 100.0),
+    rotor(12, r = 0.7)
+)]
 struct HarmonicUnrolled;
 
 #[rotor_chain(
@@ -34,10 +42,10 @@ struct HarmonicUnrolled;
 )]
 struct HarmonicLooped;
 
-#[rotor_chain(n = 70, r = 0.8, theta_bar = 0.58, k = 1.0e4, law = k / (8.0 * l0 * l0) * (l * l - l0 * l0).powi(2))]
+#[rotor_chain(n = 70, r = 0.8, theta_bar = 0.58, k = 1.0e4, unroll = 128, law = k / (8.0 * l0 * l0) * (l * l - l0 * l0).powi(2))]
 struct QuarticUnrolled;
 
-#[rotor_chain(n = 70, r = 0.8, theta_bar = 0.58, k = 1.0e4,
+#[rotor_chain(n = 70, r = 0.8, theta_bar = 0.58, k = 1.0e4, unroll = 128,
               law = k * ((l - l0).powi(2) / 2.0 + 0.05 * (l - l0).powi(5) + 0.01 * ((l - l0).exp() - 1.0)
                          + 0.01 * (l / l0).ln().powi(2)))]
 struct CustomUnrolled;

@@ -1,5 +1,5 @@
 //! Phase 4: emit the code. Two strategies from the one derivation:
-//! - unrolled (n <= `unroll`, default 128): every function is straight-line code, with the
+//! - unrolled (n <= `unroll`, default 16): every function is straight-line code, with the
 //!   sines and cosines of all angles taken in one `sin_cos_into` call into two local arrays and
 //!   every spring's parameters folded in;
 //! - looped: the per-spring kernel (rendered once, as a hidden module) driven by

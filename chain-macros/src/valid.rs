@@ -16,7 +16,13 @@ use crate::ctxt::Ctxt;
 use crate::law::{self, Law};
 
 /// Chains up to this many rotors are unrolled unless `unroll = ..` says otherwise.
-pub const DEFAULT_UNROLL: usize = 128;
+///
+/// Set by measurement (`cargo bench --bench simd`, `crossover_*`, docs/benchmarks.md): with
+/// run-time dispatch to AVX2 or AVX-512, the looped kernel's vectorised drivers are as fast as
+/// the unrolled scalar code at n = 16 and faster from n = 32 on (1.2-1.5x at 32, 1.3-1.9x at
+/// 64, 1.9x at 512 with AVX-512). On a CPU without AVX2 (or in `no_std`, scalar libm), unrolled
+/// code stays about 3x faster: give such chains `unroll = 512`.
+pub const DEFAULT_UNROLL: usize = 16;
 
 /// The largest `unroll`: unrolled code grows with the chain, and this is the longest chain whose
 /// unrolled code builds in a reasonable time in debug and release (measured in
