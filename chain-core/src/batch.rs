@@ -42,7 +42,7 @@ pub enum BatchError {
 
 /// The number of configurations of a batch, and how many a task takes.
 fn split(n: usize, thetas: &[f64], gradients: &[f64]) -> Result<(usize, usize), BatchError> {
-    if n == 0 || thetas.len() % n != 0 {
+    if n == 0 || !thetas.len().is_multiple_of(n) {
         return Err(BatchError::PartialConfiguration { len: thetas.len(), rotors: n });
     }
     if gradients.len() != thetas.len() {
