@@ -111,18 +111,22 @@ fn sin_cos_60(bencher: Bencher, level: &str) {
     });
 }
 
-/// `level/n` pairs for the fused benchmarks.
-const FUSED: [(&str, usize); 9] = [
-    ("scalar", 60),
-    ("avx2", 60),
-    ("avx512", 60),
-    ("scalar", 1000),
-    ("avx2", 1000),
-    ("avx512", 1000),
-    ("scalar", 100_000),
-    ("avx2", 100_000),
-    ("avx512", 100_000),
-];
+/// `level/n` pairs for the fused benchmarks (n = 1e5 has its own functions, `*_100000`).
+const FUSED: [(&str, usize); 6] =
+    [("scalar", 60), ("avx2", 60), ("avx512", 60), ("scalar", 1000), ("avx2", 1000), ("avx512", 1000)];
+
+/// `runtime_energy_gradient` at n = 1e5 (a call takes 0.2-2 ms: with `main`'s 200 x 200 samples
+/// the n = 1e5 benchmarks take minutes; leave them out with a filter when iterating).
+#[divan::bench(args = LEVELS)]
+fn runtime_energy_gradient_100000(bencher: Bencher, level: &str) {
+    runtime_energy_gradient(bencher, (level, 100_000));
+}
+
+/// `runtime_energy_gradient_stiffness` at n = 1e5.
+#[divan::bench(args = LEVELS)]
+fn runtime_energy_gradient_stiffness_100000(bencher: Bencher, level: &str) {
+    runtime_energy_gradient_stiffness(bencher, (level, 100_000));
+}
 
 #[divan::bench(args = FUSED)]
 fn runtime_energy_gradient(bencher: Bencher, (level, n): (&str, usize)) {
@@ -239,4 +243,113 @@ fn crossover_runtime_energy_gradient(bencher: Bencher, (level, n): (&str, usize)
     let (c, theta) = (chain(n), angles(n));
     let mut g = vec![0.0; n];
     at(level, || bencher.bench_local(|| black_box(&c).energy_and_gradient_into(black_box(&theta), &mut g)));
+}
+
+// ---------------------------------------------------------------------------------------------
+// Macro chains' fused methods, Verlet steps and batches (n = 60 unless stated).
+// ---------------------------------------------------------------------------------------------
+
+#[rotor_chain(n = 60, r = 0.8, theta_bar = 0.58, k = 1.0e4, unroll = 128)]
+struct Unrolled60;
+#[rotor_chain(n = 60, r = 0.8, theta_bar = 0.58, k = 1.0e4, unroll = 0)]
+struct Looped60;
+
+/// The unrolled macro chain's fused `energy_and_gradient` (straight-line scalar code: one level).
+#[divan::bench]
+fn macro_unrolled_energy_gradient(bencher: Bencher) {
+    let theta = configuration();
+    bencher.bench_local(|| black_box(&Unrolled60).energy_and_gradient(black_box(&theta)));
+}
+
+/// The unrolled macro chain's fused `energy_gradient_stiffness`.
+#[divan::bench]
+fn macro_unrolled_energy_gradient_stiffness(bencher: Bencher) {
+    let theta = configuration();
+    bencher.bench_local(|| black_box(&Unrolled60).energy_gradient_stiffness(black_box(&theta)));
+}
+
+/// The looped macro chain's fused `energy_and_gradient` (vectorised drivers) at each level.
+#[divan::bench(args = LEVELS)]
+fn macro_looped_energy_gradient(bencher: Bencher, level: &str) {
+    let theta = configuration();
+    at(level, || bencher.bench_local(|| black_box(&Looped60).energy_and_gradient(black_box(&theta))));
+}
+
+/// The looped macro chain's fused `energy_gradient_stiffness` at each level.
+#[divan::bench(args = LEVELS)]
+fn macro_looped_energy_gradient_stiffness(bencher: Bencher, level: &str) {
+    let theta = configuration();
+    at(level, || bencher.bench_local(|| black_box(&Looped60).energy_gradient_stiffness(black_box(&theta))));
+}
+
+/// One velocity-Verlet step (`Stepper::step`: one fused energy + gradient and two sweeps) of a
+/// runtime chain of 60 rotors, at each level.
+#[divan::bench(args = LEVELS)]
+fn verlet_step(bencher: Bencher, level: &str) {
+    verlet_step_n(bencher, level, N);
+}
+
+/// The same at n = 1e5 (per-rotor cost = time / 1e5).
+#[divan::bench(args = LEVELS)]
+fn verlet_step_100000(bencher: Bencher, level: &str) {
+    verlet_step_n(bencher, level, 100_000);
+}
+
+fn verlet_step_n(bencher: Bencher, level: &str, n: usize) {
+    use rotor_chain::dynamics::integrate::{State, VerletOptions, verlet::Stepper};
+    let c = chain(n);
+    let theta = angles(n);
+    let dt = VerletOptions::stable_for(&c, &theta, VerletOptions::DEFAULT_SAFETY).unwrap().dt;
+    let mut state = State::at_rest(theta);
+    at(level, || {
+        let mut stepper = Stepper::new(&c, &mut state, dt, &vec![0.0; n]).unwrap();
+        let mut time = 0.0;
+        bencher.bench_local(|| {
+            time += dt;
+            stepper.step(time).unwrap();
+        })
+    });
+}
+
+/// The unrolled macro chain's Verlet step (scalar straight-line fused energy + gradient).
+#[divan::bench]
+fn verlet_step_macro_unrolled(bencher: Bencher) {
+    use rotor_chain::dynamics::integrate::{State, VerletOptions, verlet::Stepper};
+    let theta = angles(N);
+    let dt = VerletOptions::stable_for(&Unrolled60, &theta, VerletOptions::DEFAULT_SAFETY).unwrap().dt;
+    let mut state = State::at_rest(theta);
+    let mut stepper = Stepper::new(&Unrolled60, &mut state, dt, &[0.0; N]).unwrap();
+    let mut time = 0.0;
+    bencher.bench_local(|| {
+        time += dt;
+        stepper.step(time).unwrap();
+    });
+}
+
+/// 1024 configurations of 60 rotors.
+const BATCH: usize = 1024;
+
+fn batch_angles() -> Vec<f64> {
+    (0..BATCH * N).map(|i| 0.58 * (0.3 * (i % N) as f64).cos() + 0.05 * (0.013 * i as f64).sin()).collect()
+}
+
+/// `batch::gradients` of 1024 configurations on rayon's pool (all cores, detected level): time /
+/// 1024 is the cost per configuration.
+#[divan::bench]
+fn batch_gradients_1024(bencher: Bencher) {
+    let (c, thetas) = (chain(N), batch_angles());
+    let mut g = vec![0.0; BATCH * N];
+    bencher.bench_local(|| rotor_chain::batch::gradients(black_box(&c), black_box(&thetas), &mut g).unwrap());
+}
+
+/// The same 1024 gradients one by one on one core (detected level).
+#[divan::bench]
+fn batch_one_by_one_1024(bencher: Bencher) {
+    let (c, thetas) = (chain(N), batch_angles());
+    let mut g = vec![0.0; BATCH * N];
+    bencher.bench_local(|| {
+        for (t, g) in thetas.chunks(N).zip(g.chunks_mut(N)) {
+            black_box(&c).gradient_into(black_box(t), g);
+        }
+    });
 }

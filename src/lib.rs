@@ -33,6 +33,8 @@
 //! [`embedded`]).
 #![cfg_attr(not(feature = "std"), no_std)]
 
+#[cfg(feature = "std")]
+pub use chain_core::batch;
 pub use chain_core::{
     Bidiagonal, BranchError, ChainModel, ParameterError, Real, Tridiagonal, banded, branch, embedded, error,
     geometry, kernel, math, model, real, simd,

@@ -20,7 +20,15 @@ use proptest::prelude::*;
 use rotor_chain::prelude::*;
 use rotor_chain::simd::{self, Level};
 
-#[rotor_chain(n = 70, r = 0.8, theta_bar = 0.58, k = 1.0e4, spring(29, k = 100.0), rotor(12, r = 0.7))]
+#[rotor_chain(
+    n = 70,
+    r = 0.8,
+    theta_bar = 0.58,
+    k = 1.0e4,
+    unroll = 128,
+    spring(29, k = 100.0),
+    rotor(12, r = 0.7)
+)]
 struct HarmonicUnrolled;
 
 #[rotor_chain(
@@ -34,10 +42,10 @@ struct HarmonicUnrolled;
 )]
 struct HarmonicLooped;
 
-#[rotor_chain(n = 70, r = 0.8, theta_bar = 0.58, k = 1.0e4, law = k / (8.0 * l0 * l0) * (l * l - l0 * l0).powi(2))]
+#[rotor_chain(n = 70, r = 0.8, theta_bar = 0.58, k = 1.0e4, unroll = 128, law = k / (8.0 * l0 * l0) * (l * l - l0 * l0).powi(2))]
 struct QuarticUnrolled;
 
-#[rotor_chain(n = 70, r = 0.8, theta_bar = 0.58, k = 1.0e4,
+#[rotor_chain(n = 70, r = 0.8, theta_bar = 0.58, k = 1.0e4, unroll = 128,
               law = k * ((l - l0).powi(2) / 2.0 + 0.05 * (l - l0).powi(5) + 0.01 * ((l - l0).exp() - 1.0)
                          + 0.01 * (l / l0).ln().powi(2)))]
 struct CustomUnrolled;
@@ -188,6 +196,108 @@ fn every_length_agrees_across_levels_and_with_autodiff() {
                     (x - y).abs() <= 1e-11 * scale,
                     "n = {n}: dV/dtheta_{i}: {x} vs num-dual {y} (scale {scale})"
                 );
+            }
+        }
+    }
+}
+
+#[rotor_chain(n = 70, r = 0.8, theta_bar = 0.58, k = 1.0e4, unroll = 0,
+              law = k / (8.0 * l0 * l0) * (l * l - l0 * l0).powi(2))]
+struct QuarticLooped;
+
+/// `got` equals `expected` to 1e-13 of the largest entry of `expected`.
+#[track_caller]
+fn assert_close_to_scale(expected: &[f64], got: &[f64], what: &str) {
+    assert_eq!(expected.len(), got.len(), "{what}: lengths");
+    let scale = expected.iter().fold(f64::MIN_POSITIVE, |s, x| s.max(x.abs()));
+    for (i, (x, y)) in expected.iter().zip(got).enumerate() {
+        assert!((x - y).abs() <= 1e-13 * scale, "{what}[{i}]: {x} vs {y} (scale {scale:e})");
+    }
+}
+
+/// A macro chain's inherent fused methods against its own separate inherent methods (`energy`,
+/// `gradient`, `tangent_stiffness`), and its `ChainModel` fused overrides against the same, at
+/// every level (the unrolled code is scalar at all of them; the looped kernel dispatches).
+macro_rules! check_macro_fused {
+    ($chain:expr, $theta:expr, $what:expr) => {{
+        let chain = $chain;
+        let theta: [f64; 70] = $theta.as_slice().try_into().unwrap();
+        let (e, g) = (chain.energy(&theta), chain.gradient(&theta));
+        let k = chain.tangent_stiffness(&theta);
+        for level in levels() {
+            let what = format!("{} at {}", $what, level.name());
+            simd::with_level(level, || {
+                let (e1, g1) = chain.energy_and_gradient(&theta);
+                assert_close_to_scale(&[e], &[e1], &format!("{what}: energy_and_gradient energy"));
+                assert_close_to_scale(&g, &g1, &format!("{what}: energy_and_gradient gradient"));
+                let (e2, g2, k2) = chain.energy_gradient_stiffness(&theta);
+                assert_close_to_scale(&[e], &[e2], &format!("{what}: energy_gradient_stiffness energy"));
+                assert_close_to_scale(&g, &g2, &format!("{what}: energy_gradient_stiffness gradient"));
+                assert_close_to_scale(&k.diag, &k2.diag, &format!("{what}: stiffness diag"));
+                assert_close_to_scale(&k.off, &k2.off, &format!("{what}: stiffness off"));
+                let mut out = [0.0; 70];
+                let e3 = ChainModel::energy_and_gradient_into(&chain, &theta, &mut out);
+                assert_close_to_scale(&[e], &[e3], &format!("{what}: energy_and_gradient_into energy"));
+                assert_close_to_scale(&g, &out, &format!("{what}: energy_and_gradient_into gradient"));
+                let (mut d, mut o) = ([0.0; 70], [0.0; 69]);
+                let e4 = ChainModel::energy_gradient_stiffness_into(&chain, &theta, &mut out, &mut d, &mut o);
+                assert_close_to_scale(&[e], &[e4], &format!("{what}: energy_gradient_stiffness_into energy"));
+                assert_close_to_scale(&g, &out, &format!("{what}: energy_gradient_stiffness_into gradient"));
+                assert_close_to_scale(&k.diag, &d, &format!("{what}: energy_gradient_stiffness_into diag"));
+                assert_close_to_scale(&k.off, &o, &format!("{what}: energy_gradient_stiffness_into off"));
+            })
+            .unwrap();
+        }
+    }};
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig {
+        cases: 24,
+        rng_seed: proptest::test_runner::RngSeed::Fixed(0x0f05_ed01),
+        failure_persistence: None,
+        ..ProptestConfig::default()
+    })]
+
+    /// Harmonic, quartic and a custom law; unrolled and looped: the macro's fused methods equal
+    /// its separate ones.
+    #[test]
+    fn macro_fused_methods_equal_the_separate_methods(theta in angles()) {
+        check_macro_fused!(HarmonicUnrolled, theta, "harmonic unrolled");
+        check_macro_fused!(HarmonicLooped, theta, "harmonic looped");
+        check_macro_fused!(QuarticUnrolled, theta, "quartic unrolled");
+        check_macro_fused!(QuarticLooped, theta, "quartic looped");
+        check_macro_fused!(CustomUnrolled, theta, "custom unrolled");
+        check_macro_fused!(CustomLooped, theta, "custom looped");
+    }
+}
+
+/// The runtime chains' fused overrides against their own separate methods at every level.
+#[test]
+fn runtime_fused_methods_equal_the_separate_methods() {
+    for (chain, what) in [(harmonic_runtime(), "runtime harmonic"), (quartic_runtime(), "runtime quartic")] {
+        for seed in 0..8 {
+            let theta: Vec<f64> = (0..70)
+                .map(|i| 1.1 * (0.37 * (i + 13 * seed) as f64).sin() * (0.05 * i as f64).cos())
+                .collect();
+            for level in levels() {
+                let what = format!("{what}, seed {seed}, at {}", level.name());
+                simd::with_level(level, || {
+                    let (mut g, mut d, mut o) = (vec![0.0; 70], vec![0.0; 70], vec![0.0; 69]);
+                    let e = chain.energy(&theta);
+                    chain.gradient_into(&theta, &mut g);
+                    chain.tangent_stiffness_into(&theta, &mut d, &mut o);
+                    let (mut g1, mut d1, mut o1) = (vec![0.0; 70], vec![0.0; 70], vec![0.0; 69]);
+                    let e1 = chain.energy_and_gradient_into(&theta, &mut g1);
+                    assert_close_to_scale(&[e], &[e1], &format!("{what}: E+g energy"));
+                    assert_close_to_scale(&g, &g1, &format!("{what}: E+g gradient"));
+                    let e2 = chain.energy_gradient_stiffness_into(&theta, &mut g1, &mut d1, &mut o1);
+                    assert_close_to_scale(&[e], &[e2], &format!("{what}: E+g+K energy"));
+                    assert_close_to_scale(&g, &g1, &format!("{what}: E+g+K gradient"));
+                    assert_close_to_scale(&d, &d1, &format!("{what}: E+g+K diag"));
+                    assert_close_to_scale(&o, &o1, &format!("{what}: E+g+K off"));
+                })
+                .unwrap();
             }
         }
     }

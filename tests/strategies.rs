@@ -6,7 +6,7 @@ mod common;
 use common::{assert_close, wavy};
 use rotor_chain::prelude::*;
 
-#[rotor_chain(n = 60, r = 0.8, theta_bar = 0.58, k = 1.0e4, mass = 1.0,
+#[rotor_chain(n = 60, r = 0.8, theta_bar = 0.58, k = 1.0e4, mass = 1.0, unroll = 128,
               spring(29, k = k_imp), spring(7, l0 = 2.30), rotor(12, r = 0.7))]
 struct Unrolled {
     k_imp: f64,

@@ -10,6 +10,8 @@
 extern crate alloc;
 
 pub mod banded;
+#[cfg(feature = "std")]
+pub mod batch;
 pub mod branch;
 #[cfg(feature = "alloc")]
 pub mod dynamics;

@@ -33,6 +33,31 @@ fn within_two_ulp_of_the_correctly_rounded_values_at_every_level() {
     }
 }
 
+/// Angles next to multiples of pi/2 (where the remainder is tiny and the short reduction hands
+/// its vector to the careful one) and either side of the switch between them (`|hi| = 2^-28`).
+#[test]
+fn within_two_ulp_next_to_multiples_of_half_pi() {
+    let mut theta = Vec::new();
+    let ks = (1..=400u32).map(f64::from).chain([1e3, 12345.0, 1e5, 7.77e6, 1.0e7, 1.06e7]);
+    for k in ks {
+        let x = k * core::f64::consts::FRAC_PI_2;
+        for ulps in -3i64..=3 {
+            theta.push(f64::from_bits((x.to_bits() as i64 + ulps) as u64));
+            theta.push(-f64::from_bits((x.to_bits() as i64 + ulps) as u64));
+        }
+        for d in [2.0f64.powi(-28), 2.0f64.powi(-27), 2.0f64.powi(-29)] {
+            theta.extend([x + d, x - d, x + 1.5 * d, x - 0.75 * d]);
+        }
+    }
+    theta.extend([2.0f64.powi(-28), -2.0f64.powi(-28), 3e-9, 4e-9, 1e-300]);
+    let reference: Vec<_> = theta.iter().map(|&x| ulp::reference(x)).collect();
+    for level in levels() {
+        let (sin, cos) = at_level(level, &theta);
+        let w = ulp::worst(&theta, &sin, &cos, &reference);
+        assert!(w.ulps <= 2, "{}: {} ulp at {:e}", level.name(), w.ulps, w.angle);
+    }
+}
+
 #[test]
 fn the_reference_is_right_where_the_answer_is_known() {
     assert_eq!(ulp::reference(0.0), (0.0, 1.0));

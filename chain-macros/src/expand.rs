@@ -1,5 +1,5 @@
 //! Phase 4: emit the code. Two strategies from the one derivation:
-//! - unrolled (n <= `unroll`, default 128): every function is straight-line code, with the
+//! - unrolled (n <= `unroll`, default 16): every function is straight-line code, with the
 //!   sines and cosines of all angles taken in one `sin_cos_into` call into two local arrays and
 //!   every spring's parameters folded in;
 //! - looped: the per-spring kernel (rendered once, as a hidden module) driven by
@@ -181,6 +181,13 @@ enum Shape<'a> {
     Tridiagonal(&'a [Id], &'a [Id]),
     /// `left` and `right` (n - 1 each).
     Bidiagonal(&'a [Id], &'a [Id]),
+    /// The fused methods: the energy (its partial sums, see [`fused_outputs`]), the gradient and,
+    /// if given, the tangent stiffness's `diag` and `off`.
+    Fused {
+        energy_partial: &'a [Id],
+        gradient: &'a [Id],
+        stiffness: Option<(&'a [Id], &'a [Id])>,
+    },
 }
 
 /// Straight-line code for one method: sines and cosines into two arrays, then the steps in a
@@ -218,6 +225,9 @@ fn unrolled_body(g: &Graph, out: &ChainOutputs, shape: Shape, float: Float) -> T
             interleave(("left", left), ("right", right)),
             format!("{p}::Bidiagonal::new(left, right)"),
         ),
+        Shape::Fused { energy_partial, gradient, stiffness } => {
+            fused_outputs(n, energy_partial, gradient, stiffness)
+        }
     };
     let (ids, sinks): (Vec<Id>, Vec<String>) = outputs.into_iter().unzip();
     let namer = out.leaf_namer(g);
@@ -228,6 +238,203 @@ fn unrolled_body(g: &Graph, out: &ChainOutputs, shape: Shape, float: Float) -> T
         "let mut s = [0.0{ty}; {n}];\nlet mut c = [0.0{ty}; {n}];\n\
          {math}sin_cos_into(theta, &mut s, &mut c);\n{decls}\n{steps}{value}"
     ))
+}
+
+/// Declarations, outputs in schedule order, and the value of a fused unrolled method.
+///
+/// Rotor by rotor: its gradient entry (and stiffness entries), then the energy summed up to the
+/// spring that rotor completes. Scheduled depth-first in that order, each spring's length and
+/// terms are computed once and die with its two rotors, so the fused method needs as few
+/// registers as the separate ones; the partial sums before the last are scheduling points
+/// only (assigned to `_`), and the last is the energy.
+fn fused_outputs(
+    n: usize,
+    energy_partial: &[Id],
+    gradient: &[Id],
+    stiffness: Option<(&[Id], &[Id])>,
+) -> (String, Vec<(Id, String)>, String) {
+    let (m, p) = (n - 1, PRIVATE);
+    let mut outputs = Vec::new();
+    for i in 0..n {
+        outputs.push((gradient[i], format!("grad[{i}usize]")));
+        if let Some((diag, off)) = stiffness {
+            outputs.push((diag[i], format!("diag[{i}usize]")));
+            if let Some(&o) = off.get(i) {
+                outputs.push((o, format!("off[{i}usize]")));
+            }
+        }
+        if i >= 1 {
+            let sink = if i == m { "energy".to_owned() } else { "_".to_owned() };
+            outputs.push((energy_partial[i - 1], sink));
+        }
+    }
+    match stiffness {
+        None => (
+            format!("let mut energy = 0.0f64;\nlet mut grad = [0.0f64; {n}];"),
+            outputs,
+            "(energy, grad)".into(),
+        ),
+        Some(_) => (
+            format!(
+                "let mut energy = 0.0f64;\nlet mut grad = [0.0f64; {n}];\nlet mut diag = [0.0f64; {n}];\n\
+                 let mut off = [0.0f64; {m}];"
+            ),
+            outputs,
+            format!("(energy, grad, {p}::Tridiagonal::new(diag, off))"),
+        ),
+    }
+}
+
+/// The bodies of the fused inherent methods (`None`: not generated, see [`STACK_BUDGET`]).
+struct FusedBodies {
+    energy_and_gradient: Option<TokenStream>,
+    energy_gradient_stiffness: Option<TokenStream>,
+}
+
+/// Whether the fused methods fit [`STACK_BUDGET`]: energy and gradient as an array, energy,
+/// gradient and stiffness as a banded matrix (their results together).
+fn fused_fit(n: usize) -> (bool, bool) {
+    (fits_on_stack(n + 1, Returns::Array, Float::F64), fits_on_stack(3 * n, Returns::Banded, Float::F64))
+}
+
+/// The unrolled fused methods: one straight-line body each, every angle's `sin_cos` once.
+fn unrolled_fused_bodies(model: &Model) -> FusedBodies {
+    let (g, out) = model.unrolled_outputs();
+    let (eg, egk) = fused_fit(model.n);
+    let shape =
+        |stiffness| Shape::Fused { energy_partial: &out.energy_partial, gradient: &out.gradient, stiffness };
+    FusedBodies {
+        energy_and_gradient: eg.then(|| unrolled_body(&g, &out, shape(None), Float::F64)),
+        energy_gradient_stiffness: egk
+            .then(|| unrolled_body(&g, &out, shape(Some((&out.hessian_diag, &out.hessian_off))), Float::F64)),
+    }
+}
+
+/// The unrolled strategy's fused trait methods: copies of the inherent results.
+fn unrolled_fused_trait_bodies(ident: &Ident) -> TokenStream {
+    let p = private();
+    let theta = quote!(#p::as_array(theta));
+    quote! {
+        fn energy_and_gradient_into(&self, theta: &[f64], out: &mut [f64]) -> f64 {
+            let (energy, grad) = #ident::energy_and_gradient(self, #theta);
+            out.copy_from_slice(&grad);
+            energy
+        }
+        fn energy_gradient_stiffness_into(
+            &self,
+            theta: &[f64],
+            grad: &mut [f64],
+            diag: &mut [f64],
+            off: &mut [f64],
+        ) -> f64 {
+            let (energy, g, t) = #ident::energy_gradient_stiffness(self, #theta);
+            grad.copy_from_slice(&g);
+            diag.copy_from_slice(&t.diag);
+            off.copy_from_slice(&t.off);
+            energy
+        }
+    }
+}
+
+/// The looped strategy's fused methods: the trait's slice methods call the fused drivers, the
+/// inherent array methods wrap them where they fit [`STACK_BUDGET`].
+fn looped_fused_bodies(model: &Model) -> (FusedBodies, TokenStream) {
+    let p = private();
+    let (n, m) = (model.n, model.springs());
+    let eg = looped_call(model, "energy_and_gradient", "EnergyGradient", quote!(out));
+    let egk =
+        looped_call(model, "energy_gradient_stiffness", "EnergyGradientHessian", quote!(grad, diag, off));
+    let trait_bodies = quote! {
+        fn energy_and_gradient_into(&self, theta: &[f64], out: &mut [f64]) -> f64 #eg
+        fn energy_gradient_stiffness_into(
+            &self,
+            theta: &[f64],
+            grad: &mut [f64],
+            diag: &mut [f64],
+            off: &mut [f64],
+        ) -> f64 #egk
+    };
+    let t = quote!(#p::ChainModel);
+    let (fits_eg, fits_egk) = fused_fit(n);
+    let bodies = FusedBodies {
+        energy_and_gradient: fits_eg.then(|| {
+            quote!({
+                let mut grad = [0.0f64; #n];
+                let energy = #t::energy_and_gradient_into(self, theta, &mut grad);
+                (energy, grad)
+            })
+        }),
+        energy_gradient_stiffness: fits_egk.then(|| {
+            quote!({
+                let mut grad = [0.0f64; #n];
+                let mut stiffness = #p::Tridiagonal::new([0.0f64; #n], [0.0f64; #m]);
+                let energy = #t::energy_gradient_stiffness_into(
+                    self, theta, &mut grad, &mut stiffness.diag, &mut stiffness.off,
+                );
+                (energy, grad, stiffness)
+            })
+        }),
+    };
+    (bodies, trait_bodies)
+}
+
+/// The inherent fused methods' items.
+fn fused_methods(n: usize, m: usize, bodies: FusedBodies, doc_strategy: &str) -> TokenStream {
+    let p = private();
+    let eg = bodies.energy_and_gradient.map(|body| {
+        quote! {
+            /// The energy and its gradient in one pass, each angle's `sin_cos` and each spring's
+            /// length computed once: `(V, dV/dtheta)`.
+            #[doc = #doc_strategy]
+            pub fn energy_and_gradient(&self, theta: &[f64; #n]) -> (f64, [f64; #n]) #body
+        }
+    });
+    let egk = bodies.energy_gradient_stiffness.map(|body| {
+        quote! {
+            /// The energy, its gradient and the tridiagonal tangent stiffness in one pass:
+            /// `(V, dV/dtheta, d2V/dtheta2)` (paper Eq. `eq:prestress8`).
+            #[doc = #doc_strategy]
+            pub fn energy_gradient_stiffness(&self, theta: &[f64; #n]) -> (f64, [f64; #n], #p::Tridiagonal<#n, #m>) #body
+        }
+    });
+    quote!(#eg #egk)
+}
+
+/// The springs' parameters for the kernel drivers: shared values splat into lanes (literals fold
+/// into the kernel), with the springs whose parameters differ (overrides, and the two springs of
+/// an overridden rotor) listed as exceptions, read through `__rotor_chain_spring`.
+fn looped_springs(model: &Model) -> TokenStream {
+    let p = private();
+    let (a, r, k) = (model.value(&model.a), model.value(&model.r), model.value(&model.k));
+    let mut exceptions: Vec<usize> = model.springs.keys().copied().collect();
+    for &i in model.rotors.keys() {
+        exceptions.extend(i.checked_sub(1));
+        if i < model.springs() {
+            exceptions.push(i);
+        }
+    }
+    exceptions.sort_unstable();
+    exceptions.dedup();
+    quote!(#p::kernel::UniformSprings {
+        params: [#a, #r, #r, #k, lbar],
+        exceptions: &[#(#exceptions),*],
+        each: |p: usize| self.__rotor_chain_spring(lbar, p),
+    })
+}
+
+/// A looped method's body: `kernel::<driver>::<__rotor_chain_kernel::<kernel>>(theta, springs, outs)`.
+fn looped_call(model: &Model, driver: &str, kernel: &str, outs: TokenStream) -> TokenStream {
+    let p = private();
+    let n = model.n;
+    let lbar = model.rest_length_tokens();
+    let springs = looped_springs(model);
+    let (driver, kernel) = (format_ident!("{driver}"), format_ident!("{kernel}"));
+    let kmod = format_ident!("__rotor_chain_kernel");
+    // The default rest length is computed once per call, not once per spring.
+    quote!({
+        let lbar = #lbar;
+        #p::kernel::#driver::<#kmod::#kernel>(#p::as_array::<f64, #n>(theta), #springs, #outs)
+    })
 }
 
 /// The bodies of the inherent methods (`None`: not generated, see [`STACK_BUDGET`]).
@@ -276,17 +483,7 @@ fn looped_bodies(model: &Model) -> (Bodies, TokenStream) {
             #kernel
         }
     };
-    let lbar = model.rest_length_tokens();
-    let theta = quote!(#p::as_array::<f64, #n>(theta));
-    // The default rest length is computed once per call, not once per spring.
-    let params = quote!(|p: usize| self.__rotor_chain_spring(lbar, p));
-    let call = |driver: &str, kernel: &str, outs: TokenStream| -> TokenStream {
-        let (driver, kernel) = (format_ident!("{driver}"), format_ident!("{kernel}"));
-        quote!({
-            let lbar = #lbar;
-            #p::kernel::#driver::<#kmod::#kernel>(#theta, #params, #outs)
-        })
-    };
+    let call = |driver: &str, kernel: &str, outs: TokenStream| looped_call(model, driver, kernel, outs);
     let energy = call("sum", "Energy", quote!());
     let gradient = call("assemble_pairs", "Gradient", quote!(out));
     let hessian = call("assemble_blocks", "Hessian", quote!(diag, off));
@@ -559,6 +756,11 @@ fn emit(item: &ItemStruct, model: &Model) -> TokenStream {
     } else {
         looped_bodies(model)
     };
+    let (fused, fused_trait_bodies) = if model.unrolled() {
+        (unrolled_fused_bodies(model), unrolled_fused_trait_bodies(ident))
+    } else {
+        looped_fused_bodies(model)
+    };
     let Bodies {
         energy,
         gradient,
@@ -635,6 +837,11 @@ fn emit(item: &ItemStruct, model: &Model) -> TokenStream {
             pub fn tensions(&self, theta: &[#t; #n]) -> [#t; #m] #body
         }
     });
+    // Fused methods are f64 only: they serve the analyses and integrators, which take f64 chains.
+    let (fused, fused_trait_bodies) = match float {
+        Float::F64 => (fused_methods(n, m, fused, &doc_strategy), fused_trait_bodies),
+        Float::F32 => (TokenStream::new(), TokenStream::new()),
+    };
     let compatibility = compatibility.map(|body| {
         quote! {
             /// The compatibility matrix `C[p][i] = dl_p / d(r_i theta_i)` (bidiagonal).
@@ -657,7 +864,8 @@ fn emit(item: &ItemStruct, model: &Model) -> TokenStream {
             }
         }
     });
-    let FloatItems { inherent: float_inherent, traits } = float_items(ident, model, trait_bodies);
+    let FloatItems { inherent: float_inherent, traits } =
+        float_items(ident, model, quote!(#trait_bodies #fused_trait_bodies));
 
     quote! {
         const _: () = {
@@ -685,6 +893,7 @@ fn emit(item: &ItemStruct, model: &Model) -> TokenStream {
                 #compatibility
                 #verlet
                 #float_inherent
+                #fused
 
                 /// Checks the parameters against the chain's rules at run time (literal values were
                 /// already checked at compile time; this covers values read from fields).

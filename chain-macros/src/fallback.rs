@@ -81,6 +81,20 @@ impl Stubs {
                 &generic_nm,
             ),
             method(
+                quote!(energy_and_gradient),
+                n_value + 1,
+                Returns::Array,
+                quote!((f64, [f64; #n_ty])),
+                &generic_n,
+            ),
+            method(
+                quote!(energy_gradient_stiffness),
+                3 * n_value,
+                Returns::Banded,
+                quote!((f64, [f64; #n_ty], #p::Tridiagonal<#n_ty, #m_ty>)),
+                &generic_nm,
+            ),
+            method(
                 quote!(hessian),
                 n_value * n_value,
                 Returns::Dense,

@@ -16,8 +16,15 @@ use crate::attr::{Keyed, Spec, Value, suggest};
 use crate::ctxt::Ctxt;
 use crate::law::{self, Law};
 
-/// Chains up to this many rotors are unrolled unless `unroll = ..` says otherwise.
-pub const DEFAULT_UNROLL: usize = 128;
+/// `f64` chains up to this many rotors are unrolled unless `unroll = ..` says otherwise (`f32`
+/// chains are unrolled only, up to [`MAX_UNROLL`]).
+///
+/// Set by measurement (`cargo bench --bench simd`, `crossover_*`, docs/benchmarks.md): with
+/// run-time dispatch to AVX2 or AVX-512, the looped kernel's vectorised drivers are as fast as
+/// the unrolled scalar code at n = 16 and faster from n = 32 on (1.2-1.5x at 32, 1.3-1.9x at
+/// 64, 1.9x at 512 with AVX-512). On a CPU without AVX2 (or in `no_std`, scalar libm), unrolled
+/// code stays about 3x faster: give such chains `unroll = 512`.
+pub const DEFAULT_UNROLL: usize = 16;
 
 /// The largest `unroll`: unrolled code grows with the chain, and this is the longest chain whose
 /// unrolled code builds in a reasonable time in debug and release (measured in
@@ -339,18 +346,23 @@ pub fn validate(cx: &Ctxt, mut spec: Spec, item: &ItemStruct) -> Option<Model> {
         );
     }
     let law = spec.law.as_ref().and_then(|l| law::parse(cx, &l.key, l.value.clone()));
+    // An `f32` chain is unrolled only, so without an `unroll` key it is unrolled up to the limit.
+    let default_unroll = match spec.float.as_ref().map(|f| f.value) {
+        Some(Float::F32) => MAX_UNROLL,
+        _ => DEFAULT_UNROLL,
+    };
     if let (Some(keyed), Some(n)) = (&spec.float, n) {
         check_single_precision_strategy(
             cx,
             keyed,
             n,
-            spec.unroll.as_ref().map_or(DEFAULT_UNROLL, |u| u.value),
+            spec.unroll.as_ref().map_or(default_unroll, |u| u.value),
         );
     }
 
     Some(Model {
         n: n?,
-        unroll: spec.unroll.map_or(DEFAULT_UNROLL, |u| u.value),
+        unroll: spec.unroll.map_or(default_unroll, |u| u.value),
         a: spec.a.map_or(Value::Literal { value: 1.0 }, |v| v.value),
         r: spec.r?.value,
         k: spec.k?.value,

@@ -28,6 +28,9 @@ pub struct ChainOutputs {
     /// `sin_cos` call per angle.
     pub trig: Vec<(Id, Id)>,
     pub energy: Id,
+    /// The partial sums `sum_{q <= p} E_q` of the springs' energies (the last is `energy`): a
+    /// fused method stores them as it goes, so each spring's terms die with its rotors.
+    pub energy_partial: Vec<Id>,
     pub gradient: Vec<Id>,
     pub hessian_diag: Vec<Id>,
     pub hessian_off: Vec<Id>,
@@ -62,8 +65,10 @@ impl ChainOutputs {
         let trig = thetas.iter().map(|&t| (g.sin(t), g.cos(t))).collect();
 
         let mut energy = g.zero();
+        let mut energy_partial = Vec::with_capacity(terms.len());
         for t in &terms {
             energy = g.add(energy, t.energy);
+            energy_partial.push(energy);
         }
         // Rotor i collects the right end of spring i - 1 and the left end of spring i.
         let assemble = |g: &mut Graph, pair: &dyn Fn(&SpringTerms) -> (Id, Id)| -> Vec<Id> {
@@ -83,6 +88,7 @@ impl ChainOutputs {
             n,
             trig,
             energy,
+            energy_partial,
             gradient,
             hessian_diag,
             hessian_off: terms.iter().map(|t| t.hessian[1]).collect(),

@@ -10,11 +10,12 @@
 //! `x = [s1, c1, s2, c2, a, r1, r2, k, l0]` (sine and cosine of the two rotor angles, lattice
 //! spacing, the two rotor lengths, the spring's stiffness and rest length) over any [`Lane`]
 //! type and returns `M` outputs. The drivers below:
-//! 1. take the `sin_cos` of a chunk of angles, each angle once, in vector lanes;
-//! 2. evaluate the kernel on `LANES` consecutive springs at once (sines, cosines and parameters
-//!    are contiguous, so they load straight into lanes), summing the energy in lanes;
-//! 3. assemble the rotor sums (`out[p] += left_p`, `out[p + 1] += right_p`) from the chunk's
-//!    per-spring outputs.
+//! 1. take the `sin_cos` of `LANES` angles at a time, each angle once, in vector lanes; the
+//!    right rotor's values of a group of springs are the left ones shifted by a lane;
+//! 2. evaluate the kernel on `LANES` consecutive springs at once (parameters are splat, or
+//!    loaded from contiguous slices), summing the energy in lanes;
+//! 3. form the rotor sums (`out[p] += left_p`, `out[p + 1] += right_p`) in registers, with the
+//!    previous group's right values shifted in by a lane, and store them once.
 //!
 //! Everything runs at the level [`crate::simd`] detects at run time (the scalar level is the same
 //! code with `f64` lanes). Kernel arithmetic is lane-for-lane IEEE, so levels differ only through
@@ -51,6 +52,13 @@ pub trait Springs {
     fn slices(&self) -> Option<SpringSlices<'_>> {
         None
     }
+    /// Parameters `[a, r, r, k, l0]` shared by every spring except the listed ones (sorted, no
+    /// repeats), which take [`Springs::params`]. The drivers splat them into lanes, so a group of
+    /// springs without an exception costs no parameter loads, and literal values fold into the
+    /// kernel's arithmetic.
+    fn uniform(&self) -> Option<([f64; 5], &[usize])> {
+        None
+    }
 }
 
 impl<F: Fn(usize) -> [f64; 5]> Springs for F {
@@ -81,25 +89,88 @@ impl Springs for SpringSlices<'_> {
     }
 }
 
-/// Springs per chunk: the stack buffers hold `CHUNK + 1` sines and cosines and `CHUNK` values of
-/// each per-spring output, so the drivers need no allocation (`no_std`).
-const CHUNK: usize = 64;
+/// Springs that share one set of parameters except a few (the macro's chains: overrides and the
+/// springs beside an overridden rotor). `exceptions` must be sorted without repeats; `each(p)`
+/// gives the parameters of any spring.
+#[derive(Clone, Copy, Debug)]
+pub struct UniformSprings<'a, F> {
+    /// `[a, r, r, k, l0]` of every spring not in `exceptions`.
+    pub params: [f64; 5],
+    pub exceptions: &'a [usize],
+    pub each: F,
+}
 
-/// Per-spring outputs of one chunk.
-type Chunk<const M: usize> = [[f64; CHUNK]; M];
+impl<F: Fn(usize) -> [f64; 5]> Springs for UniformSprings<'_, F> {
+    #[inline(always)]
+    fn params(&self, p: usize) -> [f64; 5] {
+        (self.each)(p)
+    }
+    #[inline(always)]
+    fn uniform(&self) -> Option<([f64; 5], &[usize])> {
+        Some((self.params, self.exceptions))
+    }
+}
 
-/// Evaluates `K` on every spring of the chain with angles `theta`, `V::LANES` springs at a time.
-/// With `SUM`, output 0 is summed (in lanes) and returned; the outputs are stored per spring and
-/// handed to `visit(first_spring, count, outputs)` chunk by chunk.
+/// Angles per refill of [`Angles`] (a multiple of every lane count).
+const TRIG_CHUNK: usize = 64;
+
+/// A buffer of `TRIG_CHUNK` values aligned for the widest vector.
+#[derive(Clone, Copy)]
+#[repr(C, align(64))]
+struct Aligned([f64; TRIG_CHUNK]);
+
+/// The sines and cosines of a chain's angles, `V::LANES` at a time, each angle's computed once:
+/// `TRIG_CHUNK` angles back to back into aligned buffers, then handed out by groups. Computing
+/// them apart from the kernel keeps the polynomial's constants in registers (AVX2 has 16), and
+/// the scalar level's `sincos` (an opaque call that clobbers every vector register) out of the
+/// kernel loop (10-20 %, docs/benchmarks.md finding 5).
+struct Angles<'a> {
+    theta: &'a [f64],
+    start: usize,
+    sin: Aligned,
+    cos: Aligned,
+}
+
+impl<'a> Angles<'a> {
+    #[inline(always)]
+    fn new(theta: &'a [f64]) -> Self {
+        Self { theta, start: usize::MAX, sin: Aligned([0.0; TRIG_CHUNK]), cos: Aligned([0.0; TRIG_CHUNK]) }
+    }
+
+    /// `sin_cos` of angles `i .. i + V::LANES` (`i` a multiple of `V::LANES`); lanes past the
+    /// chain hold `(0, 1)`.
+    #[inline(always)]
+    fn group<V: Vector>(&mut self, i: usize) -> (V, V) {
+        let n = self.theta.len();
+        if i >= n {
+            return (V::splat(0.0), V::splat(1.0));
+        }
+        if !(self.start..self.start.saturating_add(TRIG_CHUNK)).contains(&i) {
+            self.start = i;
+            let end = (i + TRIG_CHUNK).min(n);
+            simd::sin_cos_lanes::<V>(&self.theta[i..end], &mut self.sin.0, &mut self.cos.0);
+        }
+        let j = i - self.start;
+        (V::load(&self.sin.0[j..]), V::load(&self.cos.0[j..]))
+    }
+}
+
+/// Evaluates `K` on every spring of the chain with angles `theta`, `V::LANES` consecutive
+/// springs at a time, and hands each group's outputs to `visit(first_spring, count, outputs)`
+/// (`count < V::LANES` only for the last group; its other lanes are padding to be ignored).
+///
+/// One pass, no buffers: the right rotor's sines and cosines of a group are the left ones
+/// shifted by a lane ([`Vector::next_lane`]), so every angle's `sin_cos` is computed once and
+/// everything stays in registers.
 #[inline(always)]
-fn drive<V: Vector, K: SpringFn<M>, const M: usize, const SUM: bool>(
+fn stream<V: Vector, K: SpringFn<M>, const M: usize>(
     theta: &[f64],
     springs: &impl Springs,
-    mut visit: impl FnMut(usize, usize, &Chunk<M>),
-) -> f64 {
+    mut visit: impl FnMut(usize, usize, [V; M]),
+) {
     let n = theta.len();
     if n < 2 {
-        return 0.0;
+        return;
     }
     let m = n - 1;
     let slices = springs.slices();
@@ -109,68 +180,46 @@ fn drive<V: Vector, K: SpringFn<M>, const M: usize, const SUM: bool>(
             "one parameter per rotor or spring"
         );
     }
-    // Angles start..=start + count of the chunk at offsets 0..=count; room for a padded vector.
-    let (mut sin, mut cos) = ([0.0; CHUNK + 1 + 8], [0.0; CHUNK + 1 + 8]);
-    let mut outs: Chunk<M> = [[0.0; CHUNK]; M];
-    let mut acc = V::splat(0.0);
-    let mut start = 0;
-    while start < m {
-        let count = (m - start).min(CHUNK);
-        if start == 0 {
-            simd::sin_cos_lanes::<V>(&theta[..=count], &mut sin, &mut cos);
-        } else {
-            simd::sin_cos_lanes::<V>(&theta[start + 1..=start + count], &mut sin[1..], &mut cos[1..]);
-        }
-        let mut j = 0;
-        while j < count {
-            let p = start + j;
-            // The last springs of the chain, fewer than a vector, go in a vector with the
-            // remaining lanes unused: their sines and cosines are the buffer's slack, their
-            // parameters zero (slices) or repeated (gathered); nothing of them is stored or summed.
-            let rest = (count - j).min(V::LANES);
-            let [a, r1, r2, k, l0] = match &slices {
-                Some(s) if rest == V::LANES => [
-                    V::splat(s.a),
-                    V::load(&s.rotor_lengths[p..]),
-                    V::load(&s.rotor_lengths[p + 1..]),
-                    V::load(&s.stiffness[p..]),
-                    V::load(&s.rest_lengths[p..]),
-                ],
-                Some(s) => [
-                    V::splat(s.a),
-                    V::load_partial(&s.rotor_lengths[p..p + rest]),
-                    V::load_partial(&s.rotor_lengths[p + 1..p + 1 + rest]),
-                    V::load_partial(&s.stiffness[p..p + rest]),
-                    V::load_partial(&s.rest_lengths[p..p + rest]),
-                ],
-                None => gather::<V>(springs, p, rest),
-            };
-            let x = [V::load(&sin[j..]), V::load(&cos[j..]), V::load(&sin[j + 1..]), V::load(&cos[j + 1..])];
-            let y = K::eval([x[0], x[1], x[2], x[3], a, r1, r2, k, l0]);
-            if rest == V::LANES {
-                for (o, v) in outs.iter_mut().zip(y).skip(usize::from(SUM)) {
-                    v.store(&mut o[j..]);
+    let uniform = springs.uniform();
+    let mut exception = 0;
+    let mut angles = Angles::new(theta);
+    let (mut s1, mut c1) = angles.group::<V>(0);
+    let mut p = 0;
+    while p < m {
+        let rest = (m - p).min(V::LANES);
+        let (s_next, c_next) = angles.group::<V>(p + V::LANES);
+        let (s2, c2) = (s1.next_lane(s_next), c1.next_lane(c_next));
+        let [a, r1, r2, k, l0] = match (&slices, &uniform) {
+            (Some(s), _) if rest == V::LANES => [
+                V::splat(s.a),
+                V::load(&s.rotor_lengths[p..]),
+                V::load(&s.rotor_lengths[p + 1..]),
+                V::load(&s.stiffness[p..]),
+                V::load(&s.rest_lengths[p..]),
+            ],
+            (Some(s), _) => [
+                V::splat(s.a),
+                V::load_partial(&s.rotor_lengths[p..p + rest]),
+                V::load_partial(&s.rotor_lengths[p + 1..p + 1 + rest]),
+                V::load_partial(&s.stiffness[p..p + rest]),
+                V::load_partial(&s.rest_lengths[p..p + rest]),
+            ],
+            (None, Some((params, exceptions))) => {
+                while exceptions.get(exception).is_some_and(|&e| e < p) {
+                    exception += 1;
                 }
-                if SUM {
-                    acc = acc + y[0];
-                }
-            } else {
-                for (o, v) in outs.iter_mut().zip(y).skip(usize::from(SUM)) {
-                    v.store_partial(&mut o[j..j + rest]);
-                }
-                if SUM {
-                    let mut e = [0.0; 8];
-                    y[0].store_partial(&mut e[..rest]);
-                    acc = acc + V::load(&e);
+                if exceptions.get(exception).is_some_and(|&e| e < p + rest) {
+                    gather::<V>(springs, p, rest)
+                } else {
+                    params.map(V::splat)
                 }
             }
-            j += rest;
-        }
-        visit(start, count, &outs);
-        (sin[0], cos[0]) = (sin[count], cos[count]);
-        start += count;
+            (None, None) => gather::<V>(springs, p, rest),
+        };
+        visit(p, rest, K::eval([s1, c1, s2, c2, a, r1, r2, k, l0]));
+        (s1, c1) = (s_next, c_next);
+        p += V::LANES;
     }
-    acc.sum()
 }
 
 /// Parameters of springs `p..p + count` (`count <= V::LANES`; the last one repeated in the
@@ -187,59 +236,152 @@ fn gather<V: Vector>(springs: &impl Springs, p: usize, count: usize) -> [V; 5] {
     lanes.map(|l| V::load(&l))
 }
 
-/// `out[i] = left[i] + right[i - 1]` over one chunk: the rotor sums of per-spring pairs, with
-/// `carry` the right value of the spring before the chunk (0 for the first).
+/// Writes the first `count` lanes of `v` to `out[p..]`.
 #[inline(always)]
-fn rotor_sums(out: &mut [f64], left: &[f64], right: &[f64], carry: f64) {
-    out[0] = left[0] + carry;
-    for ((o, l), r) in out[1..].iter_mut().zip(&left[1..]).zip(right) {
-        *o = l + r;
+fn put<V: Vector>(v: V, out: &mut [f64], p: usize, count: usize) {
+    if count == V::LANES {
+        v.store(&mut out[p..]);
+    } else {
+        v.store_partial(&mut out[p..p + count]);
+    }
+}
+
+/// The first `count` lanes of `v` (others zero).
+#[inline(always)]
+fn first<V: Vector>(v: V, count: usize) -> V {
+    if count == V::LANES { v } else { v.keep_first(count) }
+}
+
+/// Rotor sums of per-spring pairs, a group at a time: rotor `i` collects the left value of
+/// spring `i` and the right value of spring `i - 1` (paper Eq. `eq:prestress8`).
+struct RotorSums<V> {
+    previous_right: V,
+    last_count: usize,
+}
+
+impl<V: Vector> RotorSums<V> {
+    #[inline(always)]
+    fn new() -> Self {
+        Self { previous_right: V::splat(0.0), last_count: 0 }
+    }
+    /// Stores rotors `p .. p + count` of springs `p .. p + count`.
+    #[inline(always)]
+    fn add(&mut self, out: &mut [f64], p: usize, count: usize, left: V, right: V) {
+        put(left + right.previous_lane(self.previous_right), out, p, count);
+        self.previous_right = right;
+        self.last_count = count;
+    }
+    /// The last rotor: the right value of the last spring.
+    #[inline(always)]
+    fn finish(self, out: &mut [f64]) {
+        if let Some(last) = out.last_mut()
+            && self.last_count > 0
+        {
+            *last = self.previous_right.lane(self.last_count - 1);
+        }
     }
 }
 
 /// A driver call with its output closure, run by [`simd::dispatch`] at the detected level.
-struct Drive<'a, K, S, F, const M: usize, const SUM: bool> {
+struct Drive<'a, K, S, F, const M: usize> {
     theta: &'a [f64],
     springs: S,
-    visit: F,
+    run: F,
     kernel: core::marker::PhantomData<K>,
 }
 
-impl<K: SpringFn<M>, S: Springs, F: FnMut(usize, usize, &Chunk<M>), const M: usize, const SUM: bool> WithLanes
-    for Drive<'_, K, S, F, M, SUM>
-{
-    type Output = f64;
+/// The output side of a driver, generic over the lane type (a closure cannot be).
+trait Visit<const M: usize> {
+    type Output;
+    fn run<V: Vector, K: SpringFn<M>>(self, theta: &[f64], springs: &impl Springs) -> Self::Output;
+}
+
+impl<K: SpringFn<M>, S: Springs, F: Visit<M>, const M: usize> WithLanes for Drive<'_, K, S, F, M> {
+    type Output = F::Output;
     #[inline(always)]
-    fn run<V: Vector>(self) -> f64 {
-        drive::<V, K, M, SUM>(self.theta, &self.springs, self.visit)
+    fn run<V: Vector>(self) -> F::Output {
+        self.run.run::<V, K>(self.theta, &self.springs)
     }
 }
 
 #[inline(always)]
-fn run<K: SpringFn<M>, const M: usize, const SUM: bool>(
+fn run<K: SpringFn<M>, const M: usize, F: Visit<M>>(
     theta: &[f64],
     springs: impl Springs,
-    visit: impl FnMut(usize, usize, &Chunk<M>),
-) -> f64 {
-    simd::dispatch(Drive::<K, _, _, M, SUM> { theta, springs, visit, kernel: core::marker::PhantomData })
+    visit: F,
+) -> F::Output {
+    simd::dispatch(Drive::<K, _, _, M> { theta, springs, run: visit, kernel: core::marker::PhantomData })
+}
+
+/// Marks an output a driver does not produce.
+const NONE: usize = usize::MAX;
+
+/// The outputs of a driver: energy, gradient, tridiagonal blocks and per-spring values,
+/// whichever are asked for, at the kernel output positions `E`, `G` (left, right), `B` (11, 12,
+/// 22), `S`, `T` (`NONE`: not produced). Constants, so each driver compiles to only its own work.
+struct Outputs<'a, const E: usize, const G: usize, const B: usize, const S: usize, const T: usize> {
+    gradient: &'a mut [f64],
+    diag: &'a mut [f64],
+    off: &'a mut [f64],
+    first: &'a mut [f64],
+    second: &'a mut [f64],
+}
+
+impl<const E: usize, const G: usize, const B: usize, const S: usize, const T: usize>
+    Outputs<'_, E, G, B, S, T>
+{
+    fn new() -> Self {
+        Self { gradient: &mut [], diag: &mut [], off: &mut [], first: &mut [], second: &mut [] }
+    }
+}
+
+impl<const M: usize, const E: usize, const G: usize, const B: usize, const S: usize, const T: usize> Visit<M>
+    for Outputs<'_, E, G, B, S, T>
+{
+    type Output = f64;
+    #[inline(always)]
+    fn run<V: Vector, K: SpringFn<M>>(self, theta: &[f64], springs: &impl Springs) -> f64 {
+        let Outputs { gradient, diag, off, first: per_spring, second } = self;
+        let mut acc = V::splat(0.0);
+        let (mut g_sums, mut d_sums) = (RotorSums::<V>::new(), RotorSums::<V>::new());
+        stream::<V, K, M>(theta, springs, |p, count, y| {
+            if E != NONE {
+                acc = acc + first(y[E], count);
+            }
+            if G != NONE {
+                g_sums.add(gradient, p, count, y[G], y[G + 1]);
+            }
+            if B != NONE {
+                d_sums.add(diag, p, count, y[B], y[B + 2]);
+                put(y[B + 1], off, p, count);
+            }
+            if S != NONE {
+                put(y[S], per_spring, p, count);
+            }
+            if T != NONE {
+                put(y[T], second, p, count);
+            }
+        });
+        if G != NONE {
+            g_sums.finish(gradient);
+        }
+        if B != NONE {
+            d_sums.finish(diag);
+        }
+        acc.sum()
+    }
 }
 
 /// `sum_p kernel(p)`: the energy.
 pub fn sum<K: SpringFn<1>>(theta: &[f64], springs: impl Springs) -> f64 {
-    run::<K, 1, true>(theta, springs, |_, _, _| {})
+    run::<K, 1, _>(theta, springs, Outputs::<0, NONE, NONE, NONE, NONE>::new())
 }
 
 /// Rotor sums of per-spring pairs: `out[p] += kernel[0]`, `out[p + 1] += kernel[1]` (the gradient).
 pub fn assemble_pairs<K: SpringFn<2>>(theta: &[f64], springs: impl Springs, out: &mut [f64]) {
     assert_eq!(out.len(), theta.len(), "one entry per rotor");
-    let mut carry = 0.0;
-    run::<K, 2, false>(theta, springs, |p, count, [left, right]| {
-        rotor_sums(&mut out[p..p + count], &left[..count], &right[..count - 1], carry);
-        carry = right[count - 1];
-    });
-    if let Some(last) = out.last_mut() {
-        *last = carry;
-    }
+    let outputs = Outputs::<NONE, 0, NONE, NONE, NONE> { gradient: out, ..Outputs::new() };
+    run::<K, 2, _>(theta, springs, outputs);
 }
 
 /// Tridiagonal assembly of per-spring 2x2 blocks `[11, 12, 22]` (paper Eq. `eq:prestress8`).
@@ -251,21 +393,15 @@ pub fn assemble_blocks<K: SpringFn<3>>(
 ) {
     assert_eq!(diag.len(), theta.len(), "diag has one entry per rotor");
     assert_eq!(off.len() + 1, theta.len(), "off has one entry per spring");
-    let mut carry = 0.0;
-    run::<K, 3, false>(theta, springs, |p, count, [b11, b12, b22]| {
-        rotor_sums(&mut diag[p..p + count], &b11[..count], &b22[..count - 1], carry);
-        off[p..p + count].copy_from_slice(&b12[..count]);
-        carry = b22[count - 1];
-    });
-    if let Some(last) = diag.last_mut() {
-        *last = carry;
-    }
+    let outputs = Outputs::<NONE, NONE, 0, NONE, NONE> { diag, off, ..Outputs::new() };
+    run::<K, 3, _>(theta, springs, outputs);
 }
 
 /// One value per spring (lengths, tensions).
 pub fn per_spring<K: SpringFn<1>>(theta: &[f64], springs: impl Springs, out: &mut [f64]) {
     assert_eq!(out.len() + 1, theta.len(), "one entry per spring");
-    run::<K, 1, false>(theta, springs, |p, count, [v]| out[p..p + count].copy_from_slice(&v[..count]));
+    let outputs = Outputs::<NONE, NONE, NONE, 0, NONE> { first: out, ..Outputs::new() };
+    run::<K, 1, _>(theta, springs, outputs);
 }
 
 /// Two values per spring (the compatibility matrix's two bands).
@@ -277,25 +413,16 @@ pub fn per_spring_pairs<K: SpringFn<2>>(
 ) {
     assert_eq!(left.len() + 1, theta.len(), "one entry per spring");
     assert_eq!(right.len() + 1, theta.len(), "one entry per spring");
-    run::<K, 2, false>(theta, springs, |p, count, [l, r]| {
-        left[p..p + count].copy_from_slice(&l[..count]);
-        right[p..p + count].copy_from_slice(&r[..count]);
-    });
+    let outputs = Outputs::<NONE, NONE, NONE, 0, 1> { first: left, second: right, ..Outputs::new() };
+    run::<K, 2, _>(theta, springs, outputs);
 }
 
 /// Energy and gradient in one pass (`K` returns `[E, left, right]`): the gradient into `out`,
 /// the energy returned.
 pub fn energy_and_gradient<K: SpringFn<3>>(theta: &[f64], springs: impl Springs, out: &mut [f64]) -> f64 {
     assert_eq!(out.len(), theta.len(), "one entry per rotor");
-    let mut carry = 0.0;
-    let energy = run::<K, 3, true>(theta, springs, |p, count, [_, left, right]| {
-        rotor_sums(&mut out[p..p + count], &left[..count], &right[..count - 1], carry);
-        carry = right[count - 1];
-    });
-    if let Some(last) = out.last_mut() {
-        *last = carry;
-    }
-    energy
+    let outputs = Outputs::<0, 1, NONE, NONE, NONE> { gradient: out, ..Outputs::new() };
+    run::<K, 3, _>(theta, springs, outputs)
 }
 
 /// Energy, gradient and tridiagonal tangent stiffness in one pass (`K` returns
@@ -310,16 +437,6 @@ pub fn energy_gradient_stiffness<K: SpringFn<6>>(
     assert_eq!(grad.len(), theta.len(), "one gradient entry per rotor");
     assert_eq!(diag.len(), theta.len(), "diag has one entry per rotor");
     assert_eq!(off.len() + 1, theta.len(), "off has one entry per spring");
-    let (mut carry_g, mut carry_d) = (0.0, 0.0);
-    let energy = run::<K, 6, true>(theta, springs, |p, count, [_, left, right, b11, b12, b22]| {
-        rotor_sums(&mut grad[p..p + count], &left[..count], &right[..count - 1], carry_g);
-        rotor_sums(&mut diag[p..p + count], &b11[..count], &b22[..count - 1], carry_d);
-        off[p..p + count].copy_from_slice(&b12[..count]);
-        (carry_g, carry_d) = (right[count - 1], b22[count - 1]);
-    });
-    if let (Some(g), Some(d)) = (grad.last_mut(), diag.last_mut()) {
-        *g = carry_g;
-        *d = carry_d;
-    }
-    energy
+    let outputs = Outputs::<0, 1, 3, NONE, NONE> { gradient: grad, diag, off, ..Outputs::new() };
+    run::<K, 6, _>(theta, springs, outputs)
 }

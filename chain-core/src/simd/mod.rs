@@ -224,6 +224,18 @@ pub(crate) trait Vector: Lane {
     fn sum(self) -> f64;
     /// Sine and cosine of every lane.
     fn sin_cos(self) -> (Self, Self);
+    /// `sin[i], cos[i] = sin_cos(theta[i])` over a slice, `LANES` angles at a time, compiled once
+    /// per level (not inlined into every driver).
+    fn sin_cos_slice(theta: &[f64], sin: &mut [f64], cos: &mut [f64]);
+    /// `[self_1, ..., self_{LANES-1}, next_0]`: the values one position further along a
+    /// sequence stored `LANES` at a time (the right neighbour of every lane).
+    fn next_lane(self, next: Self) -> Self;
+    /// `[previous_{LANES-1}, self_0, ..., self_{LANES-2}]`: the left neighbour of every lane.
+    fn previous_lane(self, previous: Self) -> Self;
+    /// The first `count` lanes, zeros in the others.
+    fn keep_first(self, count: usize) -> Self;
+    /// Lane `i`.
+    fn lane(self, i: usize) -> f64;
 }
 
 impl Vector for f64 {
@@ -254,6 +266,26 @@ impl Vector for f64 {
     fn sin_cos(self) -> (f64, f64) {
         math::sin_cos(self)
     }
+    #[inline(always)]
+    fn sin_cos_slice(theta: &[f64], sin: &mut [f64], cos: &mut [f64]) {
+        sin_cos_loop::<f64>(theta, sin, cos);
+    }
+    #[inline(always)]
+    fn next_lane(self, next: f64) -> f64 {
+        next
+    }
+    #[inline(always)]
+    fn previous_lane(self, previous: f64) -> f64 {
+        previous
+    }
+    #[inline(always)]
+    fn keep_first(self, count: usize) -> f64 {
+        if count > 0 { self } else { 0.0 }
+    }
+    #[inline(always)]
+    fn lane(self, _i: usize) -> f64 {
+        self
+    }
 }
 
 /// Lane-generic work handed to [`dispatch`]: `run::<V>` is instantiated once per level, inside a
@@ -276,10 +308,17 @@ pub(crate) fn dispatch<W: WithLanes>(work: W) -> W::Output {
     }
 }
 
-/// `sin[i], cos[i] = sin_cos(theta[i])` for `i < theta.len()`, `V::LANES` angles at a time. A
-/// short last group is padded with zeros, so an angle gets the same result wherever it sits.
+/// `sin[i], cos[i] = sin_cos(theta[i])` for `i < theta.len()` at `V`'s level (see
+/// [`Vector::sin_cos_slice`]).
 #[inline(always)]
 pub(crate) fn sin_cos_lanes<V: Vector>(theta: &[f64], sin: &mut [f64], cos: &mut [f64]) {
+    V::sin_cos_slice(theta, sin, cos);
+}
+
+/// The loop of [`Vector::sin_cos_slice`]: `V::LANES` angles at a time. A short last group is
+/// padded with zeros, so an angle gets the same result wherever it sits.
+#[inline(always)]
+pub(crate) fn sin_cos_loop<V: Vector>(theta: &[f64], sin: &mut [f64], cos: &mut [f64]) {
     let n = theta.len();
     let (sin, cos) = (&mut sin[..n], &mut cos[..n]);
     let mut i = 0;

@@ -1,5 +1,5 @@
 //! `sin_cos` over vector lanes: Cody-Waite reduction by `pi/2` into a double-double remainder,
-//! then fdlibm's kernel polynomials on `[-pi/4, pi/4]`.
+//! then minimax polynomials on `[-pi/4, pi/4]` (fdlibm's coefficients).
 //!
 //! Written here because no well-kept crate does it on stable Rust with run-time dispatch: the
 //! SLEEF port (`sleef`) needs nightly `portable_simd`, `pulp` and `wide` have no trigonometry
@@ -14,9 +14,20 @@
 //! adds nothing measurable. Past `LIMIT` (and for NaN and the infinities) a lane is recomputed by
 //! the scalar `crate::math::sin_cos`, so those angles give exactly what the scalar path gives.
 //!
+//! **The short reduction** ([`fast`], every lane of ordinary size): `r1 = x - k P1` (exact, as
+//! above), `hi = r1 - k P2` with one fused multiply-add, and its rounding error recovered as
+//! `lo = (r1 - hi) - k P2` by a second one, which is exact because `r1 - hi` is (Sterbenz) as long
+//! as `|k P2| <= |r1| / 2`; then `lo -= k P3`. `|k P2| < 1.1e-9` below `LIMIT`, so that holds
+//! whenever `|hi| >= 2^-28`; a vector with a lane nearer a multiple of `pi/2` (and not at 0)
+//! takes the full double-double reduction ([`careful`]: `TwoSum`, 10 more operations), as does
+//! one with a lane beyond `LIMIT`. Seven operations instead of seventeen for the common case.
+//!
 //! **Polynomials.** The minimax polynomials of fdlibm's `__kernel_sin` / `__kernel_cos`
-//! (coefficients as in the `libm` crate), with the `lo` correction `sin(hi + lo) = sin hi + lo
-//! cos hi`, `cos(hi + lo) = cos hi - lo sin hi` to first order. fdlibm bounds them below 1 ulp.
+//! (coefficients as in the `libm` crate) evaluated by Horner's rule with fused multiply-adds,
+//! with the `lo` correction `sin(hi + lo) = sin hi + lo (1 - hi^2/2)`, `cos(hi + lo) = cos hi -
+//! lo hi` to first order, and `cos hi = w + ((1 - w) - hi^2/2) + hi^4 C(hi^2)` with `w = 1 -
+//! hi^2/2` (the rounding error of `w` carried, as fdlibm does). fdlibm bounds the polynomials
+//! below 1 ulp.
 //!
 //! **Measured** against correctly rounded `sin` and `cos` (`dashu-float`, Ziv's method):
 //! `cargo run --release -p chain-core --example sin_cos_ulp` (1.02e7 points over three ranges;
@@ -40,7 +51,15 @@ pub(crate) trait Trig: Vector {
     fn keep_zero(x: Self, s: Self) -> Self;
     /// Whether any lane is NaN, infinite or beyond [`LIMIT`].
     fn any_outside(x: Self) -> bool;
+    /// Whether any lane of `x` needs [`careful`]: NaN, infinite or beyond [`LIMIT`], or a
+    /// short-reduction remainder `hi` with `|hi| < TINY` (near a multiple of `pi/2`, or 0).
+    fn unusual(x: Self, hi: Self) -> bool;
+    /// [`careful`] compiled once for the level (a cold call, not inlined into every loop).
+    fn careful(x: Self) -> (Self, Self);
 }
+
+/// Below this `|hi|` the short reduction's error term is not provably exact (module doc).
+pub(crate) const TINY: f64 = 1.0 / 268_435_456.0; // 2^-28
 
 /// `1.5 * 2^52`: adding it rounds a number below `2^51` to an integer in the low mantissa bits.
 const ROUND: f64 = 6_755_399_441_055_744.0;
@@ -66,11 +85,49 @@ const C6: f64 = f64::from_bits(0xBDA8_FAE9_BE88_38D4);
 /// Sine and cosine of every lane of `x`.
 #[inline(always)]
 pub(crate) fn sin_cos<V: Trig>(x: V) -> (V, V) {
+    let sp = V::splat;
+    let t = x.mul_add(sp(FRAC_2_PI), sp(ROUND));
+    let k = t - sp(ROUND);
+    let r1 = (-k).mul_add(sp(P1), x);
+    let hi = (-k).mul_add(sp(P2), r1);
+    if V::unusual(x, hi) {
+        return V::careful(x);
+    }
+    let lo = (-k).mul_add(sp(P2), r1 - hi);
+    let lo = (-k).mul_add(sp(P3), lo);
+    polynomials(x, t, hi, lo)
+}
+
+/// Every lane of `x` exactly, however near a multiple of `pi/2`: the double-double reduction,
+/// and the scalar `sin_cos` for lanes beyond [`LIMIT`], NaN and the infinities.
+#[inline(always)]
+pub(crate) fn careful<V: Trig>(x: V) -> (V, V) {
     let (s, c) = reduced(x);
     if V::any_outside(x) { scalar_lanes(x, s, c) } else { (s, c) }
 }
 
-/// The polynomial result for lanes inside the limit, assuming every lane is.
+/// `sin(x)` and `cos(x)` from the remainder `hi + lo` of `x` and its quadrant in `t`.
+#[inline(always)]
+fn polynomials<V: Trig>(x: V, t: V, hi: V, lo: V) -> (V, V) {
+    let sp = V::splat;
+    let z = hi * hi;
+    let hz = sp(0.5) * z;
+    // sin(hi + lo) = hi + hi z S(z) + lo (1 - z/2)
+    let ps =
+        z.mul_add(z.mul_add(z.mul_add(z.mul_add(z.mul_add(sp(S6), sp(S5)), sp(S4)), sp(S3)), sp(S2)), sp(S1));
+    let sin = hi + (hi * z).mul_add(ps, (-hz).mul_add(lo, lo));
+    // cos(hi + lo) = w + ((1 - w) - z/2) + z^2 C(z) - hi lo, w = 1 - z/2
+    let pc =
+        z.mul_add(z.mul_add(z.mul_add(z.mul_add(z.mul_add(sp(C6), sp(C5)), sp(C4)), sp(C3)), sp(C2)), sp(C1));
+    let w = sp(1.0) - hz;
+    let w_err = (sp(1.0) - w) - hz;
+    let cos = w + (z * z).mul_add(pc, (-hi).mul_add(lo, w_err));
+    let (sin, cos) = V::quadrant(t, sin, cos);
+    (V::keep_zero(x, sin), cos)
+}
+
+/// The double-double reduction and fdlibm's kernels, for lanes inside the limit (assuming every
+/// lane is).
 #[inline(always)]
 fn reduced<V: Trig>(x: V) -> (V, V) {
     let sp = V::splat;

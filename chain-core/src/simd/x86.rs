@@ -31,6 +31,46 @@ pub(super) unsafe fn run_avx512<W: WithLanes>(work: W) -> W::Output {
     work.run::<F64x8>()
 }
 
+/// `sin_cos` of a slice with four lanes, compiled once (the drivers call it per chunk).
+///
+/// # Safety
+/// The CPU must support AVX2 and FMA.
+#[target_feature(enable = "avx2,fma")]
+#[inline(never)]
+pub(super) unsafe fn sin_cos_avx2(theta: &[f64], sin: &mut [f64], cos: &mut [f64]) {
+    super::sin_cos_loop::<F64x4>(theta, sin, cos);
+}
+
+/// `sin_cos` of a slice with eight lanes, compiled once.
+///
+/// # Safety
+/// The CPU must support AVX-512F, AVX2 and FMA.
+#[target_feature(enable = "avx512f,avx2,fma")]
+#[inline(never)]
+pub(super) unsafe fn sin_cos_avx512(theta: &[f64], sin: &mut [f64], cos: &mut [f64]) {
+    super::sin_cos_loop::<F64x8>(theta, sin, cos);
+}
+
+/// The rare vectors of [`trig::careful`], out of the hot loop.
+///
+/// # Safety
+/// The CPU must support AVX2 and FMA.
+#[cold]
+#[target_feature(enable = "avx2,fma")]
+#[inline(never)]
+unsafe fn careful_avx2(x: F64x4) -> (F64x4, F64x4) {
+    trig::careful(x)
+}
+
+/// # Safety
+/// The CPU must support AVX-512F, AVX2 and FMA.
+#[cold]
+#[target_feature(enable = "avx512f,avx2,fma")]
+#[inline(never)]
+unsafe fn careful_avx512(x: F64x8) -> (F64x8, F64x8) {
+    trig::careful(x)
+}
+
 #[derive(Clone, Copy)]
 #[repr(transparent)]
 pub(crate) struct F64x4(__m256d);
@@ -42,7 +82,8 @@ pub(crate) struct F64x8(__m512d);
 /// The arithmetic operators and per-lane scalar functions of one vector type.
 macro_rules! vector_ops {
     ($t:ident, $n:literal, add: $add:ident, sub: $sub:ident, mul: $mul:ident, div: $div:ident,
-     sqrt: $sqrt:ident, set1: $set1:ident, load: $load:ident, store: $store:ident, fma: $fma:ident) => {
+     sqrt: $sqrt:ident, set1: $set1:ident, load: $load:ident, store: $store:ident, fma: $fma:ident,
+     slice: $slice:ident) => {
         impl Add for $t {
             type Output = $t;
             #[inline(always)]
@@ -163,6 +204,29 @@ macro_rules! vector_ops {
             fn sin_cos(self) -> ($t, $t) {
                 trig::sin_cos(self)
             }
+            #[inline(always)]
+            fn sin_cos_slice(theta: &[f64], sin: &mut [f64], cos: &mut [f64]) {
+                // SAFETY: values of this type exist only at its level (module doc).
+                unsafe { $slice(theta, sin, cos) }
+            }
+            #[inline(always)]
+            fn next_lane(self, next: $t) -> $t {
+                $t::shift_in(self, next)
+            }
+            #[inline(always)]
+            fn previous_lane(self, previous: $t) -> $t {
+                $t::shift_back(self, previous)
+            }
+            #[inline(always)]
+            fn keep_first(self, count: usize) -> $t {
+                $t::masked(self, count.min($n))
+            }
+            #[inline(always)]
+            fn lane(self, i: usize) -> f64 {
+                let mut a = [0.0; $n];
+                self.store(&mut a);
+                a[i]
+            }
         }
         impl $t {
             #[inline(always)]
@@ -176,10 +240,10 @@ macro_rules! vector_ops {
 
 vector_ops!(F64x4, 4, add: _mm256_add_pd, sub: _mm256_sub_pd, mul: _mm256_mul_pd, div: _mm256_div_pd,
     sqrt: _mm256_sqrt_pd, set1: _mm256_set1_pd, load: _mm256_loadu_pd, store: _mm256_storeu_pd,
-    fma: _mm256_fmadd_pd);
+    fma: _mm256_fmadd_pd, slice: sin_cos_avx2);
 vector_ops!(F64x8, 8, add: _mm512_add_pd, sub: _mm512_sub_pd, mul: _mm512_mul_pd, div: _mm512_div_pd,
     sqrt: _mm512_sqrt_pd, set1: _mm512_set1_pd, load: _mm512_loadu_pd, store: _mm512_storeu_pd,
-    fma: _mm512_fmadd_pd);
+    fma: _mm512_fmadd_pd, slice: sin_cos_avx512);
 
 // SAFETY (every `unsafe` block below): see the module documentation.
 
@@ -200,6 +264,26 @@ impl F64x4 {
     #[inline(always)]
     fn xor_bits(self, bits: i64) -> F64x4 {
         F64x4(unsafe { _mm256_xor_pd(self.0, _mm256_castsi256_pd(_mm256_set1_epi64x(bits))) })
+    }
+    /// `[self_1, self_2, self_3, next_0]`.
+    #[inline(always)]
+    fn shift_in(self, next: F64x4) -> F64x4 {
+        unsafe {
+            let middle = _mm256_permute2f128_pd::<0x21>(self.0, next.0); // [s2, s3, n0, n1]
+            F64x4(_mm256_shuffle_pd::<0b0101>(self.0, middle))
+        }
+    }
+    /// `[previous_3, self_0, self_1, self_2]`.
+    #[inline(always)]
+    fn shift_back(self, previous: F64x4) -> F64x4 {
+        unsafe {
+            let middle = _mm256_permute2f128_pd::<0x21>(previous.0, self.0); // [p2, p3, s0, s1]
+            F64x4(_mm256_shuffle_pd::<0b0101>(middle, self.0))
+        }
+    }
+    #[inline(always)]
+    fn masked(self, count: usize) -> F64x4 {
+        F64x4(unsafe { _mm256_and_pd(self.0, _mm256_castsi256_pd(F64x4::lane_mask(count))) })
     }
 }
 
@@ -239,6 +323,20 @@ impl Trig for F64x4 {
             _mm256_movemask_pd(outside) != 0
         }
     }
+    #[inline(always)]
+    fn unusual(x: F64x4, hi: F64x4) -> bool {
+        unsafe {
+            let sign = _mm256_set1_pd(-0.0);
+            let outside =
+                _mm256_cmp_pd::<_CMP_NLE_UQ>(_mm256_andnot_pd(sign, x.0), _mm256_set1_pd(trig::LIMIT));
+            let tiny = _mm256_cmp_pd::<_CMP_LT_OQ>(_mm256_andnot_pd(sign, hi.0), _mm256_set1_pd(trig::TINY));
+            _mm256_movemask_pd(_mm256_or_pd(outside, tiny)) != 0
+        }
+    }
+    #[inline(always)]
+    fn careful(x: F64x4) -> (F64x4, F64x4) {
+        unsafe { careful_avx2(x) }
+    }
 }
 
 impl F64x8 {
@@ -249,6 +347,30 @@ impl F64x8 {
     #[inline(always)]
     unsafe fn masked_store(self, p: *mut f64, len: usize) {
         unsafe { _mm512_mask_storeu_pd(p, ((1u32 << len) - 1) as u8, self.0) }
+    }
+    /// `[self_1, ..., self_7, next_0]`.
+    #[inline(always)]
+    fn shift_in(self, next: F64x8) -> F64x8 {
+        unsafe {
+            F64x8(_mm512_castsi512_pd(_mm512_alignr_epi64::<1>(
+                _mm512_castpd_si512(next.0),
+                _mm512_castpd_si512(self.0),
+            )))
+        }
+    }
+    /// `[previous_7, self_0, ..., self_6]`.
+    #[inline(always)]
+    fn shift_back(self, previous: F64x8) -> F64x8 {
+        unsafe {
+            F64x8(_mm512_castsi512_pd(_mm512_alignr_epi64::<7>(
+                _mm512_castpd_si512(self.0),
+                _mm512_castpd_si512(previous.0),
+            )))
+        }
+    }
+    #[inline(always)]
+    fn masked(self, count: usize) -> F64x8 {
+        F64x8(unsafe { _mm512_maskz_mov_pd(((1u32 << count) - 1) as u8, self.0) })
     }
     #[inline(always)]
     fn xor_bits(self, bits: i64) -> F64x8 {
@@ -294,5 +416,17 @@ impl Trig for F64x8 {
                 _mm512_castsi512_pd(_mm512_and_si512(_mm512_castpd_si512(x.0), _mm512_set1_epi64(i64::MAX)));
             _mm512_cmp_pd_mask::<_CMP_NLE_UQ>(abs, _mm512_set1_pd(trig::LIMIT)) != 0
         }
+    }
+    #[inline(always)]
+    fn unusual(x: F64x8, hi: F64x8) -> bool {
+        unsafe {
+            let outside = _mm512_cmp_pd_mask::<_CMP_NLE_UQ>(_mm512_abs_pd(x.0), _mm512_set1_pd(trig::LIMIT));
+            let tiny = _mm512_cmp_pd_mask::<_CMP_LT_OQ>(_mm512_abs_pd(hi.0), _mm512_set1_pd(trig::TINY));
+            (outside | tiny) != 0
+        }
+    }
+    #[inline(always)]
+    fn careful(x: F64x8) -> (F64x8, F64x8) {
+        unsafe { careful_avx512(x) }
     }
 }

@@ -240,8 +240,12 @@ pub fn newton<M: ChainModel + ?Sized>(
     let mut g = vec![0.0; n];
     let mut trial = vec![0.0; n];
     let mut g_trial = vec![0.0; n];
-    model.gradient_into(&theta, &mut g);
-    let (diag, off) = stiffness(model, &theta);
+    // Gradient and tangent stiffness in one pass ([`ChainModel::energy_gradient_stiffness_into`]),
+    // at the start and at every trial point: the stiffness of an accepted trial is the next
+    // iteration's (most steps are accepted at once).
+    let (mut diag, mut off) = (vec![0.0; n], vec![0.0; n.saturating_sub(1)]);
+    let (mut d_trial, mut o_trial) = (diag.clone(), off.clone());
+    model.energy_gradient_stiffness_into(&theta, &mut g, &mut diag, &mut off);
     // Finite angles can still give non-finite forces (a model whose parameters are not finite,
     // a spring of zero length): an error, not a NaN residual.
     validate::finite("the model's gradient at theta", &g)?;
@@ -263,7 +267,6 @@ pub fn newton<M: ChainModel + ?Sized>(
             });
         }
         iterations += 1;
-        let (diag, off) = stiffness(model, &theta);
         let (rd, ro) = restricted(&diag, &off, options.hold_ends);
         // The held set only grows (a borderline eigenvalue must not flip in and out), and the
         // residual is re-measured in the new basis so the line search compares like with like.
@@ -290,11 +293,13 @@ pub fn newton<M: ChainModel + ?Sized>(
             for (t, d) in trial[range.clone()].iter_mut().zip(&delta) {
                 *t += alpha * d;
             }
-            model.gradient_into(&trial, &mut g_trial);
+            model.energy_gradient_stiffness_into(&trial, &mut g_trial, &mut d_trial, &mut o_trial);
             let r = projected_residual(&g_trial[range.clone()], &held, scale);
             if r < residual || alpha < 1e-6 {
                 core::mem::swap(&mut theta, &mut trial);
                 core::mem::swap(&mut g, &mut g_trial);
+                core::mem::swap(&mut diag, &mut d_trial);
+                core::mem::swap(&mut off, &mut o_trial);
                 residual = r;
                 break;
             }

@@ -1,7 +1,7 @@
 //! `paper`: reproduce every numerical figure of the paper in one command.
 //!
 //! ```text
-//! paper [--out DIR] [--quick] [--only LABEL,...] [--list]
+//! paper [--out DIR] [--quick | --resolution] [--only LABEL,...] [--list]
 //! ```
 //!
 //! Computes the figures of `chain_paper::figures::all()` in parallel, and writes into `DIR`
@@ -60,6 +60,10 @@ struct Cli {
     /// Print the label of every figure, one per line, and exit
     #[arg(long)]
     list: bool,
+    /// Instead of the paper's figures: the antikink phase diagram at 400 x 400, the alternating
+    /// window near k_i/k = 0.75, v0 = 3.6 and the whole plane (minutes; never in --quick)
+    #[arg(long, conflicts_with = "quick")]
+    resolution: bool,
     /// FOR TESTING ONLY: synthetic figures instead of the paper's (`fig:demo-fails` fails)
     #[arg(long, hide = true)]
     demo: bool,
@@ -123,7 +127,13 @@ fn main() -> ExitCode {
 
 fn run() -> ExitCode {
     let cli = Cli::parse();
-    let all = if cli.demo { demo::figures() } else { figures::all() };
+    let all = if cli.demo {
+        demo::figures()
+    } else if cli.resolution {
+        figures::resolution::figures()
+    } else {
+        figures::all()
+    };
     if cli.list {
         for (label, _) in &all {
             println!("{label}");

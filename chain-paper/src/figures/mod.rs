@@ -12,6 +12,7 @@ use crate::drawing::DrawingError;
 use crate::model::{Figure, Quality};
 
 pub mod dynamics;
+pub mod resolution;
 pub mod statics_a;
 pub mod statics_b;
 

@@ -371,7 +371,18 @@ impl Monitor {
         state: &State,
         observer: &mut dyn FnMut(&State) -> Flow,
     ) -> Result<bool, IntegrateError> {
-        let e = total_energy(model, state);
+        self.output_with(model, state, model.energy(&state.theta), observer)
+    }
+
+    /// [`Monitor::output`] with the potential energy of `state` already known.
+    fn output_with<M: ChainModel + ?Sized>(
+        &mut self,
+        model: &M,
+        state: &State,
+        potential: f64,
+        observer: &mut dyn FnMut(&State) -> Flow,
+    ) -> Result<bool, IntegrateError> {
+        let e = kinetic_energy(model, &state.omega) + potential;
         if !e.is_finite() {
             return Err(IntegrateError::NotFinite { what: "energy", time: state.time, index: 0, value: e });
         }

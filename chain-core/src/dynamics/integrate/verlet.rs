@@ -18,7 +18,8 @@
 //! `dt`.
 //!
 //! The gradient at the end of a step is the one the next step starts with, so a step costs one
-//! gradient evaluation and two O(n) sweeps. Stability needs `omega_max dt < 2` for the fastest
+//! evaluation of the energy and gradient together ([`ChainModel::energy_and_gradient_into`]: one
+//! pass, each angle's `sin_cos` once; the outputs' energies come with it) and two O(n) sweeps. Stability needs `omega_max dt < 2` for the fastest
 //! mode; [`VerletOptions::stable_for`] picks `dt` from a bound on `omega_max`.
 
 use alloc::vec;
@@ -141,6 +142,8 @@ pub struct Stepper<'a, M: ?Sized> {
     decay: Vec<f64>,
     /// `dV/dtheta` at the current angles.
     gradient: Vec<f64>,
+    /// `V` at the current angles (from the same fused evaluation as the gradient).
+    potential: f64,
 }
 
 impl<'a, M: ChainModel + ?Sized> Stepper<'a, M> {
@@ -165,9 +168,9 @@ impl<'a, M: ChainModel + ?Sized> Stepper<'a, M> {
         let half_kick = inverse.iter().map(|x| 0.5 * dt * x).collect();
         let decay = rates.iter().map(|g| crate::math::exp(-0.5 * g * dt)).collect();
         let mut gradient = vec![0.0; n];
-        model.gradient_into(&state.theta, &mut gradient);
+        let potential = model.energy_and_gradient_into(&state.theta, &mut gradient);
         not_finite("gradient", state.time, &gradient)?;
-        Ok(Self { model, state, dt, half_kick, decay, gradient })
+        Ok(Self { model, state, dt, half_kick, decay, gradient, potential })
     }
 
     /// Holds rotor `i` still: its velocity becomes 0 and no force moves it (a Dirichlet end).
@@ -184,6 +187,12 @@ impl<'a, M: ChainModel + ?Sized> Stepper<'a, M> {
     /// `dV/dtheta` at the current angles.
     pub fn gradient(&self) -> &[f64] {
         &self.gradient
+    }
+
+    /// The potential energy `V` at the current angles, evaluated with the gradient in one pass
+    /// ([`ChainModel::energy_and_gradient_into`]).
+    pub fn potential(&self) -> f64 {
+        self.potential
     }
 
     /// One step of `dt`, after which the state's time is `time` (the caller counts steps, so
@@ -203,7 +212,7 @@ impl<'a, M: ChainModel + ?Sized> Stepper<'a, M> {
             *w = *w * d - c * g;
             *t += dt * *w;
         }
-        self.model.gradient_into(theta, &mut self.gradient);
+        self.potential = self.model.energy_and_gradient_into(theta, &mut self.gradient);
         let mut finite = true;
         for ((w, (g, c)), d) in
             omega.iter_mut().zip(self.gradient.iter().zip(&self.half_kick)).zip(&self.decay)
@@ -272,7 +281,7 @@ pub fn verlet<M: ChainModel + ?Sized>(
         stepper.step(time)?;
         monitor.report.steps = step as usize;
         if (step % output_every as u64 == 0 || step == steps)
-            && monitor.output(model, stepper.state(), observer)?
+            && monitor.output_with(model, stepper.state(), stepper.potential(), observer)?
         {
             break;
         }

@@ -1,0 +1,168 @@
+//! Beyond the paper (issue 9): the antikink's scattering phase diagram at high resolution, of the
+//! alternating transmitted / trapped window near `k_i/k = 0.75`, `v0 = 3.6` that the paper's
+//! Sec. VI leaves "for future studies", and of the whole plane of Fig. `fig:phasediagram`.
+//!
+//! Run only with `paper --resolution` (never in the default or `--quick` runs): 2 x 400 x 400
+//! scattering runs, each chain-sweep's [`PhaseDiagram::compute_point`] (the same point as the
+//! `phase-diagram` tool and `fig:phasediagram`: the scattering issue's clean launch and lasting
+//! outcomes, the energy budget with its DOP853 recomputation).
+
+use chain_sweep::scattering::{Defect, PhaseDiagram};
+use chain_sweep::{Axis, Grid, compute_grid};
+use rotor_chain::dynamics::scatter::Outcome;
+
+use super::{Cause, FigureError, FigureFn, Params};
+use crate::model::{Chart, Figure, Heatmap, Quality, Row};
+
+/// This module's figures (`paper --resolution`).
+pub fn figures() -> Vec<(&'static str, FigureFn)> {
+    vec![(LABEL, phasediagram_resolution)]
+}
+
+const LABEL: &str = "fig:phasediagram-resolution";
+/// The equilibrium angle of the paper's scattering runs (Sec. VI).
+const THETA_BAR: f64 = 0.28;
+/// The label of a point that failed (energy budget, unreadable walls): shown, never hidden.
+const FAILED: &str = "failed";
+
+/// The antikink's outcome at every point of `grid` (x: `k_i/k`, y: `v0`): `labels[j][i]`.
+fn antikink_diagram(params: &Params, grid: &Grid) -> Result<Vec<Vec<Option<Outcome>>>, Cause> {
+    let mut d = PhaseDiagram::new(params.n, params.r, params.k, THETA_BAR, Defect::Antikink)?;
+    d.mass = params.mass;
+    d.check()?;
+    let points = compute_grid(grid, |ki, v0| d.compute_point(ki, v0), None)?;
+    let mut labels = vec![vec![None; grid.xs().len()]; grid.ys().len()];
+    for p in points {
+        labels[p.index.1][p.index.0] = p.outcome.ok().map(|r| r.outcome);
+    }
+    Ok(labels)
+}
+
+fn category(outcome: Option<Outcome>) -> f64 {
+    match outcome {
+        Some(o) => Outcome::ALL.iter().position(|&x| x == o).unwrap_or(0) as f64,
+        None => Outcome::ALL.len() as f64,
+    }
+}
+
+/// `1023 reflected, 384 trapped, ...`: every label that occurs, with its count.
+fn counts(labels: &[Vec<Option<Outcome>>]) -> String {
+    let count = |which: Option<Outcome>| labels.iter().flatten().filter(|&&o| o == which).count();
+    Outcome::ALL
+        .iter()
+        .map(|&o| (count(Some(o)), o.name()))
+        .chain([(count(None), FAILED)])
+        .filter(|(c, _)| *c > 0)
+        .map(|(c, name)| format!("{c} {name}"))
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+/// Along each `v0` column at the `k_i/k` nearest `ki`: how many times the outcome changes
+/// between transmitted and trapped as `v0` rises (the alternation the paper reports).
+fn alternations(labels: &[Vec<Option<Outcome>>], xs: &[f64], ki: f64) -> (f64, usize) {
+    let i = (0..xs.len()).min_by(|&a, &b| (xs[a] - ki).abs().total_cmp(&(xs[b] - ki).abs())).unwrap_or(0);
+    let column: Vec<Outcome> = labels
+        .iter()
+        .filter_map(|row| row[i])
+        .filter(|o| matches!(o, Outcome::Transmitted | Outcome::Trapped))
+        .collect();
+    (xs.get(i).copied().unwrap_or(f64::NAN), column.windows(2).filter(|w| w[0] != w[1]).count())
+}
+
+/// The antikink's phase diagram, 400 x 400 (quick: 8 x 8), of the alternating window
+/// (`k_i/k` 0.6 .. 0.9, `v0` 2.5 .. 5) and of the whole plane (`k_i/k` 0.01 .. 3 log-spaced,
+/// `v0` 0.5 .. 12), `theta_bar = 0.28` (paper Sec. VI, Fig. `fig:phasediagram`).
+pub fn phasediagram_resolution(params: &Params, quality: Quality) -> Result<Figure, FigureError> {
+    let size = quality.pick(400, 8);
+    let on = FigureError::on(LABEL);
+    let window =
+        Grid::new(Axis::linspace(0.6, 0.9, size).map_err(&on)?, Axis::linspace(2.5, 5.0, size).map_err(&on)?)
+            .map_err(&on)?;
+    let plane = Grid::new(
+        Axis::geomspace(0.01, 3.0, size).map_err(&on)?,
+        Axis::linspace(0.5, 12.0, size).map_err(&on)?,
+    )
+    .map_err(&on)?;
+    let mut categories: Vec<String> = Outcome::ALL.iter().map(|o| o.name().to_owned()).collect();
+    categories.push(FAILED.to_owned());
+    let fail = FigureError::on(LABEL);
+    let window_labels = antikink_diagram(params, &window).map_err(&fail)?;
+    let plane_labels = antikink_diagram(params, &plane).map_err(&fail)?;
+    let heat = |title: String, x_label: &str, x: Vec<f64>, grid: &Grid, labels: &[Vec<Option<Outcome>>]| {
+        Chart::Heat(Heatmap {
+            title,
+            x_label: x_label.to_owned(),
+            y_label: "v0 (a/t)".to_owned(),
+            x,
+            y: grid.ys().to_vec(),
+            values: labels.iter().map(|row| row.iter().map(|&o| category(o)).collect()).collect(),
+            categories: categories.clone(),
+            value_label: "outcome".to_owned(),
+        })
+    };
+    let panels = vec![
+        heat(
+            format!("antikink, θ̄ = {THETA_BAR}: window k_i/k 0.6-0.9, v0 2.5-5 ({size} x {size})"),
+            "k_i / k",
+            window.xs().to_vec(),
+            &window,
+            &window_labels,
+        ),
+        heat(
+            format!("antikink, θ̄ = {THETA_BAR}: whole plane ({size} x {size})"),
+            "log₁₀(k_i / k)",
+            plane.xs().iter().map(|x| x.log10()).collect(),
+            &plane,
+            &plane_labels,
+        ),
+    ];
+    let (ki, changes) = alternations(&window_labels, window.xs(), 0.75);
+    let rows = vec![
+        Row::words(
+            format!("antikink window near k_i/k = 0.75, v0 = 3.6 ({size} x {size})"),
+            "alternating transmitted / trapped regimes (left for future studies)",
+            &counts(&window_labels),
+            format!(
+                "k_i/k 0.6..0.9, v0 2.5..5; transmitted <-> trapped changes along v0 at k_i/k = {ki:.3}: {changes}"
+            ),
+        ),
+        Row::words(
+            format!("antikink phase diagram, whole plane ({size} x {size})"),
+            "reflected (soft), trapped, transmitted, reflected (stiff)",
+            &counts(&plane_labels),
+            "k_i/k 0.01..3 log-spaced, v0 0.5..12; free ends".to_owned(),
+        ),
+    ];
+    Ok(Figure {
+        label: LABEL,
+        caption: format!(
+            "Antikink scattering phase diagram at {size} x {size}: the alternating window near k_i/k = 0.75, v0 = 3.6, \
+             and the whole plane; θ̄ = {THETA_BAR}, n = {}, r/a = {}, k = {}, free ends",
+            params.n, params.r, params.k
+        ),
+        panels,
+        rows,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The quick figure: two 8 x 8 panels; at the window's soft edge (k_i/k = 0.6) every antikink
+    /// is trapped and at its stiff edge (0.9) every one is transmitted, the two regimes the
+    /// paper's alternation lies between (Sec. VI).
+    #[test]
+    fn the_window_lies_between_trapping_and_transmission() {
+        let figure = phasediagram_resolution(&Params::default(), Quality::Quick).unwrap();
+        assert_eq!((figure.label, figure.panels.len(), figure.rows.len()), (LABEL, 2, 2));
+        let Chart::Heat(window) = &figure.panels[0] else { panic!("the window is a heat map") };
+        assert_eq!((window.x.len(), window.y.len(), window.values.len()), (8, 8, 8));
+        let (trapped, transmitted) = (category(Some(Outcome::Trapped)), category(Some(Outcome::Transmitted)));
+        for row in &window.values {
+            assert_eq!(row[0], trapped, "k_i/k = 0.6: {row:?}");
+            assert_eq!(row[7], transmitted, "k_i/k = 0.9: {row:?}");
+        }
+    }
+}
