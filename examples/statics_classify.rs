@@ -21,7 +21,7 @@ const ZERO: f64 = 1e-10; // eigenvalues within ZERO * ||K|| of zero count as zer
 fn row(what: &str, theta: &[f64], hold_ends: bool) -> Result<(), Box<dyn std::error::Error>> {
     let (diag, off) = stiffness(&Chain, theta);
     let (diag, off) = restricted(&diag, &off, hold_ends);
-    let c = classify(&diag, &off, ZERO);
+    let c = classify(&diag, &off, ZERO)?;
     let lowest = eigenvalues_in_index_range(&diag, &off, 0, 3)?;
     println!(
         "{what:>22} | {:>5} | {:>5} | {:>7} | {:>32} | {:>10.2e} | {:>+10.3e} {:>+10.3e} {:>+10.3e}",

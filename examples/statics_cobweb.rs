@@ -45,7 +45,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     // The kink centred on spring 29 (between rotors 29 and 30): its staircase near the centre,
     // paper Fig. fig:kcobweb(b) shows the same steps from theta_7 to theta_10 of its chain.
     let theta = kink(&chain, 29.5)?;
-    let web = cobweb(&chain, 29, &theta, 0.7, 141);
+    let web = cobweb(&chain, 29, &theta, 0.7, 141)?;
     println!(
         "\nCobweb of the kink centred at 29.5: {} samples of the flipper branch, {} of the other branch, \
          {} staircase points",

@@ -32,7 +32,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     println!(
         "l_critical = sqrt((2 r sin theta_bar + a)^2 + (2 r cos theta_bar)^2) = {l_critical:.12} a; \
          critical_length(spring 29) = {:.12} a; paper 2.31",
-        critical_length(&chain(60, 2.0)?, 29)
+        critical_length(&chain(60, 2.0)?, 29)?
     );
     println!("frequencies in 1/t and in the paper's unit (r/a) sqrt(k/M) = 80 / t\n");
     println!(

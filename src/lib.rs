@@ -56,6 +56,13 @@ pub mod __private {
     pub use chain_core::{Bidiagonal, ChainModel, ParameterError, Tridiagonal, geometry, kernel, math};
     pub use nalgebra::SMatrix;
 
+    /// The body of every stub the macro emits beside its compile errors (so that calls on an
+    /// invalid chain add no "no method named `energy`" errors). Those stubs exist only in a crate
+    /// that fails to compile, so this is never called.
+    pub fn invalid_chain<T>() -> T {
+        panic!("#[rotor_chain] stub called: the chain's declaration has compile errors")
+    }
+
     /// `theta` as a fixed-size array, for the slice-based [`ChainModel`] methods.
     ///
     /// # Panics

@@ -196,7 +196,7 @@ fn maxwell_calladine_index_is_one_everywhere_and_l_critical_has_a_self_stress() 
     // Spring-length impurity at l_critical (paper Sec. VII-A): closed form sqrt((2 r sin + a)^2 + (2 r cos)^2).
     let (s, c) = 0.58f64.sin_cos();
     let l_critical = ((2.0 * 0.8 * s + 1.0).powi(2) + (2.0 * 0.8 * c).powi(2)).sqrt();
-    assert!((critical_length(&model, 29) - l_critical).abs() < 1e-12);
+    assert!((critical_length(&model, 29).unwrap() - l_critical).abs() < 1e-12);
     assert!((l_critical - 2.31).abs() < 0.01, "paper: l_critical / a = 2.31");
     let at_critical =
         RuntimeChain::builder(60, 0.8, K, 0.58).spring(29, None, Some(l_critical)).build().unwrap();

@@ -51,7 +51,7 @@ fn cobweb_fixed_points_match_the_closed_form() {
     assert_eq!(minus.stability, Stability::Attracting);
     assert!((plus.decay_length - 1.0 / exact.ln()).abs() < 1e-9);
     let theta = kink(&Paper, 30.0).unwrap();
-    let web = cobweb::cobweb(&Paper, 10, &theta, 0.7, 101);
+    let web = cobweb::cobweb(&Paper, 10, &theta, 0.7, 101).unwrap();
     assert_eq!(web.springs.len(), 59);
     assert_eq!(web.staircase.len(), 2 * 59 + 1);
     assert!(!web.flipper_branch.is_empty());

@@ -4,6 +4,7 @@
 //! emits for large chains, driven over the springs in vector lanes at the level [`crate::simd`]
 //! detects at run time, each angle's `sin_cos` computed once.
 
+use alloc::collections::BTreeSet;
 use alloc::vec::Vec;
 
 use chain_geometry::{IndexKind, Key, ParameterError};
@@ -57,6 +58,7 @@ pub struct ChainBuilder {
 
 impl RuntimeChain {
     /// A chain of `n` rotors of length `r`, springs of stiffness `k`, uniform angle `theta_bar`.
+    /// Nothing is checked or allocated until [`ChainBuilder::build`].
     pub fn builder(n: usize, r: f64, k: f64, theta_bar: f64) -> ChainBuilder {
         ChainBuilder {
             n,
@@ -195,18 +197,28 @@ impl ChainBuilder {
         self.law = law;
         self
     }
-    /// Override spring `p`'s stiffness and/or rest length (`None` keeps the chain's value).
+    /// Override spring `p`'s stiffness and/or rest length (`None` keeps the chain's value). At
+    /// least one must be given, and each spring may be overridden once ([`ChainBuilder::build`]).
     pub fn spring(mut self, p: usize, k: Option<f64>, l0: Option<f64>) -> Self {
         self.springs.push((p, k, l0));
         self
     }
-    /// Override rotor `i`'s length.
+    /// Override rotor `i`'s length (once per rotor).
     pub fn rotor(mut self, i: usize, r: f64) -> Self {
         self.rotors.push((i, r));
         self
     }
 
-    /// Checks every parameter with the same rules as the macro's compile-time checks.
+    /// Checks every parameter with the same rules as the macro's compile-time checks
+    /// (`chain_geometry`), and allocates the chain.
+    ///
+    /// # Errors
+    /// A [`ParameterError`] carrying the offending value: fewer than 2 or more than
+    /// [`chain_geometry::MAX_ROTORS`] rotors, a parameter that is not finite and positive,
+    /// `theta_bar` outside the flipper phase, an override of a spring or rotor that does not
+    /// exist, that gives no value, or that repeats an earlier override of the same index
+    /// (the macro rejects the same), or memory for the chain's parameters that cannot be
+    /// allocated (never an abort).
     pub fn build(self) -> Result<RuntimeChain, ParameterError> {
         use chain_geometry as geo;
         let n = geo::check_rotor_count(self.n)?;
@@ -224,22 +236,45 @@ impl ChainBuilder {
                 (geo::check_flipper_phase(a, r, t)?, l)
             }
         };
-        let mut rotor_lengths = alloc::vec![r; n];
-        for (i, ri) in self.rotors {
-            geo::check_index(IndexKind::Rotor, i, n)?;
-            rotor_lengths[i] = geo::check_positive(Key::RotorLength, ri)?;
+        let mut seen = BTreeSet::new();
+        for &(i, ri) in &self.rotors {
+            geo::check_override(IndexKind::Rotor, i, n, true, !seen.insert(i))?;
+            geo::check_positive(Key::RotorLength, ri)?;
         }
-        let mut stiffness = alloc::vec![k; n - 1];
-        let mut rest_lengths = alloc::vec![lbar; n - 1];
-        for (p, kp, lp) in self.springs {
-            geo::check_index(IndexKind::Spring, p, n - 1)?;
+        seen.clear();
+        for &(p, kp, lp) in &self.springs {
+            geo::check_override(IndexKind::Spring, p, n - 1, kp.is_some() || lp.is_some(), !seen.insert(p))?;
             if let Some(kp) = kp {
-                stiffness[p] = geo::check_positive(Key::Stiffness, kp)?;
+                geo::check_positive(Key::Stiffness, kp)?;
             }
             if let Some(lp) = lp {
-                rest_lengths[p] = geo::check_positive(Key::RestLength, lp)?;
+                geo::check_positive(Key::RestLength, lp)?;
+            }
+        }
+        let mut rotor_lengths = filled(n, r, n)?;
+        let mut stiffness = filled(n - 1, k, n)?;
+        let mut rest_lengths = filled(n - 1, lbar, n)?;
+        for (i, ri) in self.rotors {
+            rotor_lengths[i] = ri;
+        }
+        for (p, kp, lp) in self.springs {
+            if let Some(kp) = kp {
+                stiffness[p] = kp;
+            }
+            if let Some(lp) = lp {
+                rest_lengths[p] = lp;
             }
         }
         Ok(RuntimeChain { a, mass, theta_bar, law: self.law, rotor_lengths, stiffness, rest_lengths })
     }
+}
+
+/// `len` copies of `value`, or the error of a chain of `n` rotors whose parameters (three vectors)
+/// cannot be allocated.
+fn filled(len: usize, value: f64, n: usize) -> Result<Vec<f64>, ParameterError> {
+    let mut v = Vec::new();
+    v.try_reserve_exact(len)
+        .map_err(|_| ParameterError::AllocationFailed { n, bytes: 3 * n * core::mem::size_of::<f64>() })?;
+    v.resize(len, value);
+    Ok(v)
 }

@@ -34,7 +34,28 @@ pub enum ParameterError {
     /// A spring or rotor index past the end of the chain.
     #[error("{kind} index {index} is out of range: the chain has {count} {kind}s, numbered 0 to {}", count.saturating_sub(1))]
     IndexOutOfRange { kind: IndexKind, index: usize, count: usize },
+    /// More rotors than [`MAX_ROTORS`].
+    #[error("`n` = {n} is more rotors than a chain may have: at most {max}")]
+    TooManyRotors { n: usize, max: usize },
+    /// An override that gives no value.
+    #[error("the override of {kind} {index} changes nothing: give {}", match kind {
+        IndexKind::Spring => "a stiffness `k` and/or a rest length `l0`",
+        IndexKind::Rotor => "a length `r`",
+    })]
+    EmptyOverride { kind: IndexKind, index: usize },
+    /// Two overrides of the same spring or rotor.
+    #[error("{kind} {index} is overridden twice: give all of its values in one override")]
+    OverriddenTwice { kind: IndexKind, index: usize },
+    /// The memory for a chain of `n` rotors could not be allocated.
+    #[error("a chain of {n} rotors needs {bytes} bytes for its parameters, which could not be allocated")]
+    AllocationFailed { n: usize, bytes: usize },
 }
+
+/// The most rotors a chain may have, generated or built at run time. A chain that long already
+/// needs 800 MB per vector of angles; the limit keeps every size computation (`n` rotors, `n - 1`
+/// springs, their bytes) far from overflow and turns an absurd `n` into an error instead of an
+/// allocation failure.
+pub const MAX_ROTORS: usize = 100_000_000;
 
 /// The message of [`ParameterError::OutsideFlipperPhase`], naming the bound that is broken
 /// (written through `Display`, so the crate needs no allocation).
@@ -107,14 +128,42 @@ pub fn check_positive(key: Key, value: f64) -> Result<f64, ParameterError> {
     if value.is_finite() && value > 0.0 { Ok(value) } else { Err(ParameterError::NotPositive { key, value }) }
 }
 
-/// A chain needs at least two rotors.
+/// A chain needs at least two rotors, and at most [`MAX_ROTORS`].
 pub fn check_rotor_count(n: usize) -> Result<usize, ParameterError> {
-    if n >= 2 { Ok(n) } else { Err(ParameterError::TooFewRotors { n }) }
+    if n < 2 {
+        Err(ParameterError::TooFewRotors { n })
+    } else if n > MAX_ROTORS {
+        Err(ParameterError::TooManyRotors { n, max: MAX_ROTORS })
+    } else {
+        Ok(n)
+    }
 }
 
 /// `index` must address one of `count` springs or rotors.
 pub fn check_index(kind: IndexKind, index: usize, count: usize) -> Result<usize, ParameterError> {
     if index < count { Ok(index) } else { Err(ParameterError::IndexOutOfRange { kind, index, count }) }
+}
+
+/// The rules of an override of spring or rotor `index` in a chain with `count` of them: the index
+/// exists, the override gives at least one value (`gives_a_value`), and it is the first override
+/// of that index (`overridden_before` says whether an earlier one exists). The macro applies them
+/// to `spring(..)` / `rotor(..)` entries and `RuntimeChain`'s builder to its `spring` / `rotor`
+/// calls, so both accept and reject the same overrides.
+pub fn check_override(
+    kind: IndexKind,
+    index: usize,
+    count: usize,
+    gives_a_value: bool,
+    overridden_before: bool,
+) -> Result<usize, ParameterError> {
+    check_index(kind, index, count)?;
+    if !gives_a_value {
+        return Err(ParameterError::EmptyOverride { kind, index });
+    }
+    if overridden_before {
+        return Err(ParameterError::OverriddenTwice { kind, index });
+    }
+    Ok(index)
 }
 
 /// The end of the flipper phase: `theta_bar = asin(a / 2r)` if `2r > a`, else `pi/2`.
@@ -203,7 +252,30 @@ mod tests {
         assert!(check_positive(Key::Stiffness, 0.0).is_err());
         assert!(check_positive(Key::Stiffness, f64::NAN).is_err());
         assert!(check_rotor_count(1).is_err());
+        assert_eq!(check_rotor_count(MAX_ROTORS), Ok(MAX_ROTORS));
+        assert_eq!(
+            check_rotor_count(usize::MAX),
+            Err(ParameterError::TooManyRotors { n: usize::MAX, max: MAX_ROTORS })
+        );
         assert!(check_index(IndexKind::Spring, 59, 59).is_err());
         assert!(theta_bar_from_rest_length(1.0, 0.8, 0.9).is_err());
+    }
+
+    #[test]
+    fn an_override_names_a_spring_gives_a_value_and_comes_once() {
+        use IndexKind::{Rotor, Spring};
+        assert_eq!(check_override(Spring, 3, 9, true, false), Ok(3));
+        assert!(matches!(
+            check_override(Spring, 9, 9, true, false),
+            Err(ParameterError::IndexOutOfRange { .. })
+        ));
+        assert_eq!(
+            check_override(Spring, 3, 9, false, false),
+            Err(ParameterError::EmptyOverride { kind: Spring, index: 3 })
+        );
+        assert_eq!(
+            check_override(Rotor, 2, 9, true, true),
+            Err(ParameterError::OverriddenTwice { kind: Rotor, index: 2 })
+        );
     }
 }

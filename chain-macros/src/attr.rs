@@ -1,12 +1,17 @@
 //! Phase 1: parse the attribute into a typed [`Spec`] that keeps the span of every key and value.
+//!
+//! The attribute is split at its top-level commas and every item is read from its own tokens, so
+//! a malformed item is one error and the other items still count (no "missing key" for keys the
+//! user gave). Values are read token by token, never handed whole to a recursive parser: a law is
+//! parsed iteratively by [`crate::law`], a parameter value is a literal, a negated literal or an
+//! identifier. Keys and field names are compared without their raw prefix (`r#k` is `k`).
 
 use std::collections::BTreeSet;
 
-use proc_macro2::TokenStream;
+use proc_macro2::{Delimiter, Span, TokenStream, TokenTree};
 use quote::ToTokens;
-use syn::parse::{ParseStream, Parser};
-use syn::punctuated::Punctuated;
-use syn::{Expr, Ident, Lit, Meta, Token, UnOp};
+use syn::Ident;
+use syn::ext::IdentExt;
 
 use crate::ctxt::Ctxt;
 
@@ -47,6 +52,8 @@ pub struct SpringOverride {
     pub index: Keyed<usize>,
     pub k: Option<Keyed<Value>>,
     pub l0: Option<Keyed<Value>>,
+    /// An argument of the override failed to parse (its error explains the override).
+    pub inner_error: bool,
 }
 
 /// `rotor(i, r = ..)`.
@@ -54,6 +61,8 @@ pub struct SpringOverride {
 pub struct RotorOverride {
     pub index: Keyed<usize>,
     pub r: Option<Keyed<Value>>,
+    /// An argument of the override failed to parse (its error explains the override).
+    pub inner_error: bool,
 }
 
 /// The parsed attribute.
@@ -67,7 +76,8 @@ pub struct Spec {
     pub k: Option<Keyed<Value>>,
     pub mass: Option<Keyed<Value>>,
     pub unroll: Option<Keyed<usize>>,
-    pub law: Option<Keyed<Expr>>,
+    /// The law's tokens, parsed by [`crate::law::parse`] in validation.
+    pub law: Option<Keyed<TokenStream>>,
     pub springs: Vec<SpringOverride>,
     pub rotors: Vec<RotorOverride>,
     /// Tokens of the whole attribute, for errors about missing keys (empty for a bare
@@ -90,8 +100,8 @@ pub fn suggest<'a>(unknown: &str, known: &[&'a str]) -> Option<&'a str> {
 
 /// Reports an unknown key; returns the suggested key, if any.
 fn unknown_key<'a>(cx: &Ctxt, ident: &Ident, known: &[&'a str], context: &str) -> Option<&'a str> {
-    let name = ident.to_string();
-    let list = known.iter().map(|k| format!("`{k}`")).collect::<Vec<_>>().join(", ");
+    let name = ident.unraw().to_string();
+    let list = quoted(known);
     let suggestion = suggest(&name, known);
     match suggestion {
         Some(s) => cx.error_spanned_by(ident, format!("unknown key `{name}`{context}; did you mean `{s}`?")),
@@ -103,66 +113,106 @@ fn unknown_key<'a>(cx: &Ctxt, ident: &Ident, known: &[&'a str], context: &str) -
 /// Sets `slot` unless it is already set, in which case reports a duplicate.
 fn set_once<T>(cx: &Ctxt, slot: &mut Option<Keyed<T>>, keyed: Keyed<T>, context: &str) {
     if slot.is_some() {
-        cx.error_spanned_by(&keyed.key, format!("duplicate key `{}`{context}", keyed.key));
+        cx.error_spanned_by(&keyed.key, format!("duplicate key `{}`{context}", keyed.key.unraw()));
     } else {
         *slot = Some(keyed);
     }
 }
 
-/// A float literal (integers accepted), a negated one, or an identifier naming a field.
-fn parse_value(cx: &Ctxt, expr: &Expr) -> Option<Value> {
-    let literal = |lit: &Lit, negate: bool| -> Option<f64> {
-        let v = match lit {
-            Lit::Float(f) => f.base10_parse::<f64>().ok()?,
-            Lit::Int(i) => i.base10_parse::<f64>().ok()?,
-            _ => return None,
-        };
-        Some(if negate { -v } else { v })
-    };
-    let parsed = match expr {
-        Expr::Lit(l) => literal(&l.lit, false).map(|value| Value::Literal { value }),
-        Expr::Unary(u) if matches!(u.op, UnOp::Neg(_)) => match &*u.expr {
-            Expr::Lit(l) => literal(&l.lit, true).map(|value| Value::Literal { value }),
-            _ => None,
-        },
-        Expr::Path(p) if p.qself.is_none() => p.path.get_ident().cloned().map(Value::Field),
-        _ => None,
-    };
-    if parsed.is_none() {
-        cx.error_spanned_by(
-            expr,
-            "expected a float literal (e.g. `0.8`) or the name of an `f64` field of the struct",
-        );
+/// The items of an attribute or of an override's arguments: the tokens between top-level commas
+/// (empty items, as after a trailing comma, are dropped).
+fn split_commas(tokens: TokenStream) -> Vec<Vec<TokenTree>> {
+    let mut items = vec![Vec::new()];
+    for tt in tokens {
+        match &tt {
+            TokenTree::Punct(p) if p.as_char() == ',' => items.push(Vec::new()),
+            _ => items.last_mut().map_or((), |item| item.push(tt)),
+        }
     }
-    parsed
+    items.retain(|item| !item.is_empty());
+    items
 }
 
-fn parse_usize(cx: &Ctxt, expr: &Expr, what: &str) -> Option<usize> {
-    if let Expr::Lit(l) = expr
-        && let Lit::Int(i) = &l.lit
+/// `tokens` without the invisible groups a `macro_rules!` expansion wraps around a fragment.
+fn unwrap_invisible(mut tokens: Vec<TokenTree>) -> Vec<TokenTree> {
+    while let [TokenTree::Group(g)] = tokens.as_slice() {
+        if g.delimiter() != Delimiter::None {
+            break;
+        }
+        tokens = g.stream().into_iter().collect();
+    }
+    tokens
+}
+
+/// A float literal (integers accepted), a negated one, or an identifier naming a field.
+fn parse_value(cx: &Ctxt, tokens: &[TokenTree]) -> Option<Value> {
+    let tokens = unwrap_invisible(tokens.to_vec());
+    let literal = |lit: &proc_macro2::Literal, negate: bool| -> Option<Result<f64, &'static str>> {
+        let value = match syn::Lit::new(lit.clone()) {
+            syn::Lit::Float(f) => f.base10_parse::<f64>().ok()?,
+            syn::Lit::Int(i) => i.base10_parse::<f64>().ok()?,
+            _ => return None,
+        };
+        if !value.is_finite() {
+            return Some(Err("literal out of range for `f64`"));
+        }
+        Some(Ok(if negate { -value } else { value }))
+    };
+    let parsed = match tokens.as_slice() {
+        [TokenTree::Literal(lit)] => literal(lit, false),
+        [TokenTree::Punct(minus), TokenTree::Literal(lit)] if minus.as_char() == '-' => literal(lit, true),
+        // `syn::Ident`'s parser refuses keywords, which cannot name a field unless raw.
+        [TokenTree::Ident(ident)] => match syn::parse2::<Ident>(ident.to_token_stream()) {
+            Ok(ident) => return Some(Value::Field(ident)),
+            Err(_) => {
+                cx.error_spanned_by(
+                    ident,
+                    format!("`{ident}` is a keyword: a field of that name is written `r#{ident}`"),
+                );
+                return None;
+            }
+        },
+        _ => None,
+    };
+    let stream: TokenStream = tokens.iter().cloned().collect();
+    match parsed {
+        Some(Ok(value)) => Some(Value::Literal { value }),
+        Some(Err(message)) => {
+            cx.error_spanned_by(stream, message);
+            None
+        }
+        None => {
+            cx.error_spanned_by(
+                stream,
+                "expected a float literal (e.g. `0.8`) or the name of an `f64` field of the struct",
+            );
+            None
+        }
+    }
+}
+
+fn parse_usize(cx: &Ctxt, tokens: &[TokenTree], what: &str) -> Option<usize> {
+    let tokens = unwrap_invisible(tokens.to_vec());
+    if let [TokenTree::Literal(lit)] = tokens.as_slice()
+        && let syn::Lit::Int(i) = syn::Lit::new(lit.clone())
         && let Ok(v) = i.base10_parse::<usize>()
     {
         return Some(v);
     }
-    cx.error_spanned_by(expr, format!("{what} must be a non-negative integer literal"));
+    let stream: TokenStream = tokens.into_iter().collect();
+    cx.error_spanned_by(stream, format!("{what} must be a non-negative integer literal"));
     None
 }
 
-/// `p, key = value, ...` inside `spring(...)` or `rotor(...)`.
-fn parse_override_args(input: ParseStream) -> syn::Result<(Expr, Vec<(Ident, Expr)>)> {
-    let index: Expr = input.parse()?;
-    let mut pairs = Vec::new();
-    while !input.is_empty() {
-        input.parse::<Token![,]>()?;
-        if input.is_empty() {
-            break;
-        }
-        let key: Ident = input.parse()?;
-        input.parse::<Token![=]>()?;
-        let value: Expr = input.parse()?;
-        pairs.push((key, value));
-    }
-    Ok((index, pairs))
+/// Whether `tokens` starts with one of the punctuation characters `chars` (`==` and `=>` are
+/// not `=`).
+fn starts_with_punct(tokens: &[TokenTree], chars: &[char]) -> bool {
+    matches!(tokens.first(), Some(TokenTree::Punct(p)) if chars.contains(&p.as_char()))
+}
+
+/// The span of a token list (its first token), or `fallback` for an empty one.
+fn first_span(tokens: &[TokenTree], fallback: Span) -> Span {
+    tokens.first().map_or(fallback, TokenTree::span)
 }
 
 /// Parses the attribute tokens. Errors go to `cx`; whatever parsed is returned.
@@ -182,52 +232,85 @@ pub fn parse(cx: &Ctxt, attr: TokenStream) -> Spec {
         tokens: attr.clone(),
         seen: BTreeSet::new(),
     };
-    let items = match Punctuated::<Meta, Token![,]>::parse_terminated.parse2(attr) {
-        Ok(items) => items,
-        Err(err) => {
-            cx.syn_error(err);
-            return spec;
-        }
-    };
-    for item in items {
-        let Some(key) = item.path().get_ident().cloned() else {
-            cx.error_spanned_by(item.path(), "expected a key such as `n`, `r` or `spring(..)`");
-            continue;
+    for item in split_commas(attr) {
+        let key = match &item[0] {
+            TokenTree::Ident(ident) => ident.unraw(),
+            other => {
+                cx.error_at(other.span(), "expected a key such as `n`, `r` or `spring(..)`");
+                continue;
+            }
         };
         let name = key.to_string();
-        spec.seen.insert(name.clone());
-        match item {
-            Meta::NameValue(nv) => parse_name_value(cx, &mut spec, key, nv.value),
-            Meta::List(list) if name == "spring" || name == "rotor" => {
-                parse_override(cx, &mut spec, key, list.tokens)
-            }
-            Meta::List(_) | Meta::Path(_) if KEYS.contains(&name.as_str()) => {
-                cx.error_spanned_by(&key, format!("`{name}` needs a value: `{name} = ..`"))
-            }
-            Meta::List(_) | Meta::Path(_) => {
-                if let Some(s) = unknown_key(cx, &key, &KEYS, "") {
-                    spec.seen.insert(s.to_owned());
+        let known = KEYS.contains(&name.as_str());
+        if known {
+            spec.seen.insert(name.clone());
+        }
+        match &item[1..] {
+            [TokenTree::Punct(eq), value @ ..]
+                if eq.as_char() == '=' && !starts_with_punct(value, &['=', '>']) =>
+            {
+                if !known {
+                    unknown_top_level_key(cx, &mut spec, &key);
+                } else if value.is_empty() {
+                    cx.error_at(eq.span(), format!("`{name}` needs a value after `=`"));
+                } else {
+                    parse_name_value(cx, &mut spec, key, value);
                 }
             }
+            [TokenTree::Group(args)] if args.delimiter() == Delimiter::Parenthesis && known => {
+                if name == "spring" || name == "rotor" {
+                    parse_override(cx, &mut spec, key, args.stream());
+                } else {
+                    cx.error_spanned_by(&key, format!("`{name}` needs a value: `{name} = ..`"));
+                }
+            }
+            [] if name == "spring" || name == "rotor" => {
+                let inner = if name == "spring" { "k" } else { "r" };
+                cx.error_spanned_by(&key, format!("`{name}` takes arguments: `{name}(index, {inner} = ..)`"))
+            }
+            [] if known => cx.error_spanned_by(&key, format!("`{name}` needs a value: `{name} = ..`")),
+            _ if !known => unknown_top_level_key(cx, &mut spec, &key),
+            [] => {}
+            [unexpected, ..] => cx.error_at(
+                unexpected.span(),
+                format!(
+                    "expected `=` after `{name}`: a key is written `{name} = ..`{}",
+                    match name.as_str() {
+                        "spring" => " or `spring(index, k = ..)`",
+                        "rotor" => " or `rotor(index, r = ..)`",
+                        _ => "",
+                    }
+                ),
+            ),
         }
     }
     spec
 }
 
+fn unknown_top_level_key(cx: &Ctxt, spec: &mut Spec, key: &Ident) {
+    if let Some(s) = unknown_key(cx, key, &KEYS, "") {
+        spec.seen.insert(s.to_owned());
+    }
+}
+
 /// `key = value`.
-fn parse_name_value(cx: &Ctxt, spec: &mut Spec, key: Ident, value: Expr) {
+fn parse_name_value(cx: &Ctxt, spec: &mut Spec, key: Ident, value: &[TokenTree]) {
     let name = key.to_string();
-    let tokens = value.to_token_stream();
+    let tokens: TokenStream = value.iter().cloned().collect();
     match name.as_str() {
         "n" | "unroll" => {
-            if let Some(v) = parse_usize(cx, &value, &format!("`{name}`")) {
+            if let Some(v) = parse_usize(cx, value, &format!("`{name}`")) {
                 let slot = if name == "n" { &mut spec.n } else { &mut spec.unroll };
                 set_once(cx, slot, Keyed { key, value: v, tokens }, "");
             }
         }
-        "law" => set_once(cx, &mut spec.law, Keyed { key, value, tokens }, ""),
-        "a" | "r" | "theta_bar" | "rest_length" | "k" | "mass" => {
-            if let Some(v) = parse_value(cx, &value) {
+        "law" => set_once(cx, &mut spec.law, Keyed { key, value: tokens.clone(), tokens }, ""),
+        "spring" | "rotor" => {
+            let inner = if name == "spring" { "k" } else { "r" };
+            cx.error_spanned_by(&key, format!("`{name}` takes arguments: `{name}(index, {inner} = ..)`"))
+        }
+        _ => {
+            if let Some(v) = parse_value(cx, value) {
                 let slot = match name.as_str() {
                     "a" => &mut spec.a,
                     "r" => &mut spec.r,
@@ -239,41 +322,46 @@ fn parse_name_value(cx: &Ctxt, spec: &mut Spec, key: Ident, value: Expr) {
                 set_once(cx, slot, Keyed { key, value: v, tokens }, "");
             }
         }
-        "spring" | "rotor" => {
-            let inner = if name == "spring" { "k" } else { "r" };
-            cx.error_spanned_by(&key, format!("`{name}` takes arguments: `{name}(index, {inner} = ..)`"))
-        }
-        _ => {
-            if let Some(s) = unknown_key(cx, &key, &KEYS, "") {
-                spec.seen.insert(s.to_owned());
-            }
-        }
     }
 }
 
 /// `spring(p, k = .., l0 = ..)` or `rotor(i, r = ..)`.
-fn parse_override(cx: &Ctxt, spec: &mut Spec, key: Ident, tokens: TokenStream) {
+fn parse_override(cx: &Ctxt, spec: &mut Spec, key: Ident, args: TokenStream) {
     let name = key.to_string();
-    let (index_expr, pairs) = match parse_override_args.parse2(tokens) {
-        Ok(parsed) => parsed,
-        Err(err) => return cx.syn_error(err),
+    let mut items = split_commas(args).into_iter();
+    let Some(index_tokens) = items.next() else {
+        let inner = if name == "spring" { "k" } else { "r" };
+        cx.error_spanned_by(&key, format!("`{name}(..)` needs an index: `{name}(index, {inner} = ..)`"));
+        return;
     };
-    let Some(index) = parse_usize(cx, &index_expr, &format!("the {name} index")) else { return };
-    let index = Keyed { key: key.clone(), value: index, tokens: index_expr.to_token_stream() };
+    let Some(index) = parse_usize(cx, &index_tokens, &format!("the {name} index")) else { return };
+    let index = Keyed { key: key.clone(), value: index, tokens: index_tokens.into_iter().collect() };
     let allowed: &[&str] = if name == "spring" { &["k", "l0"] } else { &["r"] };
     let context = format!(" in `{name}({}, ..)`", index.value);
     let (mut k, mut l0, mut r) = (None, None, None);
     // Any inner error already explains what is wrong; "overrides nothing" would only repeat it.
     let mut inner_error = false;
-    for (pkey, pvalue) in pairs {
+    for item in items {
+        let pkey = match item.as_slice() {
+            [TokenTree::Ident(pkey), TokenTree::Punct(eq), _, ..] if eq.as_char() == '=' => pkey.unraw(),
+            _ => {
+                cx.error_at(
+                    first_span(&item, key.span()),
+                    format!("expected `key = value`{context}, with a key among {}", quoted(allowed)),
+                );
+                inner_error = true;
+                continue;
+            }
+        };
         let pname = pkey.to_string();
         if !allowed.contains(&pname.as_str()) {
             unknown_key(cx, &pkey, allowed, &context);
             inner_error = true;
             continue;
         }
-        let tokens = pvalue.to_token_stream();
-        let Some(v) = parse_value(cx, &pvalue) else {
+        let value = &item[2..];
+        let tokens: TokenStream = value.iter().cloned().collect();
+        let Some(v) = parse_value(cx, value) else {
             inner_error = true;
             continue;
         };
@@ -285,16 +373,14 @@ fn parse_override(cx: &Ctxt, spec: &mut Spec, key: Ident, tokens: TokenStream) {
         set_once(cx, slot, Keyed { key: pkey, value: v, tokens }, &context);
     }
     if name == "spring" {
-        if k.is_none() && l0.is_none() && !inner_error {
-            cx.error_spanned_by(&key, "`spring(..)` overrides nothing: give `k = ..` and/or `l0 = ..`");
-        }
-        spec.springs.push(SpringOverride { index, k, l0 });
+        spec.springs.push(SpringOverride { index, k, l0, inner_error });
     } else {
-        if r.is_none() && !inner_error {
-            cx.error_spanned_by(&key, "`rotor(..)` overrides nothing: give `r = ..`");
-        }
-        spec.rotors.push(RotorOverride { index, r });
+        spec.rotors.push(RotorOverride { index, r, inner_error });
     }
+}
+
+fn quoted(keys: &[&str]) -> String {
+    keys.iter().map(|k| format!("`{k}`")).collect::<Vec<_>>().join(", ")
 }
 
 #[cfg(test)]

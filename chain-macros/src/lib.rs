@@ -12,6 +12,8 @@ mod attr;
 mod ctxt;
 mod expand;
 mod fallback;
+#[cfg(test)]
+mod fuzz;
 mod law;
 mod model;
 mod valid;

@@ -9,7 +9,6 @@ use proc_macro2::TokenStream;
 use quote::quote;
 
 use crate::attr::Value;
-use crate::law;
 use crate::valid::{Model, Uniform};
 
 /// The hidden path through which generated code reaches its support items.
@@ -39,16 +38,17 @@ pub fn value_tokens(v: &Value) -> TokenStream {
     }
 }
 
+/// A computed constant as a Rust expression (`f64::INFINITY` and `f64::NAN` where a literal
+/// cannot be written: parameters near `f64::MAX` can overflow the rest length).
 fn f64_tokens(x: f64) -> TokenStream {
-    let lit = proc_macro2::Literal::f64_suffixed(x);
-    quote!(#lit)
+    chain_symbolic::lower::render_const(x).parse().unwrap_or_else(|_| quote!(::core::primitive::f64::NAN))
 }
 
 impl Model {
     /// The law of this chain, built into `g`.
     pub fn spring_law(&self, g: &mut Graph) -> SpringLaw {
         match &self.law {
-            Some(expr) => law::build(g, expr),
+            Some(law) => law.build(g),
             None => SpringLaw::harmonic(g),
         }
     }
@@ -140,6 +140,12 @@ impl Model {
             (0..self.springs()).map(|p| self.spring_params(&mut g, p, lbar)).collect();
         let out = ChainOutputs::unrolled(&mut g, &law, &springs, &|g, i| g.symbol(&format!("theta[{i}]")));
         (g, out)
+    }
+
+    /// The nodes of one spring's derivation with this chain's law: the code each unrolled spring
+    /// adds.
+    pub fn spring_cost(&self) -> usize {
+        Kernel::new(&|g: &mut Graph| self.spring_law(g)).graph.len()
     }
 
     /// Rust source of the per-spring kernel for the looped strategy.

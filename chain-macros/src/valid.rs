@@ -8,14 +8,21 @@ use std::collections::BTreeMap;
 
 use chain_geometry::{self as geo, IndexKind, Key, ParameterError};
 use proc_macro2::{Span, TokenStream};
-use syn::{Expr, Fields, Ident, ItemStruct, Type};
+use syn::ext::IdentExt;
+use syn::{Fields, ItemStruct, Type};
 
 use crate::attr::{Keyed, Spec, Value, suggest};
 use crate::ctxt::Ctxt;
-use crate::law;
+use crate::law::{self, Law};
 
 /// Chains up to this many rotors are unrolled unless `unroll = ..` says otherwise.
 pub const DEFAULT_UNROLL: usize = 128;
+
+/// The largest `unroll`: unrolled code grows with the chain, and this is the longest chain whose
+/// unrolled code builds in a reasonable time in debug and release (measured in
+/// `docs/macro.md`). Longer chains use the per-spring kernel in a loop, at the same speed per
+/// spring.
+pub const MAX_UNROLL: usize = 512;
 
 /// The uniform state, by its angle or by the springs' rest length.
 #[derive(Clone, Debug)]
@@ -34,7 +41,9 @@ pub struct Model {
     pub k: Value,
     pub mass: Value,
     pub uniform: Uniform,
-    pub law: Option<Expr>,
+    pub law: Option<Law>,
+    /// The law's tokens, for errors about its size.
+    pub law_tokens: Option<TokenStream>,
     /// Spring overrides by index: `(k, l0)`.
     pub springs: BTreeMap<usize, (Option<Value>, Option<Value>)>,
     /// Rotor-length overrides by index.
@@ -54,7 +63,7 @@ impl Model {
 
 /// `f64`, `core::primitive::f64` or `std::primitive::f64` (a type alias cannot be resolved by a macro).
 fn is_f64_path(path: &syn::Path) -> bool {
-    let names: Vec<String> = path.segments.iter().map(|s| s.ident.to_string()).collect();
+    let names: Vec<String> = path.segments.iter().map(|s| s.ident.unraw().to_string()).collect();
     let names: Vec<&str> = names.iter().map(String::as_str).collect();
     matches!(names.as_slice(), ["f64"] | ["core" | "std", "primitive", "f64"])
 }
@@ -84,18 +93,18 @@ impl Fields64 {
                 let Some(ident) = &f.ident else { continue };
                 let is_f64 = matches!(&f.ty, Type::Path(p) if p.qself.is_none() && is_f64_path(&p.path));
                 if is_f64 {
-                    f64_fields.push(ident.to_string());
+                    f64_fields.push(ident.unraw().to_string());
                 }
                 let ty = &f.ty;
-                all.insert(ident.to_string(), compact(&quote::quote!(#ty).to_string()));
+                all.insert(ident.unraw().to_string(), compact(&quote::quote!(#ty).to_string()));
             }
         }
-        Self { f64_fields, all, struct_name: item.ident.to_string() }
+        Self { f64_fields, all, struct_name: item.ident.unraw().to_string() }
     }
 
     fn check(&self, cx: &Ctxt, v: &Value) {
         let Value::Field(ident) = v else { return };
-        let name = ident.to_string();
+        let name = ident.unraw().to_string();
         if self.f64_fields.contains(&name) {
             return;
         }
@@ -126,6 +135,14 @@ impl Fields64 {
 
 fn report(cx: &Ctxt, tokens: &TokenStream, err: ParameterError) {
     cx.error_spanned_by(tokens, err);
+}
+
+/// An override's error: at the `spring`/`rotor` key if it gives nothing, else at its index.
+fn report_override(cx: &Ctxt, index: &Keyed<usize>, err: ParameterError) {
+    match err {
+        ParameterError::EmptyOverride { .. } => cx.error_spanned_by(&index.key, err),
+        other => report(cx, &index.tokens, other),
+    }
 }
 
 /// Positivity of a literal value (fields are checked at run time).
@@ -244,12 +261,23 @@ pub fn validate(cx: &Ctxt, spec: Spec, item: &ItemStruct) -> Option<Model> {
         }
     }
 
+    // Overrides: chain-geometry's rules (index, a value given, once), shared with the runtime
+    // builder. An override whose arguments failed to parse already has its error.
     let mut springs = BTreeMap::new();
     for s in &spec.springs {
-        if let Some(n) = n
-            && let Err(e) = geo::check_index(IndexKind::Spring, s.index.value, n - 1)
-        {
-            report(cx, &s.index.tokens, e);
+        let gives_a_value = s.k.is_some() || s.l0.is_some() || s.inner_error;
+        let rule = match n {
+            Some(n) => geo::check_override(
+                IndexKind::Spring,
+                s.index.value,
+                n - 1,
+                gives_a_value,
+                springs.contains_key(&s.index.value),
+            ),
+            None => Ok(s.index.value),
+        };
+        if let Err(e) = rule {
+            report_override(cx, &s.index, e);
             continue;
         }
         if let Some(k) = &s.k {
@@ -259,34 +287,42 @@ pub fn validate(cx: &Ctxt, spec: Spec, item: &ItemStruct) -> Option<Model> {
             check_positive(cx, Key::RestLength, l0);
         }
         let entry = (s.k.as_ref().map(|v| v.value.clone()), s.l0.as_ref().map(|v| v.value.clone()));
-        if springs.insert(s.index.value, entry).is_some() {
-            cx.error_spanned_by(
-                &s.index.tokens,
-                format!("spring {} is overridden twice; merge the two `spring(..)` entries", s.index.value),
-            );
-        }
+        springs.insert(s.index.value, entry);
     }
     let mut rotors = BTreeMap::new();
     for ro in &spec.rotors {
-        if let Some(n) = n
-            && let Err(e) = geo::check_index(IndexKind::Rotor, ro.index.value, n)
-        {
-            report(cx, &ro.index.tokens, e);
+        let rule = match n {
+            Some(n) => geo::check_override(
+                IndexKind::Rotor,
+                ro.index.value,
+                n,
+                ro.r.is_some() || ro.inner_error,
+                rotors.contains_key(&ro.index.value),
+            ),
+            None => Ok(ro.index.value),
+        };
+        if let Err(e) = rule {
+            report_override(cx, &ro.index, e);
             continue;
         }
         let Some(r) = &ro.r else { continue };
         check_positive(cx, Key::RotorLength, r);
-        if rotors.insert(ro.index.value, r.value.clone()).is_some() {
-            cx.error_spanned_by(
-                &ro.index.tokens,
-                format!("rotor {} is overridden twice; merge the two `rotor(..)` entries", ro.index.value),
-            );
-        }
+        rotors.insert(ro.index.value, r.value.clone());
     }
 
-    if let Some(l) = &spec.law {
-        law::check(cx, &l.value);
+    if let Some(unroll) = &spec.unroll
+        && unroll.value > MAX_UNROLL
+    {
+        cx.error_spanned_by(
+            &unroll.tokens,
+            format!(
+                "`unroll` = {} is past the largest unrolled chain, {MAX_UNROLL} rotors: longer chains use \
+                 the per-spring kernel in a loop, as fast per spring and quick to compile",
+                unroll.value
+            ),
+        );
     }
+    let law = spec.law.as_ref().and_then(|l| law::parse(cx, &l.key, l.value.clone()));
 
     Some(Model {
         n: n?,
@@ -296,24 +332,9 @@ pub fn validate(cx: &Ctxt, spec: Spec, item: &ItemStruct) -> Option<Model> {
         k: spec.k?.value,
         mass: spec.mass.map_or(Value::Literal { value: 1.0 }, |v| v.value),
         uniform: uniform?.0,
-        law: spec.law.map(|l| l.value),
+        law_tokens: spec.law.as_ref().map(|l| l.tokens.clone()),
+        law,
         springs,
         rotors,
     })
-}
-
-/// The struct name as an identifier (for generated item names).
-pub fn snake_name(ident: &Ident) -> String {
-    let mut out = String::new();
-    for (i, ch) in ident.to_string().chars().enumerate() {
-        if ch.is_uppercase() {
-            if i > 0 {
-                out.push('_');
-            }
-            out.extend(ch.to_lowercase());
-        } else {
-            out.push(ch);
-        }
-    }
-    out
 }

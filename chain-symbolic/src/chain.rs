@@ -97,45 +97,21 @@ impl ChainOutputs {
         }
     }
 
-    /// The leaf names of an unrolled chain: `s{i}` / `c{i}` for the sine and cosine of rotor `i`,
-    /// and every symbol by its own name (struct fields are named by the Rust expression that
-    /// reads them, e.g. `self.k_imp`).
+    /// The leaf names of an unrolled chain: `s[iusize]` / `c[iusize]` for the sine and cosine of rotor
+    /// `i` (the emitter fills two arrays `s` and `c` with one `sin_cos_into` call), and every
+    /// symbol by its own name (struct fields are named by the Rust expression that reads them,
+    /// e.g. `self.k_imp`).
     pub fn leaf_namer<'a>(&'a self, g: &'a Graph) -> impl Fn(Id) -> Option<String> + 'a {
-        move |id| {
-            if let Node::Symbol(s) = g.node(id) {
-                return Some(g.symbol_name(s).to_owned());
-            }
-            self.trig.iter().enumerate().find_map(|(i, &(s, c))| {
-                if id == s {
-                    Some(format!("s{i}"))
-                } else if id == c {
-                    Some(format!("c{i}"))
-                } else {
-                    None
-                }
-            })
+        let trig: std::collections::HashMap<Id, String> = self
+            .trig
+            .iter()
+            .enumerate()
+            .flat_map(|(i, &(s, c))| [(s, format!("s[{i}usize]")), (c, format!("c[{i}usize]"))])
+            .collect();
+        move |id| match g.node(id) {
+            Node::Symbol(s) => Some(g.symbol_name(s).to_owned()),
+            _ => trig.get(&id).cloned(),
         }
-    }
-
-    /// The rotors whose sine and cosine the program `outputs` needs (so the emitter computes
-    /// only those).
-    pub fn angles_used(&self, g: &Graph, outputs: &[Id]) -> Vec<usize> {
-        let mut seen = vec![false; g.len()];
-        let mut stack = outputs.to_vec();
-        let mut used = vec![false; self.n];
-        let trig_index: std::collections::HashMap<Id, usize> =
-            self.trig.iter().enumerate().flat_map(|(i, &(s, c))| [(s, i), (c, i)]).collect();
-        while let Some(id) = stack.pop() {
-            if std::mem::replace(&mut seen[id.index()], true) {
-                continue;
-            }
-            if let Some(&i) = trig_index.get(&id) {
-                used[i] = true;
-                continue;
-            }
-            stack.extend(g.node(id).children());
-        }
-        (0..self.n).filter(|&i| used[i]).collect()
     }
 }
 
@@ -325,7 +301,8 @@ mod tests {
         assert_eq!(sins, 5, "one sine per rotor, shared by both springs");
         assert_eq!(out.gradient.len(), 5);
         assert_eq!(out.hessian_off.len(), 4);
-        assert_eq!(out.angles_used(&g, &[out.lengths[1]]), vec![1, 2]);
+        let namer = out.leaf_namer(&g);
+        assert_eq!(namer(out.trig[3].1).as_deref(), Some("c[3usize]"));
     }
 
     #[test]

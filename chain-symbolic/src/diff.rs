@@ -38,7 +38,8 @@ pub fn local_partials(g: &mut Graph, id: Id) -> Vec<(Id, Id)> {
         Node::Neg(a) => vec![(a, g.constant(-1.0))],
         Node::Powi(a, n) => {
             let c = g.constant(f64::from(n));
-            let p = g.powi(a, n - 1);
+            // `Graph::powi` never stores `i32::MIN`, so `n - 1` fits.
+            let p = g.powi(a, n.max(i32::MIN + 1) - 1);
             vec![(a, g.mul(c, p))]
         }
         Node::Sqrt(a) => {
@@ -71,35 +72,33 @@ impl Differentiator {
         Self { wrt, memo: HashMap::new() }
     }
 
-    /// `d e / d wrt`.
+    /// `d e / d wrt`. Iterative: the nodes below `e` whose derivative is not known yet are
+    /// differentiated children first, so expressions of any depth need no recursion.
     pub fn diff(&mut self, g: &mut Graph, e: Id) -> Id {
-        if let Some(&d) = self.memo.get(&e) {
-            return d;
-        }
-        let d = match g.node(e) {
-            Node::Const(_) => g.zero(),
-            Node::Symbol(_) => {
-                if e == self.wrt {
-                    g.one()
-                } else {
-                    g.zero()
-                }
-            }
-            _ => {
-                let mut total = g.zero();
-                for (child, partial) in local_partials(g, e) {
-                    let dc = self.diff(g, child);
-                    if g.as_const(dc) == Some(0.0) {
-                        continue;
+        let pending = g.reachable(&[e], &|id| self.memo.contains_key(&id));
+        for id in pending {
+            let d = match g.node(id) {
+                Node::Const(_) => g.zero(),
+                Node::Symbol(_) if id == self.wrt => g.one(),
+                Node::Symbol(_) => g.zero(),
+                _ => {
+                    let mut total = g.zero();
+                    for (child, partial) in local_partials(g, id) {
+                        let dc = self.memo[&child];
+                        // A term whose child does not depend on `wrt` is left out: a derivative
+                        // is that of the function, not of its IEEE evaluation (`0 * inf`).
+                        if g.as_const(dc) == Some(0.0) {
+                            continue;
+                        }
+                        let term = g.mul(partial, dc);
+                        total = g.add(total, term);
                     }
-                    let term = g.mul(partial, dc);
-                    total = g.add(total, term);
+                    total
                 }
-                total
-            }
-        };
-        self.memo.insert(e, d);
-        d
+            };
+            self.memo.insert(id, d);
+        }
+        self.memo[&e]
     }
 }
 

@@ -6,11 +6,32 @@
 //! subexpressions are shared for free (the design of egg's `RecExpr` and its memo).
 //!
 //! Simplification happens in the smart constructors ([`Graph::add`], [`Graph::mul`], ...): constant
-//! folding, neutral and absorbing elements, canonical operand order for commutative operations,
-//! and a few cancellations. These are the rules that keep generated code short. For finite
-//! operands no rule changes a value by more than the rounding of the folded constants; the
-//! cancellations (`x - x = 0`, `x / x = 1`, `0 x = 0`, `sqrt(x)^2 = x`) assume finite operands
-//! (and `x >= 0` under a square root), which holds for every expression of a chain in its domain.
+//! folding, neutral elements, canonical operand order for commutative operations, and moving signs
+//! and power-of-two factors outward. These are the rules that keep generated code short.
+//!
+//! # What simplification preserves
+//!
+//! Every rewrite is exact in IEEE-754 double arithmetic: for every value of the operands, including
+//! `+-inf`, NaN, `+-0` and subnormal numbers, the simplified expression evaluates to the same number
+//! as the expression as built, with two relaxations:
+//!
+//! 1. **The sign of a zero is not kept.** `x + 0` becomes `x` (which is `-0` for `x = -0`), `-(x - y)`
+//!    becomes `y - x`, and the constant `-0.0` is stored as `0.0`; so neither is the sign of an
+//!    infinity obtained by dividing by such a zero.
+//! 2. **Moving a power-of-two factor** (`2 (3 x) -> 6 x`, `(0.5 x) y -> 0.5 (x y)`,
+//!    `(0.5 x) / y -> 0.5 (x / y)`, `0.5 / x -> 0.5 (1 / x)`, `2 x + 2 y -> 2 (x + y)`) rounds
+//!    nothing, but can change a result whose intermediate overflows (`|v| > f64::MAX`) or is
+//!    subnormal (`|v| < f64::MIN_POSITIVE`) in one of the two orders.
+//!
+//! Operations on constants are folded when the graph is built, with the same IEEE operation
+//! (`sqrt`, `sin`, `cos`, `exp`, `ln` and `powi` of a constant come from Rust's `std`, which can
+//! differ by an ulp from `libm`, used by `no_std` builds at run time).
+//!
+//! Nothing is absorbed: `0 x`, `0 / x`, `x - x`, `x / x`, `sqrt(x)^2`, `(x^m)^n` and `ln(exp(x))`
+//! are kept as built, because they are not `0`, `0`, `0`, `1`, `x`, `x^(mn)` and `x` for every `x`
+//! (an infinite or NaN `x`, a negative one under the root, an overflowing `exp`). So a NaN or an
+//! infinity propagates exactly as in the expression as written; `tests/simplifier.rs` checks this
+//! against direct `f64` evaluation.
 
 use std::collections::HashMap;
 
@@ -143,22 +164,33 @@ impl Graph {
         self.as_const(id) == Some(value)
     }
 
-    /// Splits `c * x` into `(c, x)`; any other node is `(1, node)`.
-    fn coefficient(&self, id: Id) -> (f64, Option<Id>) {
+    /// The constant factor `c` of `c * x` if `c` is a power of two (see [`is_power_of_two`]).
+    fn power_of_two_factor(&self, id: Id) -> Option<(Id, Id)> {
         match self.node(id) {
-            Node::Const(bits) => (f64::from_bits(bits), None),
-            Node::Mul(a, b) => match self.as_const(a) {
-                Some(c) => (c, Some(b)),
-                None => (1.0, Some(id)),
-            },
-            Node::Neg(x) => {
-                let (c, rest) = self.coefficient(x);
-                (-c, rest)
-            }
-            _ => (1.0, Some(id)),
+            Node::Mul(c, x) if self.as_const(c).is_some_and(is_power_of_two) => Some((c, x)),
+            _ => None,
         }
     }
 
+    /// `c x + c y = c (x + y)` and `c x - c y = c (x - y)` (with `-c` for the second factor
+    /// too, the other operation) for a power of two `c`: both sides round the same number.
+    fn factor_power_of_two(&mut self, a: Id, b: Id, subtract: bool) -> Option<Id> {
+        let (ca, x) = self.power_of_two_factor(a)?;
+        let (cb, y) = self.power_of_two_factor(b)?;
+        let (va, vb) = (self.as_const(ca)?, self.as_const(cb)?);
+        let same_sign = if va == vb {
+            true
+        } else if va == -vb {
+            false
+        } else {
+            return None;
+        };
+        let inner = if same_sign != subtract { self.add(x, y) } else { self.sub(x, y) };
+        Some(self.mul(ca, inner))
+    }
+
+    /// `a + b`. Rewrites: constant folding; `x + 0 = x` (signed zero not kept); `a + (-b) = a - b`;
+    /// `x + x = 2 x`; `c x + c y = c (x + y)` for a power of two `c`.
     pub fn add(&mut self, a: Id, b: Id) -> Id {
         if let (Some(x), Some(y)) = (self.as_const(a), self.as_const(b)) {
             return self.constant(x + y);
@@ -169,43 +201,31 @@ impl Graph {
         if self.is_const(b, 0.0) {
             return a;
         }
-        // a + (-b) = a - b
+        // a + (-b) is a - b in IEEE arithmetic, and (-a) + b is b - a.
         if let Node::Neg(nb) = self.node(b) {
             return self.sub(a, nb);
         }
         if let Node::Neg(na) = self.node(a) {
             return self.sub(b, na);
         }
-        // c1 x + c2 x = (c1 + c2) x
-        let (ca, ra) = self.coefficient(a);
-        let (cb, rb) = self.coefficient(b);
-        if let (Some(x), Some(y)) = (ra, rb) {
-            if x == y {
-                let c = self.constant(ca + cb);
-                return self.mul(c, x);
-            }
-            // c x + c y = c (x + y) and c x - c y = c (x - y): one multiplication fewer.
-            if ca == cb && ca != 1.0 {
-                let c = self.constant(ca);
-                let s = self.add(x, y);
-                return self.mul(c, s);
-            }
-            if ca == -cb && ca != 1.0 && ca != -1.0 {
-                let c = self.constant(ca);
-                let d = self.sub(x, y);
-                return self.mul(c, d);
-            }
+        // x + x rounds 2x exactly as 2 * x does.
+        if a == b {
+            let two = self.constant(2.0);
+            return self.mul(two, a);
+        }
+        if let Some(factored) = self.factor_power_of_two(a, b, false) {
+            return factored;
         }
         let (a, b) = if a <= b { (a, b) } else { (b, a) };
         self.intern(Node::Add(a, b))
     }
 
+    /// `a - b`. Rewrites: constant folding; `x - 0 = x`; `0 - x = -x` (signed zero not kept);
+    /// `a - (-b) = a + b`; `c x - c y = c (x - y)` for a power of two `c`. `x - x` is kept: it is
+    /// NaN for infinite `x`.
     pub fn sub(&mut self, a: Id, b: Id) -> Id {
         if let (Some(x), Some(y)) = (self.as_const(a), self.as_const(b)) {
             return self.constant(x - y);
-        }
-        if a == b {
-            return self.zero();
         }
         if self.is_const(b, 0.0) {
             return a;
@@ -216,40 +236,30 @@ impl Graph {
         if let Node::Neg(nb) = self.node(b) {
             return self.add(a, nb);
         }
-        let (ca, ra) = self.coefficient(a);
-        let (cb, rb) = self.coefficient(b);
-        if let (Some(x), Some(y)) = (ra, rb) {
-            if x == y {
-                let c = self.constant(ca - cb);
-                return self.mul(c, x);
-            }
-            if ca == cb && ca != 1.0 {
-                let c = self.constant(ca);
-                let d = self.sub(x, y);
-                return self.mul(c, d);
-            }
-            if ca == -cb && ca != 1.0 && ca != -1.0 {
-                let c = self.constant(ca);
-                let s = self.add(x, y);
-                return self.mul(c, s);
-            }
+        if let Some(factored) = self.factor_power_of_two(a, b, true) {
+            return factored;
         }
         self.intern(Node::Sub(a, b))
     }
 
+    /// `-a`. Rewrites: constant folding; `-(-x) = x`; `-(x - y) = y - x` (signed zero not kept);
+    /// `-(c x) = (-c) x`.
     pub fn neg(&mut self, a: Id) -> Id {
         match self.node(a) {
             Node::Const(bits) => self.constant(-f64::from_bits(bits)),
             Node::Neg(x) => x,
             Node::Sub(x, y) => self.sub(y, x),
-            Node::Mul(c, x) if self.as_const(c).is_some() => {
-                let c = self.constant(-self.as_const(c).unwrap_or(0.0));
+            Node::Mul(c, x) if let Some(value) = self.as_const(c) => {
+                let c = self.constant(-value);
                 self.mul(c, x)
             }
             _ => self.intern(Node::Neg(a)),
         }
     }
 
+    /// `a * b`. Rewrites: constant folding; `1 x = x`; `-1 x = -x`; `c (-x) = (-c) x`;
+    /// `(-x) y = -(x y)`; `x x = x^2`; and, for a power of two `c`, `c1 (c2 x) = (c1 c2) x` and
+    /// `(c x) y = c (x y)`. `0 x` is kept: it is NaN for infinite or NaN `x`.
     pub fn mul(&mut self, a: Id, b: Id) -> Id {
         // Constants go first so that `c * x` is the canonical scaled form.
         let (a, b) = if self.as_const(b).is_some() && self.as_const(a).is_none() { (b, a) } else { (a, b) };
@@ -257,20 +267,17 @@ impl Graph {
             return self.constant(x * y);
         }
         if let Some(c) = self.as_const(a) {
-            if c == 0.0 {
-                return self.zero();
-            }
             if c == 1.0 {
                 return b;
             }
             if c == -1.0 {
                 return self.neg(b);
             }
-            // c1 * (c2 * x) = (c1 c2) x
             if let Node::Mul(inner, x) = self.node(b)
                 && let Some(c2) = self.as_const(inner)
+                && let Some(product) = merged_factor(c, c2)
             {
-                let c = self.constant(c * c2);
+                let c = self.constant(product);
                 return self.mul(c, x);
             }
             if let Node::Neg(x) = self.node(b) {
@@ -288,16 +295,12 @@ impl Graph {
             let p = self.mul(a, y);
             return self.neg(p);
         }
-        // Pull a constant factor of either operand out front: (c x) y = c (x y).
-        if let Node::Mul(c, x) = self.node(a)
-            && self.as_const(c).is_some()
-        {
+        // A power-of-two factor of either operand goes out front: (c x) y = c (x y).
+        if let Some((c, x)) = self.power_of_two_factor(a) {
             let p = self.mul(x, b);
             return self.mul(c, p);
         }
-        if let Node::Mul(c, y) = self.node(b)
-            && self.as_const(c).is_some()
-        {
+        if let Some((c, y)) = self.power_of_two_factor(b) {
             let p = self.mul(a, y);
             return self.mul(c, p);
         }
@@ -308,43 +311,57 @@ impl Graph {
         self.intern(Node::Mul(a, b))
     }
 
+    /// `a / b`. Rewrites: constant folding; `x / 1 = x`; `x / -1 = -x`; `(-x) / y = -(x / y)` and
+    /// `x / (-y) = -(x / y)`; for a power of two `c`, `x / c = (1 / c) x` (exact),
+    /// `(c x) / y = c (x / y)` and `c / x = c (1 / x)`. `0 / x` and `x / x` are kept: they are NaN for `x` zero, infinite
+    /// or NaN.
     pub fn div(&mut self, a: Id, b: Id) -> Id {
         if let (Some(x), Some(y)) = (self.as_const(a), self.as_const(b)) {
             return self.constant(x / y);
         }
-        if self.is_const(a, 0.0) {
-            return self.zero();
+        let divisor = self.as_const(b);
+        if divisor == Some(1.0) {
+            return a;
         }
-        // c / x = c (1 / x), so that c can merge with other constant factors.
-        if let Some(c) = self.as_const(a)
-            && c != 1.0
-        {
-            let one = self.one();
-            let inv = self.div(one, b);
-            return self.mul(a, inv);
-        }
-        if let Some(c) = self.as_const(b) {
-            // Multiplying by the folded reciprocal is cheaper than a division; the rounding
-            // differs by at most one ulp of the reciprocal.
-            let r = self.constant(1.0 / c);
-            return self.mul(r, a);
-        }
-        if a == b {
-            return self.one();
+        if divisor == Some(-1.0) {
+            return self.neg(a);
         }
         if let Node::Neg(x) = self.node(a) {
             let q = self.div(x, b);
             return self.neg(q);
         }
-        if let Node::Mul(c, x) = self.node(a)
-            && self.as_const(c).is_some()
+        if let Node::Neg(y) = self.node(b) {
+            let q = self.div(a, y);
+            return self.neg(q);
+        }
+        // x / 2^k and x * 2^-k are both the correctly rounded x 2^-k: the same number.
+        if let Some(c) = divisor
+            && is_power_of_two(c)
         {
+            let r = self.constant(1.0 / c);
+            return self.mul(r, a);
+        }
+        if let Some((c, x)) = self.power_of_two_factor(a) {
             let q = self.div(x, b);
             return self.mul(c, q);
+        }
+        // c / x = c (1 / x) for a power of two c, so that c can merge with other factors.
+        if let Some(c) = self.as_const(a)
+            && c != 1.0
+            && is_power_of_two(c)
+        {
+            let one = self.one();
+            let inverse = self.div(one, b);
+            return self.mul(a, inverse);
         }
         self.intern(Node::Div(a, b))
     }
 
+    /// `a^n`. Rewrites: `x^0 = 1` (also for NaN, as IEEE `pown`), `x^1 = x`, constant folding,
+    /// `(-x)^n = x^n` for even `n`. `sqrt(x)^2` is kept: it is NaN, not `x`, for `x < 0`, and
+    /// `(x^m)^n` is kept: it overflows and rounds differently from `x^(m n)`. The one exponent
+    /// whose derivative's `n - 1` does not fit in an `i32`, `i32::MIN`, is built as
+    /// `1 / (x^(2^30))^2`, which is how `powi` computes it (31 squarings, then the reciprocal).
     pub fn powi(&mut self, a: Id, n: i32) -> Id {
         if n == 0 {
             return self.one();
@@ -355,165 +372,155 @@ impl Graph {
         if let Some(x) = self.as_const(a) {
             return self.constant(x.powi(n));
         }
+        if n == i32::MIN {
+            // powi computes x^-2^31 as 1 / (x squared 31 times): the same operations, bit for
+            // bit, and no exponent of the derivative overflows.
+            let big = self.powi(a, 1 << 30);
+            let square = self.powi(big, 2);
+            let one = self.one();
+            return self.div(one, square);
+        }
         match self.node(a) {
-            Node::Powi(x, m) => match m.checked_mul(n) {
-                Some(mn) => self.powi(x, mn),
-                None => self.intern(Node::Powi(a, n)),
-            },
             Node::Neg(x) if n % 2 == 0 => self.powi(x, n),
-            Node::Sqrt(x) if n % 2 == 0 => self.powi(x, n / 2),
             _ => self.intern(Node::Powi(a, n)),
         }
     }
 
     pub fn sqrt(&mut self, a: Id) -> Id {
-        if let Some(x) = self.as_const(a) {
-            return self.constant(x.sqrt());
+        match self.as_const(a) {
+            Some(x) => self.constant(x.sqrt()),
+            None => self.intern(Node::Sqrt(a)),
         }
-        self.intern(Node::Sqrt(a))
     }
 
     pub fn sin(&mut self, a: Id) -> Id {
-        if let Some(x) = self.as_const(a) {
-            return self.constant(x.sin());
+        match self.as_const(a) {
+            Some(x) => self.constant(x.sin()),
+            None => self.intern(Node::Sin(a)),
         }
-        self.intern(Node::Sin(a))
     }
 
     pub fn cos(&mut self, a: Id) -> Id {
-        if let Some(x) = self.as_const(a) {
-            return self.constant(x.cos());
+        match self.as_const(a) {
+            Some(x) => self.constant(x.cos()),
+            None => self.intern(Node::Cos(a)),
         }
-        self.intern(Node::Cos(a))
     }
 
     pub fn exp(&mut self, a: Id) -> Id {
-        if let Some(x) = self.as_const(a) {
-            return self.constant(x.exp());
+        match self.as_const(a) {
+            Some(x) => self.constant(x.exp()),
+            None => self.intern(Node::Exp(a)),
         }
-        self.intern(Node::Exp(a))
     }
 
+    /// `ln a`. Only constants fold: `ln(exp(x))` is kept, because `exp(x)` overflows for
+    /// `x > 709.78`.
     pub fn ln(&mut self, a: Id) -> Id {
-        if let Some(x) = self.as_const(a) {
-            return self.constant(x.ln());
+        match self.as_const(a) {
+            Some(x) => self.constant(x.ln()),
+            None => self.intern(Node::Ln(a)),
         }
-        if let Node::Exp(x) = self.node(a) {
-            return x;
+    }
+
+    /// Rebuilds the node `id` from new children, through the simplifying constructors.
+    fn rebuild(&mut self, node: Node, child: &dyn Fn(Id) -> Id) -> Id {
+        match node {
+            Node::Const(bits) => self.constant(f64::from_bits(bits)),
+            Node::Symbol(s) => self.intern(Node::Symbol(s)),
+            Node::Add(a, b) => self.add(child(a), child(b)),
+            Node::Sub(a, b) => self.sub(child(a), child(b)),
+            Node::Mul(a, b) => self.mul(child(a), child(b)),
+            Node::Div(a, b) => self.div(child(a), child(b)),
+            Node::Neg(a) => self.neg(child(a)),
+            Node::Powi(a, n) => self.powi(child(a), n),
+            Node::Sqrt(a) => self.sqrt(child(a)),
+            Node::Sin(a) => self.sin(child(a)),
+            Node::Cos(a) => self.cos(child(a)),
+            Node::Exp(a) => self.exp(child(a)),
+            Node::Ln(a) => self.ln(child(a)),
         }
-        self.intern(Node::Ln(a))
+    }
+
+    /// The nodes reachable from `roots`, children before parents (ascending ids), without
+    /// descending into (or listing) the nodes for which `stop` holds. Iterative: graphs of any
+    /// depth are walked without recursion.
+    pub fn reachable(&self, roots: &[Id], stop: &dyn Fn(Id) -> bool) -> Vec<Id> {
+        let mut seen = std::collections::HashSet::new();
+        let mut stack: Vec<Id> = roots.to_vec();
+        let mut out = Vec::new();
+        while let Some(id) = stack.pop() {
+            if stop(id) || !seen.insert(id) {
+                continue;
+            }
+            out.push(id);
+            stack.extend(self.node(id).children());
+        }
+        // A child is always created before its parent, so ascending ids are a valid order.
+        out.sort_unstable();
+        out
     }
 
     /// Rebuilds `e` with every node in `map` replaced, simplifying on the way.
     pub fn substitute(&mut self, e: Id, map: &HashMap<Id, Id>) -> Id {
-        let mut memo = map.clone();
-        self.substitute_memo(e, &mut memo)
-    }
-
-    fn substitute_memo(&mut self, e: Id, memo: &mut HashMap<Id, Id>) -> Id {
-        if let Some(&done) = memo.get(&e) {
-            return done;
+        let mut done = map.clone();
+        for id in self.reachable(&[e], &|id| map.contains_key(&id)) {
+            let node = self.node(id);
+            let out = match node {
+                Node::Const(_) | Node::Symbol(_) => id,
+                _ => self.rebuild(node, &|c| done[&c]),
+            };
+            done.insert(id, out);
         }
-        let out = match self.node(e) {
-            Node::Const(_) | Node::Symbol(_) => e,
-            Node::Add(a, b) => {
-                let (a, b) = (self.substitute_memo(a, memo), self.substitute_memo(b, memo));
-                self.add(a, b)
-            }
-            Node::Sub(a, b) => {
-                let (a, b) = (self.substitute_memo(a, memo), self.substitute_memo(b, memo));
-                self.sub(a, b)
-            }
-            Node::Mul(a, b) => {
-                let (a, b) = (self.substitute_memo(a, memo), self.substitute_memo(b, memo));
-                self.mul(a, b)
-            }
-            Node::Div(a, b) => {
-                let (a, b) = (self.substitute_memo(a, memo), self.substitute_memo(b, memo));
-                self.div(a, b)
-            }
-            Node::Neg(a) => {
-                let a = self.substitute_memo(a, memo);
-                self.neg(a)
-            }
-            Node::Powi(a, n) => {
-                let a = self.substitute_memo(a, memo);
-                self.powi(a, n)
-            }
-            Node::Sqrt(a) => {
-                let a = self.substitute_memo(a, memo);
-                self.sqrt(a)
-            }
-            Node::Sin(a) => {
-                let a = self.substitute_memo(a, memo);
-                self.sin(a)
-            }
-            Node::Cos(a) => {
-                let a = self.substitute_memo(a, memo);
-                self.cos(a)
-            }
-            Node::Exp(a) => {
-                let a = self.substitute_memo(a, memo);
-                self.exp(a)
-            }
-            Node::Ln(a) => {
-                let a = self.substitute_memo(a, memo);
-                self.ln(a)
-            }
-        };
-        memo.insert(e, out);
-        out
+        done[&e]
     }
 
-    /// Evaluates `e` numerically, with `value_of` giving each symbol's value (by name).
-    /// Used by tests and by the generator's self-checks, never by generated code.
+    /// Evaluates `e` numerically, with `value_of` giving each symbol's value (by name), in the
+    /// same IEEE operations generated code performs. For tests and the generator's self-checks,
+    /// never for generated code.
     pub fn eval(&self, e: Id, value_of: &dyn Fn(&str) -> f64) -> f64 {
-        let mut values: HashMap<Id, f64> = HashMap::new();
-        self.eval_memo(e, value_of, &mut values)
-    }
-
-    fn eval_memo(&self, e: Id, value_of: &dyn Fn(&str) -> f64, v: &mut HashMap<Id, f64>) -> f64 {
-        if let Some(&x) = v.get(&e) {
-            return x;
+        let mut v: HashMap<Id, f64> = HashMap::new();
+        for id in self.reachable(&[e], &|_| false) {
+            let x = |c: Id| v[&c];
+            let out = match self.node(id) {
+                Node::Const(bits) => f64::from_bits(bits),
+                Node::Symbol(s) => value_of(self.symbol_name(s)),
+                Node::Add(a, b) => x(a) + x(b),
+                Node::Sub(a, b) => x(a) - x(b),
+                Node::Mul(a, b) => x(a) * x(b),
+                Node::Div(a, b) => x(a) / x(b),
+                Node::Neg(a) => -x(a),
+                Node::Powi(a, n) => x(a).powi(n),
+                Node::Sqrt(a) => x(a).sqrt(),
+                Node::Sin(a) => x(a).sin(),
+                Node::Cos(a) => x(a).cos(),
+                Node::Exp(a) => x(a).exp(),
+                Node::Ln(a) => x(a).ln(),
+            };
+            v.insert(id, out);
         }
-        let mut ev = |x: Id| self.eval_memo(x, value_of, v);
-        let out = match self.node(e) {
-            Node::Const(bits) => f64::from_bits(bits),
-            Node::Symbol(s) => value_of(self.symbol_name(s)),
-            Node::Add(a, b) => ev(a) + ev(b),
-            Node::Sub(a, b) => ev(a) - ev(b),
-            Node::Mul(a, b) => ev(a) * ev(b),
-            Node::Div(a, b) => ev(a) / ev(b),
-            Node::Neg(a) => -ev(a),
-            Node::Powi(a, n) => ev(a).powi(n),
-            Node::Sqrt(a) => ev(a).sqrt(),
-            Node::Sin(a) => ev(a).sin(),
-            Node::Cos(a) => ev(a).cos(),
-            Node::Exp(a) => ev(a).exp(),
-            Node::Ln(a) => ev(a).ln(),
-        };
-        v.insert(e, out);
-        out
+        v[&e]
     }
 
     /// Whether the symbol called `name` occurs in `e`.
     pub fn mentions(&self, e: Id, name: &str) -> bool {
-        let mut stack = vec![e];
-        let mut seen = vec![false; self.nodes.len()];
-        while let Some(x) = stack.pop() {
-            if std::mem::replace(&mut seen[x.index()], true) {
-                continue;
-            }
-            let node = self.node(x);
-            if let Node::Symbol(s) = node
-                && self.symbol_name(s) == name
-            {
-                return true;
-            }
-            stack.extend(node.children());
-        }
-        false
+        self.reachable(&[e], &|_| false)
+            .into_iter()
+            .any(|x| matches!(self.node(x), Node::Symbol(s) if self.symbol_name(s) == name))
     }
+}
+
+/// `c = +-2^k` with `c` and `1 / c` normal numbers: multiplying by `c` only shifts the exponent,
+/// so it rounds nothing unless the result overflows or is subnormal.
+pub fn is_power_of_two(c: f64) -> bool {
+    c.is_normal() && c.to_bits() & ((1u64 << 52) - 1) == 0 && (1.0 / c).is_normal()
+}
+
+/// `c1 c2`, if merging the factors of `c1 (c2 x)` into `(c1 c2) x` rounds nothing: one of them
+/// is a power of two and the product is a normal number.
+fn merged_factor(c1: f64, c2: f64) -> Option<f64> {
+    let product = c1 * c2;
+    ((is_power_of_two(c1) || is_power_of_two(c2)) && product.is_normal()).then_some(product)
 }
 
 #[cfg(test)]
@@ -534,7 +541,7 @@ mod tests {
     }
 
     #[test]
-    fn constants_fold_and_identities_vanish() {
+    fn constants_fold_and_exact_identities_apply() {
         let mut g = Graph::new();
         let x = g.symbol("x");
         let two = g.constant(2.0);
@@ -544,25 +551,67 @@ mod tests {
         let p = g.mul(two, three);
         assert_eq!(g.as_const(p), Some(6.0));
         assert_eq!(g.add(x, zero), x);
+        assert_eq!(g.sub(x, zero), x);
         assert_eq!(g.mul(one, x), x);
-        assert_eq!(g.mul(x, zero), zero);
-        assert_eq!(g.sub(x, x), zero);
+        assert_eq!(g.div(x, one), x);
         let nx = g.neg(x);
         assert_eq!(g.neg(nx), x);
-        // 2 (3 x) = 6 x
+        // 2 (3 x) = 6 x: one factor is a power of two, so nothing is rounded.
         let tx = g.mul(three, x);
         let sx = g.mul(two, tx);
         let six = g.constant(6.0);
         assert_eq!(sx, g.mul(six, x));
         // x + x = 2 x
         assert_eq!(g.add(x, x), g.mul(two, x));
-        // x / 4 = 0.25 x
+        // x / 4 = 0.25 x (exact)
         let four = g.constant(4.0);
         let q = g.constant(0.25);
         assert_eq!(g.div(x, four), g.mul(q, x));
-        // sqrt(x)^2 = x
-        let r = g.sqrt(x);
-        assert_eq!(g.powi(r, 2), x);
+        // (-x)^2 = x^2
+        let sq = g.powi(x, 2);
+        assert_eq!(g.powi(nx, 2), sq);
+    }
+
+    #[test]
+    fn identities_that_fail_somewhere_are_not_applied() {
+        let mut g = Graph::new();
+        let x = g.symbol("x");
+        let zero = g.zero();
+        let three = g.constant(3.0);
+        let five = g.constant(5.0);
+        // Each is wrong for some x: NaN or inf x, x = 0, x < 0, an overflowing exp, rounding.
+        let kept = [
+            (g.mul(zero, x), "0 x"),
+            (g.div(zero, x), "0 / x"),
+            (g.sub(x, x), "x - x"),
+            (g.div(x, x), "x / x"),
+            {
+                let r = g.sqrt(x);
+                (g.powi(r, 2), "sqrt(x)^2")
+            },
+            {
+                let e = g.exp(x);
+                (g.ln(e), "ln(exp(x))")
+            },
+            {
+                let inv = g.powi(x, -1);
+                (g.powi(inv, -1), "(x^-1)^-1")
+            },
+            {
+                let tx = g.mul(three, x);
+                (g.mul(five, tx), "5 (3 x)")
+            },
+            {
+                let tx = g.mul(three, x);
+                let fx = g.mul(five, x);
+                (g.add(tx, fx), "3 x + 5 x")
+            },
+            (g.div(x, three), "x / 3"),
+        ];
+        for (id, what) in kept {
+            assert!(id != x && id != zero && g.as_const(id).is_none(), "{what} was rewritten");
+            assert!(g.mentions(id, "x"), "{what} lost x");
+        }
     }
 
     #[test]
@@ -572,9 +621,11 @@ mod tests {
         let y = g.symbol("y");
         let xy = g.mul(x, y);
         let e = g.add(xy, x);
-        let zero = g.zero();
-        let map = HashMap::from([(y, zero)]);
-        assert_eq!(g.substitute(e, &map), x);
+        let one = g.one();
+        let map = HashMap::from([(y, one)]);
+        // x 1 + x = x + x = 2 x
+        let two = g.constant(2.0);
+        assert_eq!(g.substitute(e, &map), g.mul(two, x));
     }
 
     #[test]

@@ -42,9 +42,31 @@ pub struct Program {
     pub outputs: Vec<Operand>,
 }
 
-/// Lowers `outputs` of `g`. `leaf` names the nodes that are inputs of the program; every symbol
-/// must be named by it (a symbol it does not name is returned as the error).
+/// The order in which a [`Program`]'s steps are emitted.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Schedule {
+    /// Arena order: every step as soon as the graph created it.
+    Arena,
+    /// Depth-first from the outputs, in order: each output's steps just before it, so values
+    /// die soon after they are made and few are live at once (the unrolled chain's outputs then
+    /// need a few registers whatever the number of rotors).
+    DepthFirst,
+}
+
+/// Lowers `outputs` of `g` in arena order. `leaf` names the nodes that are inputs of the
+/// program; every symbol must be named by it (a symbol it does not name is returned as the
+/// error).
 pub fn lower(g: &Graph, outputs: &[Id], leaf: &dyn Fn(Id) -> Option<String>) -> Result<Program, String> {
+    lower_with(g, outputs, leaf, Schedule::Arena)
+}
+
+/// [`lower`] with the steps in the order of `schedule`. Iterative: graphs of any depth.
+pub fn lower_with(
+    g: &Graph,
+    outputs: &[Id],
+    leaf: &dyn Fn(Id) -> Option<String>,
+    schedule: Schedule,
+) -> Result<Program, String> {
     // Mark what is reachable from the outputs, stopping at leaves.
     let mut reachable = vec![false; g.len()];
     let mut leaves: HashMap<Id, String> = HashMap::new();
@@ -62,25 +84,29 @@ pub fn lower(g: &Graph, outputs: &[Id], leaf: &dyn Fn(Id) -> Option<String>) -> 
             node => stack.extend(node.children()),
         }
     }
+    let is_step = |id: Id| !leaves.contains_key(&id) && !matches!(g.node(id), Node::Const(_));
+    let order: Vec<Id> = match schedule {
+        Schedule::Arena => {
+            (0..g.len()).filter(|&i| reachable[i]).map(|i| Id(i as u32)).filter(|&id| is_step(id)).collect()
+        }
+        Schedule::DepthFirst => depth_first(g, outputs, &is_step),
+    };
 
-    let mut steps = Vec::new();
+    let mut steps = Vec::with_capacity(order.len());
     let mut operand_of: HashMap<Id, Operand> = HashMap::new();
-    for (index, &is_reachable) in reachable.iter().enumerate() {
-        if !is_reachable {
-            continue;
-        }
-        let id = Id(index as u32);
+    let operand = |id: Id, operand_of: &HashMap<Id, Operand>| -> Operand {
         if let Some(name) = leaves.get(&id) {
-            operand_of.insert(id, Operand::Leaf(name.clone()));
-            continue;
+            return Operand::Leaf(name.clone());
         }
-        let op = |x: Id| operand_of[&x].clone();
+        match g.node(id) {
+            Node::Const(bits) => Operand::Const(f64::from_bits(bits)),
+            _ => operand_of[&id].clone(),
+        }
+    };
+    for id in order {
+        let op = |x: Id| operand(x, &operand_of);
         let expr = match g.node(id) {
-            Node::Const(bits) => {
-                operand_of.insert(id, Operand::Const(f64::from_bits(bits)));
-                continue;
-            }
-            Node::Symbol(_) => unreachable!("unnamed symbols were rejected above"),
+            Node::Const(_) | Node::Symbol(_) => continue,
             Node::Add(a, b) => Expr::Add(op(a), op(b)),
             Node::Sub(a, b) => Expr::Sub(op(a), op(b)),
             Node::Mul(a, b) => Expr::Mul(op(a), op(b)),
@@ -96,8 +122,50 @@ pub fn lower(g: &Graph, outputs: &[Id], leaf: &dyn Fn(Id) -> Option<String>) -> 
         operand_of.insert(id, Operand::Temp(steps.len()));
         steps.push(expr);
     }
-    let outputs = outputs.iter().map(|id| operand_of[id].clone()).collect();
+    let outputs = outputs.iter().map(|&id| operand(id, &operand_of)).collect();
     Ok(Program { steps, outputs })
+}
+
+/// The steps below `outputs` in depth-first post-order, output by output (iterative). At each
+/// node the child needing more registers is computed first (Sethi-Ullman order), so that a long
+/// sum `((e0 + e1) + e2) + ...` is accumulated as it goes instead of holding every term.
+fn depth_first(g: &Graph, outputs: &[Id], is_step: &dyn Fn(Id) -> bool) -> Vec<Id> {
+    // Registers each node needs (Sethi-Ullman numbers, computed on the DAG as if it were a tree),
+    // children before parents.
+    let mut need = vec![0u32; g.len()];
+    for id in g.reachable(outputs, &|id| !is_step(id)) {
+        let children: Vec<u32> = g.node(id).children().map(|c| need[c.index()]).collect();
+        need[id.index()] = match children.as_slice() {
+            [a, b] if a == b => a + 1,
+            [a, b] => (*a).max(*b).max(1),
+            [a] => (*a).max(1),
+            _ => 1,
+        };
+    }
+    let mut visited = vec![false; g.len()];
+    let mut order = Vec::new();
+    // (node, children already pushed)
+    let mut stack: Vec<(Id, bool)> = Vec::new();
+    for &root in outputs {
+        stack.push((root, false));
+        while let Some((id, expanded)) = stack.pop() {
+            if expanded {
+                order.push(id);
+                continue;
+            }
+            if std::mem::replace(&mut visited[id.index()], true) || !is_step(id) {
+                continue;
+            }
+            stack.push((id, true));
+            let mut children: Vec<Id> = g.node(id).children().filter(|c| !visited[c.index()]).collect();
+            // The stack pops the last pushed first: the neediest child goes on top.
+            children.sort_by_key(|c| need[c.index()]);
+            // In a DAG a node still being expanded is never a child of its descendants, so a
+            // visited child is always finished.
+            stack.extend(children.into_iter().map(|c| (c, false)));
+        }
+    }
+    order
 }
 
 impl Operand {
@@ -110,12 +178,14 @@ impl Operand {
     }
 }
 
-/// A Rust expression for the constant `c` (exact: `{:?}` prints the shortest round-trip form).
+/// A Rust expression for the constant `c` (exact: `{:?}` prints the shortest round-trip form;
+/// the non-finite values by their full path, which no user item can shadow).
 pub fn render_const(c: f64) -> String {
     if c.is_nan() {
-        "f64::NAN".to_owned()
+        "::core::primitive::f64::NAN".to_owned()
     } else if c.is_infinite() {
-        if c > 0.0 { "f64::INFINITY".to_owned() } else { "f64::NEG_INFINITY".to_owned() }
+        let name = if c > 0.0 { "INFINITY" } else { "NEG_INFINITY" };
+        format!("::core::primitive::f64::{name}")
     } else if c < 0.0 {
         format!("({c:?}f64)")
     } else {
@@ -157,10 +227,36 @@ impl Expr {
     }
 }
 
+/// Above this many steps [`Program::render`] holds its temporaries in reused registers instead of
+/// one `let` each: rustc nests a scope per `let`, and a function with a few thousand of them
+/// crashes rustc 1.95 in debug builds (measured: 2500 `let`s compile with `-g`, 3000 crash).
+pub const LET_LIMIT: usize = 1000;
+
 impl Program {
-    /// Rust source for the steps in single-assignment form, one `let` per line: temporaries are
-    /// named `{prefix}{index}`, and transcendental functions are called as `{math}sin(x)` etc.
+    /// Rust source for the steps: temporaries are named `{prefix}{index}`, and transcendental
+    /// functions are called as `{math}sin(x)` etc. Up to [`LET_LIMIT`] steps this is one `let`
+    /// per step (single assignment, readable); longer programs compute in a few reused
+    /// registers `{prefix}r{k}` (linear-scan allocation) and bind only the outputs to their
+    /// `{prefix}{index}` names, so [`Program::render_output`] names them either way.
     pub fn render(&self, prefix: &str, math: &str) -> String {
+        if self.steps.len() > LET_LIMIT {
+            let register_prefix = format!("{prefix}r");
+            let mut named = std::collections::HashSet::new();
+            let sinks: Vec<Option<String>> = self
+                .outputs
+                .iter()
+                .map(|o| match o {
+                    Operand::Temp(t) if named.insert(*t) => Some(format!("{prefix}{t}")),
+                    _ => None,
+                })
+                .collect();
+            let mut out = String::new();
+            for name in sinks.iter().flatten() {
+                let _ = writeln!(out, "let {name};");
+            }
+            out.push_str(&self.registers(&register_prefix, math, &sinks, ""));
+            return out;
+        }
         let mut out = String::new();
         let r = |o: &Operand| o.render(prefix);
         for (i, step) in self.steps.iter().enumerate() {
@@ -174,16 +270,24 @@ impl Program {
         self.outputs[k].render(prefix)
     }
 
-    /// Rust source for the steps with temporaries held in a few reused `let mut` registers
-    /// (linear-scan allocation over last uses), and the expressions of the outputs.
+    /// Rust source that computes the program in a few reused `let mut {prefix}{k}: {ty}`
+    /// registers (linear-scan allocation over last uses) and assigns output `k` to the place
+    /// `sinks[k]` (for example `out[3]`) as soon as it is computed, so outputs hold no register.
     ///
-    /// Why: rustc opens a nested scope for every `let`, and a function with several thousand of
-    /// them overflows its stack (measured: 6000 `let`s crash rustc 1.95, the same code in reused
-    /// registers compiles in 0.3 s). Assignments open no scope, so an unrolled chain of any
-    /// length compiles; LLVM's SSA construction makes the two forms identical in optimised code.
-    pub fn render_registers(&self, prefix: &str, math: &str) -> (String, Vec<String>) {
-        const LIVE_TO_END: usize = usize::MAX;
-        let mut last_use = vec![0usize; self.steps.len()];
+    /// Why: rustc nests a scope for every `let`, and a function with a few thousand of them
+    /// overflows its stack or LLVM's debug-info emission (see [`LET_LIMIT`]). Assignments open
+    /// no scope, so a program of any length compiles; LLVM's SSA construction makes the
+    /// optimised code the same as with `let`s. Scheduled [`Schedule::DepthFirst`], an unrolled
+    /// chain needs a few dozen registers whatever its length.
+    pub fn render_into(&self, prefix: &str, ty: &str, math: &str, sinks: &[String]) -> String {
+        let sinks: Vec<Option<String>> = sinks.iter().cloned().map(Some).collect();
+        self.registers(prefix, math, &sinks, &format!(": {ty}"))
+    }
+
+    fn registers(&self, prefix: &str, math: &str, sinks: &[Option<String>], ty: &str) -> String {
+        const NEVER: usize = usize::MAX;
+        // The last step that reads each temporary (NEVER: only outputs read it).
+        let mut last_use = vec![NEVER; self.steps.len()];
         for (i, step) in self.steps.iter().enumerate() {
             for op in step.operands() {
                 if let Operand::Temp(t) = op {
@@ -191,9 +295,15 @@ impl Program {
                 }
             }
         }
-        for op in &self.outputs {
-            if let Operand::Temp(t) = op {
-                last_use[*t] = LIVE_TO_END;
+        let mut sinks_of: HashMap<usize, Vec<&str>> = HashMap::new();
+        let mut late = String::new();
+        for (o, sink) in self.outputs.iter().zip(sinks) {
+            let Some(sink) = sink else { continue };
+            match o {
+                Operand::Temp(t) => sinks_of.entry(*t).or_default().push(sink),
+                other => {
+                    let _ = writeln!(late, "{sink} = {};", other.render(prefix));
+                }
             }
         }
         let mut register = vec![usize::MAX; self.steps.len()];
@@ -222,20 +332,18 @@ impl Program {
             });
             register[i] = reg;
             let _ = writeln!(body, "{prefix}{reg} = {rhs};");
+            for sink in sinks_of.get(&i).into_iter().flatten() {
+                let _ = writeln!(body, "{sink} = {prefix}{reg};");
+            }
+            if last_use[i] == NEVER {
+                free.push(reg);
+            }
         }
         let mut decls = String::new();
         for reg in 0..count {
-            let _ = writeln!(decls, "let mut {prefix}{reg}: f64;");
+            let _ = writeln!(decls, "let mut {prefix}{reg}{ty};");
         }
-        let outputs = self
-            .outputs
-            .iter()
-            .map(|o| match o {
-                Operand::Temp(t) => format!("{prefix}{}", register[*t]),
-                other => other.render(prefix),
-            })
-            .collect();
-        (decls + &body, outputs)
+        decls + &body + &late
     }
 }
 
@@ -263,49 +371,106 @@ impl fmt::Display for Program {
 mod tests {
     use super::*;
 
-    #[test]
-    fn registers_are_reused_and_outputs_survive() {
-        let mut g = Graph::new();
-        let x = g.symbol("x");
-        let mut e = x;
-        let mut outs = vec![];
-        for i in 0..50 {
-            let c = g.constant(1.0 + f64::from(i) * 1e-3);
-            e = g.mul(e, c);
-            e = g.add(e, x);
-            if i % 10 == 0 {
-                outs.push(e);
-            }
-        }
-        let p = lower(&g, &outs, &|id| (id == x).then(|| "x".to_owned())).unwrap();
-        let (src, outputs) = p.render_registers("r", "");
-        let registers = src.matches("let mut").count();
-        assert!(registers <= outs.len() + 2, "{registers} registers for {} steps", p.steps.len());
-        assert_eq!(outputs.len(), outs.len());
-        // Interpret the register program and compare with the graph's own evaluation.
-        let mut regs = std::collections::HashMap::<String, f64>::new();
-        let val = |t: &str, regs: &std::collections::HashMap<String, f64>| -> f64 {
+    /// Runs rendered register code (lines `lhs = a op b;` or `lhs = a;`) with `x = 0.3`.
+    fn interpret(src: &str) -> HashMap<String, f64> {
+        let mut regs = HashMap::<String, f64>::new();
+        let val = |t: &str, regs: &HashMap<String, f64>| -> f64 {
             if t == "x" {
                 0.3
             } else if let Some(v) = regs.get(t) {
                 *v
             } else {
-                t.trim_end_matches("f64").parse().unwrap()
+                t.trim_matches(|c| c == '(' || c == ')').trim_end_matches("f64").parse().unwrap()
             }
         };
         for line in src.lines().filter(|l| !l.starts_with("let")) {
             let (lhs, rhs) = line.trim_end_matches(';').split_once(" = ").unwrap();
             let parts: Vec<&str> = rhs.split(' ').collect();
-            let v = match parts[1] {
-                "+" => val(parts[0], &regs) + val(parts[2], &regs),
-                "*" => val(parts[0], &regs) * val(parts[2], &regs),
-                op => panic!("unexpected {op}"),
+            let v = match parts.as_slice() {
+                [a] => val(a, &regs),
+                [a, "+", b] => val(a, &regs) + val(b, &regs),
+                [a, "*", b] => val(a, &regs) * val(b, &regs),
+                _ => panic!("unexpected {rhs}"),
             };
             regs.insert(lhs.to_owned(), v);
         }
+        regs
+    }
+
+    /// `e_{i+1} = c_i e_i + x`, `count` times; every tenth value is an output.
+    fn recurrence(count: u32) -> (Graph, Id, Vec<Id>) {
+        let mut g = Graph::new();
+        let x = g.symbol("x");
+        let mut e = x;
+        let mut outs = vec![];
+        for i in 0..count {
+            let c = g.constant(1.0 + f64::from(i) * 1e-3);
+            e = g.mul(c, e);
+            e = g.add(e, x);
+            if i % 10 == 0 {
+                outs.push(e);
+            }
+        }
+        (g, x, outs)
+    }
+
+    #[test]
+    fn registers_are_reused_and_outputs_go_to_their_sinks() {
+        let (g, x, outs) = recurrence(50);
+        let p = lower(&g, &outs, &|id| (id == x).then(|| "x".to_owned())).unwrap();
+        let sinks: Vec<String> = (0..outs.len()).map(|k| format!("out[{k}]")).collect();
+        let src = p.render_into("r", "f64", "", &sinks);
+        let registers = src.matches("let mut").count();
+        assert!(registers <= 3, "{registers} registers for {} steps", p.steps.len());
+        // Interpret the register program and compare with the graph's own evaluation.
+        let regs = interpret(&src);
         for (k, &o) in outs.iter().enumerate() {
             let expected = g.eval(o, &|_| 0.3);
-            assert!((val(&outputs[k], &regs) - expected).abs() < 1e-12);
+            assert_eq!(regs[&sinks[k]], expected);
+        }
+    }
+
+    #[test]
+    fn long_programs_render_in_registers_under_their_output_names() {
+        let (g, x, outs) = recurrence(2 * LET_LIMIT as u32);
+        let p = lower(&g, &outs, &|id| (id == x).then(|| "x".to_owned())).unwrap();
+        assert!(p.steps.len() > LET_LIMIT);
+        let src = p.render("t", "");
+        // One `let` per output name plus a few registers, not one per step.
+        assert!(src.matches("let").count() <= outs.len() + 3, "{src}");
+        let regs = interpret(&src);
+        for (k, &o) in outs.iter().enumerate() {
+            assert_eq!(regs[&p.render_output(k, "t")], g.eval(o, &|_| 0.3));
+        }
+    }
+
+    #[test]
+    fn depth_first_schedule_keeps_few_values_live() {
+        // Many independent outputs created all before any is used: in arena order every one
+        // would stay live; depth first, each is computed and stored before the next.
+        let mut g = Graph::new();
+        let x = g.symbol("x");
+        let squares: Vec<Id> = (0..500)
+            .map(|i| {
+                let c = g.constant(f64::from(i) + 0.5);
+                let s = g.add(x, c);
+                g.mul(s, s)
+            })
+            .collect();
+        let mut sums = vec![];
+        for w in squares.windows(2) {
+            sums.push(g.add(w[0], w[1]));
+        }
+        let leaf = |id: Id| (id == x).then(|| "x".to_owned());
+        let sinks: Vec<String> = (0..sums.len()).map(|k| format!("out[{k}]")).collect();
+        let arena = lower(&g, &sums, &leaf).unwrap().render_into("r", "f64", "", &sinks);
+        let deep = lower_with(&g, &sums, &leaf, Schedule::DepthFirst).unwrap();
+        let src = deep.render_into("r", "f64", "", &sinks);
+        assert!(arena.matches("let mut").count() >= 500);
+        assert!(src.matches("let mut").count() <= 4, "{}", src.matches("let mut").count());
+        let regs = interpret(&src);
+        for (k, &o) in sums.iter().enumerate() {
+            assert_eq!(regs[&sinks[k]], g.eval(o, &|_| 0.3));
         }
     }
 

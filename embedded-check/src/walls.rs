@@ -7,7 +7,7 @@
 //! **kink**, from `-` to `+` an **antikink**.
 //!
 //! This is `chain_core::statics::walls::domain_walls` as an iterator, with the same rule for
-//! vertical rotors; that function collects into a `Vec`, which needs `alloc`. The embedded-host
+//! vertical and non-finite rotors; that function collects into a `Vec`, which needs `alloc`. The embedded-host
 //! tests check that both give the same walls.
 
 use crate::Real;
@@ -42,18 +42,21 @@ pub struct Wall<T> {
     pub charge: Charge,
 }
 
-/// The domain walls of `theta`, left to right. A rotor exactly at zero belongs to the wall between
-/// its neighbours and is not counted twice.
+/// The domain walls of `theta`, left to right. Rotors exactly at zero (vertical) and non-finite
+/// angles lean neither way: a wall across them sits in the middle between the two leaning rotors
+/// around them, and is counted once.
 pub fn domain_walls<T: Real>(theta: &[T]) -> DomainWalls<'_, T> {
-    DomainWalls { theta, next: 0 }
+    DomainWalls { theta, next: 0, last: None }
 }
 
 /// Iterator returned by [`domain_walls`].
 #[derive(Clone, Debug)]
 pub struct DomainWalls<'a, T> {
     theta: &'a [T],
-    /// The left rotor of the next pair to look at.
+    /// The next rotor to look at.
     next: usize,
+    /// The last rotor that leans, and its angle.
+    last: Option<(usize, T)>,
 }
 
 impl<T: Real> Iterator for DomainWalls<'_, T> {
@@ -61,27 +64,20 @@ impl<T: Real> Iterator for DomainWalls<'_, T> {
 
     fn next(&mut self) -> Option<Wall<T>> {
         let zero = T::zero();
-        while self.next + 1 < self.theta.len() {
-            let i = self.next;
+        while self.next < self.theta.len() {
+            let j = self.next;
+            let t = self.theta[j];
             self.next += 1;
-            let (t0, t1) = (self.theta[i], self.theta[i + 1]);
-            if t0 == zero {
+            if !t.is_finite() || t == zero {
                 continue;
             }
-            if t1 == zero {
-                // A vertical rotor: the wall sits on it if the signs on either side differ.
-                match self.theta.get(i + 2) {
-                    Some(&t2) if t2 != zero && t2.signum() != t0.signum() => {
-                        return Some(Wall { position: T::of((i + 1) as f64), charge: Charge::of_left(t0) });
-                    }
-                    _ => continue,
-                }
-            }
-            if t0.signum() != t1.signum() {
-                return Some(Wall {
-                    position: T::of(i as f64) + t0 / (t0 - t1),
-                    charge: Charge::of_left(t0),
-                });
+            let previous = self.last.replace((j, t));
+            if let Some((i, ti)) = previous
+                && (ti > zero) != (t > zero)
+            {
+                let position =
+                    if j == i + 1 { T::of(i as f64) + ti / (ti - t) } else { T::of((i + j) as f64 / 2.0) };
+                return Some(Wall { position, charge: Charge::of_left(ti) });
             }
         }
         None

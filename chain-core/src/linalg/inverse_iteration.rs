@@ -205,9 +205,12 @@ impl Random {
         bits as f64 / (1u64 << 52) as f64 - 1.0
     }
 
-    /// Fills `v` with a random unit vector orthogonal to `basis`.
+    /// Fills `v` with a random unit vector orthogonal to `basis`. A random vector lies in the
+    /// span of fewer than `n` vectors with probability zero, so one draw suffices; the bound on
+    /// the draws only guarantees termination (a last failed draw leaves `v` zero, and the
+    /// caller's residual test then reports no convergence).
     fn start(&mut self, v: &mut [f64], basis: &[Vec<f64>]) {
-        loop {
+        for _ in 0..64 {
             v.iter_mut().for_each(|x| *x = self.next());
             orthogonalize(v, basis);
             let size = bands::normalize(v);

@@ -76,6 +76,9 @@ fn initial_guess<M: ChainModel + ?Sized>(
     centre: f64,
     options: &AntikinkOptions,
 ) -> Result<Vec<f64>, StaticsError> {
+    if let Some(tolerance) = options.zero_tolerance {
+        super::validate::non_negative("zero_tolerance", tolerance)?;
+    }
     let mut guess = reflected_kink(model, centre)?;
     if options.hold() {
         let n = guess.len();
@@ -134,7 +137,7 @@ impl Antikink {
         // With held ends the stability is that of the moving rotors.
         let (diag, off) = stiffness(model, &theta);
         let (diag, off) = super::equilibrium::restricted(&diag, &off, options.hold());
-        let classification = classify(&diag, &off, options.zero_tolerance.unwrap_or(DEFAULT_ZERO_TOLERANCE));
+        let classification = classify(&diag, &off, options.zero_tolerance.unwrap_or(DEFAULT_ZERO_TOLERANCE))?;
         Ok(Self {
             energy: model.energy(&theta),
             centre: antikinks[0],
@@ -191,7 +194,7 @@ pub fn antikink_relaxed<M: ChainModel + ?Sized>(
         return Ok(polished);
     }
     let n = model.rotor_count() as f64;
-    let rotor = libm::round(polished.centre).clamp(1.0, n - 2.0);
+    let rotor = libm::round(polished.centre).clamp(1.0, (n - 2.0).max(1.0));
     let spring = if polished.centre >= rotor { rotor + 0.5 } else { rotor - 0.5 };
     let (a, b) = (antikink_at(model, rotor, options)?, antikink_at(model, spring, options)?);
     let mut best = if a.energy <= b.energy { a } else { b };

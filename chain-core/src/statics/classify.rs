@@ -5,6 +5,8 @@
 //! index 0; a saddle of index 1 is the top of a Peierls-Nabarro barrier; near-zero eigenvalues are
 //! mechanisms (the kink's translation) or exponentially soft edge modes.
 
+use super::error::StaticsError;
+use super::validate;
 use crate::linalg;
 
 /// What kind of equilibrium the spectrum shows.
@@ -33,14 +35,19 @@ pub struct Classification {
 /// Classifies the symmetric tridiagonal tangent stiffness `(diag, off)`; eigenvalues within
 /// `relative * ||K||` of zero count as zero. A relative tolerance of `1e-10` separates rounding
 /// (`~1e-16`) and exponentially soft edge modes from physical soft modes.
-pub fn classify(diag: &[f64], off: &[f64], relative: f64) -> Classification {
+///
+/// # Errors
+/// Bands of mismatched lengths or with a non-finite entry ([`StaticsError::Linalg`]), or a
+/// `relative` tolerance that is not finite and `>= 0`.
+pub fn classify(diag: &[f64], off: &[f64], relative: f64) -> Result<Classification, StaticsError> {
+    let relative = validate::non_negative("relative tolerance", relative)?;
     let tolerance = relative * super::equilibrium::norm(diag, off);
-    let index = linalg::count_below(diag, off, -tolerance);
-    let nullity = linalg::count_below(diag, off, tolerance) - index;
+    let index = linalg::try_count_below(diag, off, -tolerance)?;
+    let nullity = linalg::try_count_below(diag, off, tolerance)? - index;
     let kind = match (index, nullity) {
         (0, 0) => EquilibriumKind::Minimum,
         (0, nullity) => EquilibriumKind::DegenerateMinimum { nullity },
         (index, _) => EquilibriumKind::Saddle { index },
     };
-    Classification { index, nullity, tolerance, kind }
+    Ok(Classification { index, nullity, tolerance, kind })
 }

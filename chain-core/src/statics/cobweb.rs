@@ -12,6 +12,7 @@ use alloc::vec;
 use alloc::vec::Vec;
 
 use super::error::StaticsError;
+use super::validate;
 use crate::model::ChainModel;
 
 /// Whether a fixed point attracts or repels forward iteration.
@@ -41,7 +42,18 @@ pub fn slope_closed_form(a: f64, r: f64, theta_bar: f64) -> f64 {
 
 /// The slope `F'` of spring `p`'s map at `(theta_p, theta_{p+1})` from the generated code:
 /// on the constraint `l_p = l0_p`, `dtheta_{p+1}/dtheta_p = -(dl/dtheta_p)/(dl/dtheta_{p+1})`.
-pub fn branch_slope<M: ChainModel + ?Sized>(model: &M, p: usize, theta_p: f64, theta_next: f64) -> f64 {
+///
+/// # Errors
+/// [`StaticsError::Branch`] (`NoSuchSpring`) for a spring `p` the chain does not have;
+/// [`StaticsError::NotFinite`] for a non-finite angle.
+pub fn branch_slope<M: ChainModel + ?Sized>(
+    model: &M,
+    p: usize,
+    theta_p: f64,
+    theta_next: f64,
+) -> Result<f64, StaticsError> {
+    validate::spring(model, p)?;
+    validate::finite("theta_p, theta_{p+1}", &[theta_p, theta_next])?;
     let n = model.rotor_count();
     let mut theta = vec![0.0; n];
     theta[p] = theta_p;
@@ -49,7 +61,7 @@ pub fn branch_slope<M: ChainModel + ?Sized>(model: &M, p: usize, theta_p: f64, t
     let (mut left, mut right) = (vec![0.0; n - 1], vec![0.0; n - 1]);
     model.compatibility_into(&theta, &mut left, &mut right);
     // C = dl / d(r theta): undo the rotor lengths to get dl/dtheta.
-    -(left[p] * model.rotor_length(p)) / (right[p] * model.rotor_length(p + 1))
+    Ok(-(left[p] * model.rotor_length(p)) / (right[p] * model.rotor_length(p + 1)))
 }
 
 /// Classifies a slope.
@@ -67,14 +79,15 @@ pub fn stability(slope: f64) -> Stability {
 /// The two fixed points `-theta_bar`, `+theta_bar` of spring `p`'s flipper branch (refined by
 /// Newton's method on `F(theta) - theta`, so springs with their own rest length are handled).
 pub fn fixed_points<M: ChainModel + ?Sized>(model: &M, p: usize) -> Result<[FixedPoint; 2], StaticsError> {
-    let tb = model.theta_bar();
+    validate::spring(model, p)?;
+    let tb = validate::theta_bar(model)?;
     let mut out =
         [FixedPoint { theta: 0.0, slope: 0.0, stability: Stability::Marginal, decay_length: 0.0 }; 2];
     for (slot, start) in out.iter_mut().zip([-tb, tb]) {
         let mut t = start;
         for _ in 0..50 {
             let f = model.next_angles(p, t)?[0];
-            let slope = branch_slope(model, p, t, f);
+            let slope = branch_slope(model, p, t, f)?;
             let step = (f - t) / (slope - 1.0);
             t -= step;
             if step.abs() <= 1e-15 * (1.0 + t.abs()) {
@@ -82,7 +95,7 @@ pub fn fixed_points<M: ChainModel + ?Sized>(model: &M, p: usize) -> Result<[Fixe
             }
         }
         let f = model.next_angles(p, t)?[0];
-        let slope = branch_slope(model, p, t, f);
+        let slope = branch_slope(model, p, t, f)?;
         *slot = FixedPoint {
             theta: t,
             slope,
@@ -110,15 +123,26 @@ pub struct Cobweb {
     pub staircase: Vec<[f64; 2]>,
 }
 
+/// The most samples of the constraint curve [`cobweb`] takes.
+pub const MAX_COBWEB_SAMPLES: usize = 1_000_000;
+
 /// The cobweb of `theta` drawn on spring `p`'s constraint curve, sampled at `samples` angles
-/// over `[-range, range]`.
+/// over `[-range, range]` (angles where the branch solve has no real root are left out).
+///
+/// # Errors
+/// A spring `p` the chain does not have, `theta` not one finite angle per rotor, `range` not
+/// finite and positive, or more than [`MAX_COBWEB_SAMPLES`] samples.
 pub fn cobweb<M: ChainModel + ?Sized>(
     model: &M,
     p: usize,
     theta: &[f64],
     range: f64,
     samples: usize,
-) -> Cobweb {
+) -> Result<Cobweb, StaticsError> {
+    validate::spring(model, p)?;
+    validate::angles(model, theta)?;
+    validate::positive("range", range)?;
+    validate::at_most("samples", samples, MAX_COBWEB_SAMPLES)?;
     let mut flipper_branch = Vec::new();
     let mut other_branch = Vec::new();
     for s in 0..samples {
@@ -136,12 +160,12 @@ pub fn cobweb<M: ChainModel + ?Sized>(
     if let Some(&last) = theta.last() {
         staircase.push([last, last]);
     }
-    Cobweb {
+    Ok(Cobweb {
         flipper_branch,
         other_branch,
         diagonal: [[-range, -range], [range, range]],
         rotors: theta.iter().map(|&t| [t, t]).collect(),
         springs: theta.windows(2).map(|w| [w[0], w[1]]).collect(),
         staircase,
-    }
+    })
 }

@@ -19,6 +19,7 @@ use alloc::vec::Vec;
 use nalgebra::DMatrix;
 
 use super::error::StaticsError;
+use super::validate;
 use crate::linalg;
 use crate::model::ChainModel;
 
@@ -60,14 +61,36 @@ pub fn compatibility<M: ChainModel + ?Sized>(model: &M, theta: &[f64]) -> (Vec<f
     (left, right)
 }
 
+/// The bands of `C` at `theta`, checked: `theta` one finite angle per rotor, and every entry of
+/// `C` finite (a model whose parameters make a spring of zero length gives NaN).
+fn checked_compatibility<M: ChainModel + ?Sized>(
+    model: &M,
+    theta: &[f64],
+) -> Result<(Vec<f64>, Vec<f64>), StaticsError> {
+    validate::angles(model, theta)?;
+    let (left, right) = compatibility(model, theta);
+    validate::finite("the compatibility matrix's diagonal", &left)?;
+    validate::finite("the compatibility matrix's superdiagonal", &right)?;
+    Ok((left, right))
+}
+
 /// Maxwell-Calladine counting at `theta`; `tolerance` overrides the numerical-rank rule.
+///
+/// # Errors
+/// `theta` not one finite angle per rotor, a compatibility matrix that is not finite, a
+/// `tolerance` that is not finite and `>= 0`, or a failed SVD or eigensolver (each iteration
+/// bounded).
 pub fn maxwell_calladine<M: ChainModel + ?Sized>(
     model: &M,
     theta: &[f64],
     tolerance: Option<f64>,
 ) -> Result<Counting, StaticsError> {
+    if let Some(t) = tolerance {
+        validate::non_negative("tolerance", t)?;
+    }
     let (n, m) = (model.rotor_count(), model.spring_count());
-    let (left, right) = compatibility(model, theta);
+    let (left, right) = checked_compatibility(model, theta)?;
+    validate::at_most("rotors x springs of the dense SVD", n.saturating_mul(m), super::MAX_DENSE_VALUES)?;
     let c = DMatrix::from_fn(m, n, |p, i| {
         if i == p {
             left[p]
@@ -77,7 +100,16 @@ pub fn maxwell_calladine<M: ChainModel + ?Sized>(
             0.0
         }
     });
-    let mut singular_values: Vec<f64> = c.singular_values().iter().copied().collect();
+    // nalgebra's `singular_values()` iterates without a bound; LAPACK's `dbdsqr` allows
+    // 6 n^2 sweeps, which is what this gives.
+    let budget = 6 * n.max(m) * n.max(m);
+    let svd = c.try_svd(false, false, f64::EPSILON, budget).ok_or(StaticsError::NoConvergence {
+        method: "SVD of the compatibility matrix",
+        iterations: budget,
+        residual: f64::NAN,
+        tolerance: f64::EPSILON,
+    })?;
+    let mut singular_values: Vec<f64> = svd.singular_values.iter().copied().collect();
     singular_values.sort_by(|a, b| b.total_cmp(a));
     let sigma_max = singular_values.first().copied().unwrap_or(0.0);
     let tolerance = tolerance.unwrap_or(n.max(m) as f64 * f64::EPSILON * sigma_max);
@@ -112,7 +144,7 @@ pub fn tensional_modes<M: ChainModel + ?Sized>(
     theta: &[f64],
     count: usize,
 ) -> Result<Vec<TensionalMode>, StaticsError> {
-    let (left, right) = compatibility(model, theta);
+    let (left, right) = checked_compatibility(model, theta)?;
     let (diag, off) = cct(&left, &right);
     Ok(linalg::lowest_eigenpairs(&diag, &off, count.min(left.len()))?
         .into_iter()

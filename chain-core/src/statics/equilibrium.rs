@@ -38,6 +38,7 @@ use alloc::vec;
 use alloc::vec::Vec;
 
 use super::error::StaticsError;
+use super::validate;
 use crate::linalg;
 use crate::model::ChainModel;
 
@@ -118,10 +119,12 @@ pub(crate) fn moving(n: usize, hold_ends: bool) -> core::ops::Range<usize> {
     if hold_ends && n > 2 { 1..n - 1 } else { 0..n }
 }
 
-/// The tangent stiffness restricted to the moving rotors.
+/// The tangent stiffness restricted to the moving rotors (bands of any lengths are cut to the
+/// block both describe).
 pub fn restricted(diag: &[f64], off: &[f64], hold_ends: bool) -> (Vec<f64>, Vec<f64>) {
-    let r = moving(diag.len(), hold_ends);
-    (diag[r.clone()].to_vec(), off[r.start..r.end - 1].to_vec())
+    let n = diag.len().min(off.len() + 1);
+    let r = moving(n, hold_ends);
+    (diag[r.clone()].to_vec(), off[r.start..r.end.saturating_sub(1).max(r.start)].to_vec())
 }
 
 /// The tangent stiffness of `model` at `theta` as `(diag, off)`.
@@ -132,28 +135,59 @@ pub fn stiffness<M: ChainModel + ?Sized>(model: &M, theta: &[f64]) -> (Vec<f64>,
     (diag, off)
 }
 
-/// `max_i sum_j |K_ij|`, the infinity norm of a symmetric tridiagonal matrix.
+/// `max_i sum_j |K_ij|`, the infinity norm of a symmetric tridiagonal matrix (NaN if an entry
+/// is NaN).
 pub fn norm(diag: &[f64], off: &[f64]) -> f64 {
     (0..diag.len())
         .map(|i| {
             diag[i].abs() + if i > 0 { off[i - 1].abs() } else { 0.0 } + off.get(i).map_or(0.0, |o| o.abs())
         })
-        .fold(0.0, f64::max)
+        .fold(0.0, nan_max)
+}
+
+/// `max(a, b)`, but NaN if either is: `f64::max` drops a NaN, which would turn a NaN force into
+/// a zero residual.
+fn nan_max(a: f64, b: f64) -> f64 {
+    if a.is_nan() || b.is_nan() { f64::NAN } else { a.max(b) }
 }
 
 fn max_abs(v: &[f64]) -> f64 {
-    v.iter().fold(0.0, |m, x| m.max(x.abs()))
+    v.iter().fold(0.0, |m, x| nan_max(m, x.abs()))
 }
 
-fn check_input<M: ChainModel + ?Sized>(model: &M, theta: &[f64]) -> Result<(), StaticsError> {
-    let n = model.rotor_count();
-    if theta.len() != n {
-        return Err(StaticsError::WrongLength { what: "theta", len: theta.len(), expected: n });
+impl NewtonOptions {
+    /// Every setting finite and in range.
+    fn check(&self) -> Result<(), StaticsError> {
+        validate::positive("NewtonOptions::tolerance", self.tolerance)?;
+        validate::non_negative("NewtonOptions::shift", self.shift)?;
+        validate::non_negative("NewtonOptions::null_tolerance", self.null_tolerance)?;
+        Ok(())
     }
-    if let Some((index, &value)) = theta.iter().enumerate().find(|(_, t)| !t.is_finite()) {
-        return Err(StaticsError::NotFinite { what: "theta", index, value });
+}
+
+impl RelaxOptions {
+    /// Every setting finite and in range.
+    fn check(&self) -> Result<(), StaticsError> {
+        validate::positive("RelaxOptions::tolerance", self.tolerance)?;
+        validate::positive("RelaxOptions::time_step", self.time_step)?;
+        validate::non_negative("RelaxOptions::damping", self.damping)?;
+        Ok(())
     }
-    Ok(())
+}
+
+/// A residual that is NaN (the model's forces or stiffness are not finite at the iterate) stops
+/// the iteration with an error instead of ending the loop as if it had converged.
+fn finite_residual(
+    method: &'static str,
+    iterations: usize,
+    residual: f64,
+    tolerance: f64,
+) -> Result<f64, StaticsError> {
+    if residual.is_nan() {
+        Err(StaticsError::NoConvergence { method, iterations, residual, tolerance })
+    } else {
+        Ok(residual)
+    }
 }
 
 /// How many eigenvalues of `K` lie within `tolerance` of zero.
@@ -197,7 +231,9 @@ pub fn newton<M: ChainModel + ?Sized>(
     theta: &[f64],
     options: &NewtonOptions,
 ) -> Result<Solution, StaticsError> {
-    check_input(model, theta)?;
+    validate::angles(model, theta)?;
+    options.check()?;
+    const METHOD: &str = "Newton's method on the gradient";
     let n = model.rotor_count();
     let range = moving(n, options.hold_ends);
     let mut theta = theta.to_vec();
@@ -206,16 +242,21 @@ pub fn newton<M: ChainModel + ?Sized>(
     let mut g_trial = vec![0.0; n];
     model.gradient_into(&theta, &mut g);
     let (diag, off) = stiffness(model, &theta);
+    // Finite angles can still give non-finite forces (a model whose parameters are not finite,
+    // a spring of zero length): an error, not a NaN residual.
+    validate::finite("the model's gradient at theta", &g)?;
+    validate::finite("the model's tangent stiffness (diagonal) at theta", &diag)?;
+    validate::finite("the model's tangent stiffness (off-diagonal) at theta", &off)?;
     let scale = norm(&diag, &off).max(f64::MIN_POSITIVE);
     let (rd, ro) = restricted(&diag, &off, options.hold_ends);
     let mut held = near_null(&rd, &ro, options.null_tolerance * scale)?;
     let mut residual = projected_residual(&g[range.clone()], &held, scale);
     let mut previous = f64::INFINITY;
     let mut iterations = 0;
-    while residual > options.tolerance {
+    while finite_residual(METHOD, iterations, residual, options.tolerance)? > options.tolerance {
         if iterations == options.max_iterations {
             return Err(StaticsError::NoConvergence {
-                method: "Newton's method on the gradient",
+                method: METHOD,
                 iterations,
                 residual,
                 tolerance: options.tolerance,
@@ -261,6 +302,7 @@ pub fn newton<M: ChainModel + ?Sized>(
         }
     }
     let edge_force = max_abs(&g) / scale;
+    validate::finite("the equilibrium found by Newton's method", &theta)?;
     Ok(Solution { theta, iterations, residual, edge_force, held: held.len() })
 }
 
@@ -277,7 +319,8 @@ pub fn relax<M: ChainModel + ?Sized>(
 ) -> Result<(Vec<f64>, usize), StaticsError> {
     use crate::dynamics::integrate::State;
     use crate::dynamics::integrate::verlet::Stepper;
-    check_input(model, theta)?;
+    validate::angles(model, theta)?;
+    options.check()?;
     let n = model.rotor_count();
     let (diag, off) = stiffness(model, theta);
     let scale = norm(&diag, &off).max(f64::MIN_POSITIVE);

@@ -44,4 +44,10 @@ pub enum StaticsError {
     /// A non-finite number where a finite one is needed.
     #[error("{what} is not finite ({value}) at index {index}")]
     NotFinite { what: &'static str, index: usize, value: f64 },
+    /// A setting or a model parameter outside its range (`expected` says the range).
+    #[error("{what} = {value} is invalid: expected {expected}")]
+    InvalidValue { what: &'static str, value: f64, expected: &'static str },
+    /// A count larger than the analysis accepts (its result would not fit in memory).
+    #[error("{what} = {value} is too large: at most {max}")]
+    TooLarge { what: &'static str, value: usize, max: usize },
 }

@@ -16,6 +16,7 @@ use alloc::vec::Vec;
 use super::counting::{Counting, TensionalMode, maxwell_calladine, tensional_modes};
 use super::error::StaticsError;
 use super::modes::{Mode, ModeOptions, modes};
+use super::validate;
 use crate::model::ChainModel;
 
 /// The length of spring `p` with its rotors at `theta_p`, `theta_{p+1}`: O(1), from the model's
@@ -27,18 +28,29 @@ fn spring_length<M: ChainModel + ?Sized>(model: &M, p: usize, theta_p: f64, thet
 
 /// `l_critical` of spring `p`, computed: the spring's length with its left rotor at `-theta_bar`
 /// and its right rotor at `+theta_bar` (both sub-chains uniform, the kinks gone through the ends).
-pub fn critical_length<M: ChainModel + ?Sized>(model: &M, p: usize) -> f64 {
-    let tb = model.theta_bar();
-    spring_length(model, p, -tb, tb)
+///
+/// # Errors
+/// A spring `p` the chain does not have (`NoSuchSpring`), or a model whose `theta_bar` is not a
+/// finite positive angle.
+pub fn critical_length<M: ChainModel + ?Sized>(model: &M, p: usize) -> Result<f64, StaticsError> {
+    validate::spring(model, p)?;
+    let tb = validate::theta_bar(model)?;
+    Ok(spring_length(model, p, -tb, tb))
 }
 
 /// The zero-energy configuration around the impurity spring `p`, symmetric about it. For
 /// `l0 >= sqrt(a^2 + 4 r^2)` (`phi >= 0`) it holds two kinks, one on each side of the impurity; for
 /// shorter rest lengths (`phi < 0`) a single kink straddles the impurity.
+///
+/// # Errors
+/// A spring `p` the chain does not have (`NoSuchSpring`), a model whose `theta_bar` or rest
+/// length of spring `p` is not finite and positive, a rest length with no symmetric zero-energy
+/// state ([`StaticsError::NoZeroEnergyState`]), or a failed branch solve.
 pub fn two_kink_configuration<M: ChainModel + ?Sized>(model: &M, p: usize) -> Result<Vec<f64>, StaticsError> {
+    validate::spring(model, p)?;
     let n = model.rotor_count();
-    let l0 = model.rest_length(p);
-    let tb = model.theta_bar();
+    let l0 = validate::positive("the rest length of the impurity spring", model.rest_length(p))?;
+    let tb = validate::theta_bar(model)?;
     let reach = |phi: f64| spring_length(model, p, -phi, phi);
     let (shortest, critical) = (reach(-tb), reach(tb));
     if l0 > critical * (1.0 + 1e-14) || l0 < shortest * (1.0 - 1e-14) {
@@ -91,7 +103,8 @@ pub struct ImpurityAnalysis {
     pub counting: Counting,
 }
 
-/// Zero-energy state, lowest modes and softest tensional mode around impurity spring `p`.
+/// Zero-energy state, lowest modes and softest tensional mode around impurity spring `p`
+/// (errors as [`two_kink_configuration`]).
 pub fn impurity_analysis<M: ChainModel + ?Sized>(
     model: &M,
     p: usize,
@@ -102,7 +115,7 @@ pub fn impurity_analysis<M: ChainModel + ?Sized>(
     let counting = maxwell_calladine(model, &theta, None)?;
     Ok(ImpurityAnalysis {
         rest_length: model.rest_length(p),
-        critical_length: critical_length(model, p),
+        critical_length: critical_length(model, p)?,
         theta,
         modes: lowest,
         tensional,

@@ -100,14 +100,22 @@ fn split(centre: f64, n: usize) -> (usize, f64) {
     if i >= n - 1 { (n - 1, 0.0) } else { (i, centre - i as f64) }
 }
 
+/// The most steps [`mechanism_path`] takes.
+pub const MAX_PATH_STEPS: usize = 1_000_000;
+
 /// The mechanism: kinks at `steps + 1` evenly spaced centres from `from` to `to`, each a
 /// zero-energy configuration (paper Sec. II: the kink can sit anywhere along the chain).
+///
+/// # Errors
+/// A centre outside the chain or not finite, more than [`MAX_PATH_STEPS`] steps, or a failed
+/// branch solve.
 pub fn mechanism_path<M: ChainModel + ?Sized>(
     model: &M,
     from: f64,
     to: f64,
     steps: usize,
 ) -> Result<Vec<(f64, Vec<f64>)>, StaticsError> {
+    super::validate::at_most("steps", steps, MAX_PATH_STEPS)?;
     (0..=steps)
         .map(|s| {
             let c = if steps == 0 { from } else { from + (to - from) * s as f64 / steps as f64 };

@@ -54,6 +54,12 @@
 //! V(x1, x2; l0) = k (l12 - l0)^2 / 2                                                       (potential)
 //! ```
 //!
+//! for the harmonic law of the paper. The impurity spring is a two-rotor [`ChainModel`]
+//! ([`LinkageChain::with_impurity`]): `V` is its energy at the two head angles and the forces on
+//! the kinks are its generated gradient times the head slopes `dtheta~/dx`, so any spring law
+//! (a `#[rotor_chain(n = 2, law = ..)]` struct) is the law of the reduced model; nothing is
+//! derived by hand here.
+//!
 //! At `x1 = x2 = 0` both heads sit at `-+theta_bar tanh(x_head / w)`, so `l12 = l_critical` up to
 //! `O(exp(-2 x_head / w))`: the impurity is maximally stretched and `V = E_c = k (l0 - l_critical)^2 / 2`.
 //!
@@ -97,6 +103,8 @@ use super::continuum::ContinuumChain;
 use crate::branch;
 use crate::error::BranchError;
 use crate::math;
+use crate::model::ChainModel;
+use crate::runtime::RuntimeChain;
 
 /// A linkage computation that could not be carried out.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
@@ -128,6 +136,12 @@ pub enum LinkageError {
     /// The state left the finite numbers (a kink escaped through a head, where its mass vanishes).
     #[error("step {step}: the state is no longer finite")]
     StateNotFinite { step: usize },
+    /// The impurity model must be one spring between two rotors.
+    #[error("the impurity model must have 2 rotors (one spring), it has {rotors}")]
+    ImpurityNotOneSpring { rotors: usize },
+    /// The impurity model's geometry differs from the chain's.
+    #[error("the impurity model's {what} is {impurity}, the chain's is {chain}: they must be equal")]
+    ImpurityGeometry { what: &'static str, impurity: f64, chain: f64 },
 }
 
 /// The effective mass of each kink.
@@ -255,38 +269,90 @@ pub fn kink_coordinate(chain: &ContinuumChain, angles: &[f64]) -> Result<f64, Li
 }
 
 /// The reduced two-kink model of Sec. VII-B (module doc).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct LinkageChain {
+///
+/// The impurity spring is a [`ChainModel`] of two rotors, `M`: its energy, length and gradient
+/// (the generated code of a `#[rotor_chain]` struct, or a [`RuntimeChain`]'s kernel) give `V`,
+/// `l12` and the forces on the kinks, so a custom spring law is the law of the linkage limit too.
+/// [`LinkageChain::new`] uses the harmonic law of Sec. VII-B.
+#[derive(Clone, Debug, PartialEq)]
+pub struct LinkageChain<M = RuntimeChain> {
     chain: ContinuumChain,
     rotors: usize,
+    impurity: M,
     rest_length: f64,
     profile_width: f64,
     kink_mass: KinkMass,
 }
 
-impl LinkageChain {
-    /// Two sub-chains of `rotors` rotors each and an impurity spring of rest length `l0` and the
-    /// chain's stiffness `k`; profile width `w`, mass [`KinkMass::Profile`].
+impl LinkageChain<RuntimeChain> {
+    /// Two sub-chains of `rotors` rotors each and a harmonic impurity spring of rest length `l0`
+    /// and the chain's stiffness `k`; profile width `w`, mass [`KinkMass::Profile`].
     pub fn new(chain: ContinuumChain, rotors: usize, l0: f64) -> Result<Self, LinkageError> {
+        let l0 = check_positive(Key::RestLength, l0)?;
+        let impurity = RuntimeChain::builder(2, chain.r(), chain.k(), chain.theta_bar())
+            .lattice_spacing(chain.a())
+            .mass(chain.mass())
+            .spring(0, None, Some(l0))
+            .build()?;
+        Self::with_impurity(chain, rotors, impurity)
+    }
+}
+
+impl<M: ChainModel> LinkageChain<M> {
+    /// Two sub-chains of `rotors` rotors each joined by the spring of `impurity`, a chain of two
+    /// rotors whose lattice spacing and rotor lengths are the chain's, with any spring law and
+    /// the rest length of its spring as `l0`.
+    pub fn with_impurity(chain: ContinuumChain, rotors: usize, impurity: M) -> Result<Self, LinkageError> {
         let rotors = check_rotor_count(rotors)?;
-        let rest_length = check_positive(Key::RestLength, l0)?;
-        Ok(Self { chain, rotors, rest_length, profile_width: chain.width(), kink_mass: KinkMass::Profile })
+        if impurity.rotor_count() != 2 {
+            return Err(LinkageError::ImpurityNotOneSpring { rotors: impurity.rotor_count() });
+        }
+        let geometry = [
+            ("lattice spacing", impurity.lattice_spacing(), chain.a()),
+            ("first rotor length", impurity.rotor_length(0), chain.r()),
+            ("second rotor length", impurity.rotor_length(1), chain.r()),
+        ];
+        for (what, impurity, chain) in geometry {
+            if impurity != chain {
+                return Err(LinkageError::ImpurityGeometry { what, impurity, chain });
+            }
+        }
+        let rest_length = check_positive(Key::RestLength, impurity.rest_length(0))?;
+        Ok(Self {
+            chain,
+            rotors,
+            impurity,
+            rest_length,
+            profile_width: chain.width(),
+            kink_mass: KinkMass::Profile,
+        })
+    }
+
+    /// The impurity spring's model.
+    pub fn impurity(&self) -> &M {
+        &self.impurity
     }
 
     /// The same model with head profile width `width` (default: the continuum `w`).
-    pub fn with_profile_width(self, width: f64) -> Result<Self, LinkageError> {
+    pub fn with_profile_width(&self, width: f64) -> Result<Self, LinkageError>
+    where
+        M: Clone,
+    {
         if !(width.is_finite() && width > 0.0) {
             return Err(LinkageError::NotPositive { what: "profile width", value: width });
         }
-        Ok(Self { profile_width: width, ..self })
+        Ok(Self { profile_width: width, ..self.clone() })
     }
 
     /// The same model with another kink mass.
-    pub fn with_kink_mass(self, kink_mass: KinkMass) -> Result<Self, LinkageError> {
+    pub fn with_kink_mass(&self, kink_mass: KinkMass) -> Result<Self, LinkageError>
+    where
+        M: Clone,
+    {
         if let KinkMass::Constant(m) = kink_mass {
             check_positive(Key::Mass, m)?;
         }
-        Ok(Self { kink_mass, ..self })
+        Ok(Self { kink_mass, ..self.clone() })
     }
 
     /// The width `a^2 / (r sin theta_bar) = 2w` that the printed Sec. VII-B equation implies.
@@ -354,46 +420,47 @@ impl LinkageChain {
         out
     }
 
-    /// `l12` and its derivatives in `x1`, `x2`, on the given sides.
-    fn impurity(&self, x1: f64, x2: f64, sides: [f64; 2]) -> (f64, f64, f64) {
-        let (a, r) = (self.chain.a(), self.chain.r());
+    /// The head angles `(theta~(x1), -theta~(x2))` of the impurity's two rotors and their
+    /// derivatives `(dtheta~/dx1, -dtheta~/dx2)`, on the given sides.
+    fn heads(&self, x1: f64, x2: f64, sides: [f64; 2]) -> ([f64; 2], [f64; 2]) {
         let (t1, d1) = self.rotor_angle(x1, self.head_position(), sides[0]);
         let (t2, d2) = self.rotor_angle(x2, self.head_position(), sides[1]);
-        let phi = -t2;
-        let l = spring_length(a, r, r, t1, phi);
-        let (s1, c1) = math::sin_cos(t1);
-        let (s2, c2) = math::sin_cos(phi);
-        let (dx, dy) = (a + r * s2 - r * s1, r * c1 + r * c2);
-        let dl_dt1 = -r * (dx * c1 + dy * s1) / l;
-        let dl_dphi = r * (dx * c2 - dy * s2) / l;
-        (l, dl_dt1 * d1, -dl_dphi * d2)
+        ([t1, -t2], [d1, -d2])
     }
 
-    /// The impurity spring's length `l12(x1, x2)`.
+    /// The impurity spring's length `l12(x1, x2)`, from the impurity model.
     pub fn impurity_length(&self, x1: f64, x2: f64) -> f64 {
-        self.impurity(x1, x2, [crate::math::sign(x1), crate::math::sign(x2)]).0
+        let (angles, _) = self.heads(x1, x2, [crate::math::sign(x1), crate::math::sign(x2)]);
+        let mut l = [0.0];
+        self.impurity.spring_lengths_into(&angles, &mut l);
+        l[0]
     }
 
-    /// `V(x1, x2; l0) = k (l12 - l0)^2 / 2` (Sec. VII-B).
+    /// `V(x1, x2; l0)`: the impurity model's energy with its rotors at the two heads (for the
+    /// harmonic law of [`LinkageChain::new`], `k (l12 - l0)^2 / 2`, Sec. VII-B).
     pub fn potential(&self, x1: f64, x2: f64) -> f64 {
-        let d = self.impurity_length(x1, x2) - self.rest_length;
-        0.5 * self.chain.k() * d * d
+        let (angles, _) = self.heads(x1, x2, [crate::math::sign(x1), crate::math::sign(x2)]);
+        self.impurity.energy(&angles)
     }
 
-    /// `[dV/dx1, dV/dx2]`, from the closed form (zero component at `x_i = 0`, the cusp).
+    /// `[dV/dx1, dV/dx2]`: the impurity model's generated gradient in its two angles times the
+    /// head slopes (zero component at `x_i = 0`, the cusp).
     pub fn potential_gradient(&self, x1: f64, x2: f64) -> [f64; 2] {
         self.gradient_on(x1, x2, [crate::math::sign(x1), crate::math::sign(x2)])
     }
 
     fn gradient_on(&self, x1: f64, x2: f64, sides: [f64; 2]) -> [f64; 2] {
-        let (l, g1, g2) = self.impurity(x1, x2, sides);
-        let t = self.chain.k() * (l - self.rest_length);
-        [t * g1, t * g2]
+        let (angles, slopes) = self.heads(x1, x2, sides);
+        let mut g = [0.0; 2];
+        self.impurity.gradient_into(&angles, &mut g);
+        [g[0] * slopes[0], g[1] * slopes[1]]
     }
 
-    /// The paper's `E_c = k (l0 - l_critical)^2 / 2`.
+    /// The critical energy `E_c`: the impurity's energy at `l_critical`, with its rotors at
+    /// `-theta_bar` and `+theta_bar` (for the harmonic law the paper's `k (l0 - l_critical)^2 / 2`).
     pub fn critical_energy(&self) -> f64 {
-        self.chain.critical_energy(self.rest_length)
+        let tb = self.chain.theta_bar();
+        self.impurity.energy(&[-tb, tb])
     }
 
     /// The model's own `V(0, 0)`: `E_c` up to the `tanh` tail `O(exp(-2 x_head / w))`.
@@ -401,9 +468,24 @@ impl LinkageChain {
         self.potential(0.0, 0.0)
     }
 
-    /// The accessible region at energy `energy` (requires `l0 > lbar`).
+    /// The accessible region at energy `energy` (requires `l0 > lbar`), with this model's `E_c`
+    /// ([`LinkageChain::critical_energy`]; [`Region::classify`] is the harmonic closed form). The
+    /// law's least energy is taken as 0, at `l0`.
     pub fn region(&self, energy: f64) -> Result<Region, LinkageError> {
-        Region::classify(&self.chain, self.rest_length, energy)
+        check_above_bar(&self.chain, self.rest_length)?;
+        if !energy.is_finite() {
+            return Err(LinkageError::NotFinite { what: "energy", value: energy });
+        }
+        let e_c = self.critical_energy();
+        Ok(if energy < 0.0 {
+            Region::Forbidden
+        } else if self.rest_length <= self.chain.l_critical() {
+            if energy < e_c { Region::Annulus } else { Region::Disk }
+        } else if energy < e_c {
+            Region::Forbidden
+        } else {
+            Region::Disk
+        })
     }
 
     /// The kink mass `m(x)` and `dm/dx` on `side` (see `rotor_angle`).

@@ -20,6 +20,7 @@ use alloc::vec::Vec;
 use nalgebra::DMatrix;
 
 use super::error::StaticsError;
+use super::validate;
 use super::walls::domain_walls;
 use crate::linalg;
 use crate::math;
@@ -88,21 +89,46 @@ impl Default for ModeOptions {
     }
 }
 
+impl ModeOptions {
+    /// Every setting finite and in range.
+    fn check(&self) -> Result<(), StaticsError> {
+        validate::non_negative("ModeOptions::cluster", self.cluster)?;
+        validate::non_negative("ModeOptions::localised_fraction", self.localised_fraction)?;
+        validate::non_negative("ModeOptions::localised_widths", self.localised_widths)?;
+        validate::non_negative("ModeOptions::reach", self.reach)?;
+        Ok(())
+    }
+}
+
 /// The lowest modes of `model` about `theta` ([`ModeOptions::count`] of them), ascending in `omega^2`.
+///
+/// # Errors
+/// `theta` not one finite angle per rotor, a setting out of range, a tangent stiffness or inertia
+/// that is not finite at `theta` (the model's parameters), or a failed eigensolver.
 pub fn modes<M: ChainModel + ?Sized>(
     model: &M,
     theta: &[f64],
     options: &ModeOptions,
 ) -> Result<Vec<Mode>, StaticsError> {
+    validate::angles(model, theta)?;
+    options.check()?;
     let n = model.rotor_count();
     let (diag, off) = super::equilibrium::stiffness(model, theta);
     let inertia: Vec<f64> = (0..n).map(|i| model.inertia(i)).collect();
+    if let Some(index) = inertia.iter().position(|&x| !(x.is_finite() && x > 0.0)) {
+        return Err(StaticsError::InvalidValue {
+            what: "a rotor's moment of inertia",
+            value: inertia[index],
+            expected: "a finite number > 0 (check the model's mass and rotor lengths)",
+        });
+    }
     let root: Vec<f64> = inertia.iter().map(|&x| math::sqrt(x)).collect();
     // The moving rotors: all, or all but the held ends.
     let core::ops::Range { start: first, end } = super::equilibrium::moving(n, options.hold_ends);
     let sdiag: Vec<f64> = (first..end).map(|i| diag[i] / inertia[i]).collect();
     let soff: Vec<f64> = (first..end - 1).map(|i| off[i] / (root[i] * root[i + 1])).collect();
     let k = options.count.unwrap_or(n).min(sdiag.len());
+    validate::at_most("modes x rotors", k.saturating_mul(n), super::MAX_DENSE_VALUES)?;
     let pairs = linalg::lowest_eigenpairs(&sdiag, &soff, k)?;
     let mut values: Vec<f64> = pairs.iter().map(|p| p.value).collect();
     let mut vectors: Vec<Vec<f64>> = pairs

@@ -24,32 +24,25 @@ pub struct Wall {
     pub charge: Charge,
 }
 
-/// Every domain wall of `theta`, left to right. A rotor exactly at zero belongs to the wall
-/// between its neighbours (it is not counted twice).
+/// Every domain wall of `theta`, left to right: a sign change between two leaning rotors. A rotor
+/// exactly at zero leans neither way; a wall across one vertical rotor sits on it, across a run
+/// of them in its middle. A non-finite angle leans neither way either (read as zero), so no wall
+/// gets a NaN position (the analyses reject non-finite angles before they get here).
 pub fn domain_walls(theta: &[f64]) -> Vec<Wall> {
     let mut walls = Vec::new();
-    let mut i = 0;
-    while i + 1 < theta.len() {
-        let (t0, t1) = (theta[i], theta[i + 1]);
-        if t0 == 0.0 {
-            i += 1;
+    // The last rotor that leans, and its angle.
+    let mut last: Option<(usize, f64)> = None;
+    for (j, &t) in theta.iter().enumerate() {
+        if !t.is_finite() || t == 0.0 {
             continue;
         }
-        if t1 == 0.0 {
-            // A vertical rotor: the wall sits on it if the signs on either side differ.
-            if let Some(&t2) = theta.get(i + 2)
-                && t2 != 0.0
-                && t2.signum() != t0.signum()
-            {
-                walls.push(Wall { position: (i + 1) as f64, charge: charge(t0) });
-            }
-            i += 1;
-            continue;
+        if let Some((i, ti)) = last
+            && (ti > 0.0) != (t > 0.0)
+        {
+            let position = if j == i + 1 { i as f64 + ti / (ti - t) } else { (i + j) as f64 / 2.0 };
+            walls.push(Wall { position, charge: charge(ti) });
         }
-        if t0.signum() != t1.signum() {
-            walls.push(Wall { position: i as f64 + t0 / (t0 - t1), charge: charge(t0) });
-        }
-        i += 1;
+        last = Some((j, t));
     }
     walls
 }
@@ -78,5 +71,20 @@ mod tests {
         assert!((walls[0].position - 2.25).abs() < 1e-15);
         assert_eq!(walls[1], Wall { position: 6.0, charge: Charge::Antikink });
         assert_eq!(count_walls(&theta), (1, 1));
+    }
+
+    #[test]
+    fn non_finite_angles_lean_neither_way() {
+        for bad in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY, 0.0] {
+            let walls = domain_walls(&[0.5, bad, -0.5, -0.5, bad, bad, 0.5]);
+            assert_eq!(
+                walls,
+                [
+                    Wall { position: 1.0, charge: Charge::Kink },
+                    Wall { position: 4.5, charge: Charge::Antikink }
+                ],
+                "{bad}"
+            );
+        }
     }
 }

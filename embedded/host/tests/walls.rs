@@ -1,12 +1,12 @@
 //! The iterator of domain walls against chain-core's `domain_walls` on arbitrary configurations,
-//! vertical rotors included.
+//! vertical and non-finite rotors included.
 
 use embedded_check::domain_walls;
 use proptest::prelude::*;
 use rotor_chain::statics::walls;
 
 fn angle() -> impl Strategy<Value = f64> {
-    prop_oneof![3 => -1.0..1.0f64, 1 => Just(0.0), 1 => Just(0.58), 1 => Just(-0.58)]
+    prop_oneof![3 => -1.0..1.0f64, 1 => Just(0.0), 1 => Just(0.58), 1 => Just(-0.58), 1 => Just(f64::NAN), 1 => Just(f64::INFINITY)]
 }
 
 proptest! {

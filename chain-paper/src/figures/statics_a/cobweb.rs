@@ -2,6 +2,7 @@
 //! (`fig:kcobweb`, `fig:akcobweb`), and the antikink's profile against the continuum and its
 //! spring stretch (`fig:aktheta`). The paper states no number in these figures.
 
+use rotor_chain::statics::StaticsError;
 use rotor_chain::statics::antikink::{Antikink, AntikinkOptions, peierls_nabarro};
 use rotor_chain::statics::cobweb::cobweb;
 use rotor_chain::statics::kink::{kink, reflected_kink};
@@ -54,9 +55,15 @@ fn pairs(points: &[[f64; 2]]) -> Vec<(f64, f64)> {
 /// The cobweb panel in the paper's notation: spring `p`'s constraint curve (black; the other
 /// branch dashed where it enters the window), the grey diagonal, the red staircase, blue rotor
 /// points and red spring points.
-fn cobweb_panel<M: ChainModel>(title: &str, model: &M, p: usize, theta: &[f64], q: Quality) -> Chart {
+fn cobweb_panel<M: ChainModel>(
+    title: &str,
+    model: &M,
+    p: usize,
+    theta: &[f64],
+    q: Quality,
+) -> Result<Chart, StaticsError> {
     let samples = q.pick(241, 61);
-    let web = cobweb(model, p, theta, COBWEB_RANGE, 2);
+    let web = cobweb(model, p, theta, COBWEB_RANGE, 2)?;
     let (flipper, other) = constraint_curve(model, p, COBWEB_RANGE, samples);
     let mut series =
         vec![Series::new(Quantity::Constraint, "springs at rest (flipper branch)", flipper, Style::Line)];
@@ -69,7 +76,7 @@ fn cobweb_panel<M: ChainModel>(title: &str, model: &M, p: usize, theta: &[f64], 
         Series::new(Quantity::Rotor, "rotor points", pairs(&web.rotors), Style::Points),
         Series::new(Quantity::Spring, "spring points", pairs(&web.springs), Style::Points),
     ]);
-    Panel::new(title, "θ_i (rad)", "θ_{i+1} (rad)", series).into()
+    Ok(Panel::new(title, "θ_i (rad)", "θ_{i+1} (rad)", series).into())
 }
 
 /// The panel of a profile `theta_i` with the levels `+-theta_bar`.
@@ -100,7 +107,7 @@ pub fn kcobweb(p: &Params, q: Quality) -> Result<Figure, FigureError> {
         panels: vec![
             drawing.into(),
             profile_panel("(b) kink profile", "kink", &theta, Vec::new()),
-            cobweb_panel("(c) cobweb plot", &model, n / 2 - 1, &theta, q),
+            cobweb_panel("(c) cobweb plot", &model, n / 2 - 1, &theta, q).map_err(FigureError::on(LABEL))?,
         ],
         rows: Vec::new(),
     })
@@ -139,7 +146,8 @@ pub fn akcobweb(p: &Params, q: Quality) -> Result<Figure, FigureError> {
         panels: vec![
             drawing.into(),
             profile_panel("(b) antikink profile", "antikink", &antikink.theta, vec![guess]),
-            cobweb_panel("(c) cobweb plot", &model, spring, &antikink.theta, q),
+            cobweb_panel("(c) cobweb plot", &model, spring, &antikink.theta, q)
+                .map_err(FigureError::on(LABEL))?,
         ],
         rows: Vec::new(),
     })

@@ -121,7 +121,7 @@ pub fn longbar(params: &Params, _quality: Quality) -> Result<Figure, FigureError
         Row::number(
             "l_critical / a (θ̄ = 0.58, r/a = 0.8)",
             "2.31",
-            critical_length(&model, p),
+            critical_length(&model, p).map_err(FigureError::on(LABEL))?,
             Some(cont.l_critical()),
             "2.3051 rounds to the paper's 2.31",
         ),

@@ -1,0 +1,91 @@
+//! `RuntimeChain::builder` applies the macro's rules (chain-geometry's, one set for both) and
+//! returns a typed error for every hostile size or override: never a panic, an abort or a
+//! silently accepted override. The compile-time side of the same rules is in `tests/ui/`.
+
+use rotor_chain::geometry::{IndexKind, MAX_ROTORS};
+use rotor_chain::prelude::*;
+
+fn builder(n: usize) -> rotor_chain::ChainBuilder {
+    RuntimeChain::builder(n, 0.8, 1.0e4, 0.58)
+}
+
+#[test]
+fn absurd_sizes_are_errors_with_the_numbers() {
+    for n in [MAX_ROTORS + 1, 1 << 40, 1 << 62, usize::MAX / 8, usize::MAX - 1, usize::MAX] {
+        match builder(n).build() {
+            Err(ParameterError::TooManyRotors { n: got, max }) => {
+                assert_eq!((got, max), (n, MAX_ROTORS));
+                let message = ParameterError::TooManyRotors { n, max }.to_string();
+                assert!(message.contains(&n.to_string()) && message.contains(&MAX_ROTORS.to_string()));
+            }
+            other => panic!("n = {n}: {other:?}"),
+        }
+    }
+    for n in [0, 1] {
+        assert_eq!(builder(n).build(), Err(ParameterError::TooFewRotors { n }));
+    }
+    // The limit itself is accepted (chain-geometry's unit test; allocating it here would take
+    // 2.4 GB).
+    assert_eq!(rotor_chain::geometry::check_rotor_count(MAX_ROTORS), Ok(MAX_ROTORS));
+}
+
+#[test]
+fn an_override_that_gives_nothing_is_an_error() {
+    for p in [0, 3, 8] {
+        assert_eq!(
+            builder(10).spring(p, None, None).build(),
+            Err(ParameterError::EmptyOverride { kind: IndexKind::Spring, index: p })
+        );
+    }
+}
+
+#[test]
+fn an_override_repeated_is_an_error_whatever_it_gives() {
+    let cases = [
+        builder(10).spring(3, Some(2.0), None).spring(3, None, Some(1.7)),
+        builder(10).spring(3, Some(2.0), None).spring(3, Some(2.0), None),
+        builder(10).spring(4, Some(2.0), None).spring(3, Some(1.0), Some(1.8)).spring(3, Some(2.0), None),
+    ];
+    for case in cases {
+        assert_eq!(case.build(), Err(ParameterError::OverriddenTwice { kind: IndexKind::Spring, index: 3 }));
+    }
+    assert_eq!(
+        builder(10).rotor(2, 0.7).rotor(5, 0.7).rotor(2, 0.6).build(),
+        Err(ParameterError::OverriddenTwice { kind: IndexKind::Rotor, index: 2 })
+    );
+}
+
+#[test]
+fn overrides_of_missing_springs_and_rotors_are_errors() {
+    for (p, springs) in [(9, 9), (100, 9), (usize::MAX, 9)] {
+        assert_eq!(
+            builder(10).spring(p, Some(1.0), None).build(),
+            Err(ParameterError::IndexOutOfRange { kind: IndexKind::Spring, index: p, count: springs })
+        );
+    }
+    assert_eq!(
+        builder(10).rotor(10, 0.7).build(),
+        Err(ParameterError::IndexOutOfRange { kind: IndexKind::Rotor, index: 10, count: 10 })
+    );
+}
+
+#[test]
+fn the_runtime_error_says_what_the_compile_error_says() {
+    // The texts of tests/ui/compile_fail/keys/spring_overrides_nothing.stderr and
+    // spring_overridden_twice.stderr, from the same Display.
+    let empty = builder(10).spring(3, None, None).build().unwrap_err().to_string();
+    assert_eq!(
+        empty,
+        "the override of spring 3 changes nothing: give a stiffness `k` and/or a rest length `l0`"
+    );
+    let twice = builder(10).spring(3, Some(1.0), None).spring(3, None, Some(1.7)).build().unwrap_err();
+    assert_eq!(twice.to_string(), "spring 3 is overridden twice: give all of its values in one override");
+}
+
+#[test]
+fn valid_overrides_still_apply() {
+    let chain =
+        builder(10).spring(3, Some(2.0), None).spring(4, None, Some(1.9)).rotor(2, 0.7).build().unwrap();
+    assert_eq!((chain.stiffness(3), chain.rest_length(4), chain.rotor_length(2)), (2.0, 1.9, 0.7));
+    assert_eq!(chain.stiffness(4), 1.0e4);
+}
