@@ -41,6 +41,8 @@ pub use chain_macros::rotor_chain;
 /// The linear-algebra crate of the matrices this crate returns, re-exported so versions match.
 pub use nalgebra;
 
+pub mod guide;
+
 /// The macro and every trait and type a user needs.
 pub mod prelude {
     pub use chain_core::{Bidiagonal, BranchError, ChainModel, ParameterError, Tridiagonal};
