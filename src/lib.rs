@@ -29,6 +29,7 @@
 //! The model, its sign conventions and the keys of the attribute are documented in
 //! `docs/theory.md` and `docs/macro.md`. With default features off the crate is `#![no_std]`
 //! without allocation (math from `libm`), and so is the code the macro generates.
+#![deny(missing_docs)]
 #![cfg_attr(not(feature = "std"), no_std)]
 
 pub use chain_core::{

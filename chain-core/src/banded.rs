@@ -9,7 +9,9 @@ use nalgebra::SMatrix;
 /// A symmetric tridiagonal `N x N` matrix: `diag[i] = K[i][i]`, `off[i] = K[i][i+1] = K[i+1][i]`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Tridiagonal<const N: usize, const M: usize> {
+    /// The diagonal: entry `(i, i)` in `diag[i]`.
     pub diag: [f64; N],
+    /// The off-diagonal: entry `(p, p + 1)` = `(p + 1, p)` in `off[p]`.
     pub off: [f64; M],
 }
 
@@ -17,11 +19,14 @@ pub struct Tridiagonal<const N: usize, const M: usize> {
 /// Introduction and Appendix D, whose `n_p` are its entries): row `p` has `left[p]` in column `p` and `right[p]` in column `p + 1`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Bidiagonal<const M: usize, const N: usize> {
+    /// Entry `(p, p)` of the `(n - 1) x n` matrix in `left[p]`.
     pub left: [f64; M],
+    /// Entry `(p, p + 1)` in `right[p]`.
     pub right: [f64; M],
 }
 
 impl<const N: usize, const M: usize> Tridiagonal<N, M> {
+    /// From its bands (no check: any numbers are a valid banded matrix).
     pub fn new(diag: [f64; N], off: [f64; M]) -> Self {
         const { assert!(M + 1 == N, "a chain of N rotors has N - 1 springs") };
         Self { diag, off }
@@ -59,6 +64,7 @@ impl<const N: usize, const M: usize> Tridiagonal<N, M> {
 }
 
 impl<const M: usize, const N: usize> Bidiagonal<M, N> {
+    /// From its bands (no check: any numbers are a valid banded matrix).
     pub fn new(left: [f64; M], right: [f64; M]) -> Self {
         const { assert!(M + 1 == N, "a chain of N rotors has N - 1 springs") };
         Self { left, right }

@@ -38,7 +38,9 @@ pub struct RuntimeChain {
 /// How the uniform state is given: by its angle or by the springs' rest length.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Uniform {
+    /// Given by its angle `theta_bar`, radians.
     ThetaBar(f64),
+    /// Given by the rest length `lbar` of its springs.
     RestLength(f64),
 }
 

@@ -8,6 +8,7 @@
 //! never reads memory Python may change); every computation longer than a few microseconds runs
 //! with the GIL released (`Python::detach`). Errors become the exceptions of
 //! `rotor_chain/errors.py` ([`errors`]).
+#![deny(missing_docs)]
 
 use pyo3::prelude::*;
 

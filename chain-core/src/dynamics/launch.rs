@@ -59,6 +59,7 @@ pub struct Launch {
     pub mode: Vec<f64>,
     /// Where the defect starts (Appendix C wall position).
     pub position: f64,
+    /// Kink or antikink.
     pub charge: Charge,
 }
 

@@ -21,7 +21,12 @@ pub enum Method {
     /// Velocity Verlet with the step [`RunOptions::dt`]: symplectic, one gradient per step.
     Verlet,
     /// DOP853 with these tolerances (the run's damping, sponge and energy limit apply).
-    Dop853 { rtol: f64, atol: f64 },
+    Dop853 {
+        /// Relative tolerance of the error control.
+        rtol: f64,
+        /// Absolute tolerance of the error control, in radians and radians per `t`.
+        atol: f64,
+    },
 }
 
 impl Method {
@@ -88,7 +93,9 @@ pub const ABSORBING_ENDS: Sponge = Sponge { width: 10, strength: 30.0 };
 /// [`Integrator`].
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum RunIntegrator {
+    /// Velocity Verlet with these options.
     Verlet(VerletOptions),
+    /// DOP853 with these options.
     Dop853(AdaptiveOptions),
 }
 
@@ -159,11 +166,15 @@ impl RunOptions {
 /// What a run recorded.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Run {
+    /// The walls at every output (Appendix C).
     pub tracker: Tracker,
     /// `(t, kinetic energy)` at every output (paper Fig. `fig:ketimeplot`).
     pub kinetic: Vec<(f64, f64)>,
+    /// The angles at every output, if [`RunOptions::space_time`] was set.
     pub space_time: SpaceTime,
+    /// Steps taken and the energy record.
     pub report: Report,
+    /// The state at the end of the run.
     pub final_state: State,
     /// Which integrator ran: `verlet` or `dop853`.
     pub integrator: &'static str,

@@ -64,9 +64,13 @@ impl<F: Fn(usize) -> [f64; 5]> Springs for F {
 /// `rest_lengths` `n - 1`.
 #[derive(Clone, Copy, Debug)]
 pub struct SpringSlices<'a> {
+    /// Lattice spacing `a`.
     pub a: f64,
+    /// Rotor lengths `r_i`, one per rotor.
     pub rotor_lengths: &'a [f64],
+    /// Spring stiffnesses `k_p`, one per spring.
     pub stiffness: &'a [f64],
+    /// Spring rest lengths `l0_p`, one per spring.
     pub rest_lengths: &'a [f64],
 }
 

@@ -56,10 +56,13 @@ pub enum Ends {
 /// Settings of the antikink analyses.
 #[derive(Clone, Copy, Debug, PartialEq, Default)]
 pub struct AntikinkOptions {
+    /// Settings of the Newton polish.
     pub newton: NewtonOptions,
+    /// Settings of the dissipative relaxation.
     pub relax: RelaxOptions,
     /// Relative tolerance for counting eigenvalues as zero ([`classify`]); default below.
     pub zero_tolerance: Option<f64>,
+    /// How the chain's ends are treated. Default [`Ends::Held`].
     pub ends: Ends,
 }
 
@@ -94,6 +97,7 @@ const DEFAULT_ZERO_TOLERANCE: f64 = 1e-10;
 /// An antikink equilibrium.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Antikink {
+    /// The angles, radians, one per rotor.
     pub theta: Vec<f64>,
     /// Potential energy `V`.
     pub energy: f64,

@@ -34,7 +34,10 @@ pub enum ModeKind {
     /// At a domain wall, deforming it.
     Shape,
     /// At the left (`0`) or right (`n - 1`) end of the chain.
-    Edge { left: bool },
+    Edge {
+        /// `true` at rotor 0, `false` at rotor `n - 1`.
+        left: bool,
+    },
     /// Spread over the chain.
     Extended,
 }
@@ -52,6 +55,7 @@ pub struct Mode {
     pub position: f64,
     /// Participation number `1 / sum_i w_i^2`: how many rotors take part.
     pub participation: f64,
+    /// Where the mode lives (translation, shape, edge, extended).
     pub kind: ModeKind,
 }
 
@@ -67,6 +71,7 @@ pub struct ModeOptions {
     /// A mode is localised when fewer than `localised_fraction * n` rotors take part, and fewer
     /// than `localised_widths` wall widths.
     pub localised_fraction: f64,
+    /// See [`ModeOptions::localised_fraction`].
     pub localised_widths: f64,
     /// A localised mode within `reach` wall widths (at least 4 rotors) of an end or of a wall
     /// belongs to it. The width is the continuum `w = a^2 / (2 r sin theta_bar)` (App. E).

@@ -20,7 +20,9 @@ pub enum Charge {
 /// A domain wall: where it is (in rotor indices, fractional) and which kind.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Wall {
+    /// Position in rotor indices: `i + theta_i / (theta_i - theta_{i+1})` (Appendix C).
     pub position: f64,
+    /// Kink or antikink.
     pub charge: Charge,
 }
 

@@ -135,6 +135,7 @@ impl core::str::FromStr for LaterEvent {
 /// default was chosen). Times in the unit `t` of Appendix B, distances in sites.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ScatterSetup {
+    /// The incoming defect: kink or antikink.
     pub charge: Charge,
     /// Launch speed amplitude (Appendix B).
     pub v0: f64,
@@ -142,6 +143,7 @@ pub struct ScatterSetup {
     pub impurity: usize,
     /// Where the defect starts (rotor index, fractional allowed).
     pub start: f64,
+    /// Which way it is launched.
     pub direction: Direction,
     /// The impurity's range: a wall within `reach` of its centre is at the impurity. Default 4
     /// (1.8 wall widths at `theta_bar = 0.28`).
@@ -191,6 +193,7 @@ pub struct ScatterSetup {
     pub confirm: f64,
     /// After the confirmation, the run goes on this long to record a later event. Default 0.
     pub watch: f64,
+    /// The run's settings (span, integrator, damping, ends).
     pub run: RunOptions,
 }
 
@@ -230,6 +233,7 @@ impl ScatterSetup {
 /// The result of [`scatter`].
 #[derive(Clone, Debug, PartialEq)]
 pub struct Scattering {
+    /// What the impurity did to the defect.
     pub outcome: Outcome,
     /// When the outcome was decided (the run's end time if undecided).
     pub decided_at: f64,
@@ -237,6 +241,7 @@ pub struct Scattering {
     pub confirmed: bool,
     /// An event after the outcome was settled, and when.
     pub later: Option<(LaterEvent, f64)>,
+    /// The run.
     pub run: Run,
 }
 
