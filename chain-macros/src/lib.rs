@@ -1,11 +1,11 @@
 //! The `#[rotor_chain]` attribute macro.
 //!
 //! A thin entry over a pipeline of named phases, one file each:
-//! [`attr`] parses the attribute into a typed [`attr::Spec`] that keeps every span,
-//! [`valid`] checks it against the chain's rules (all errors at once, each at its key),
-//! [`law`] turns a custom spring law into the symbolic graph,
-//! [`model`] builds the chain's energy in `chain-symbolic` and derives everything from it,
-//! [`expand`] emits the code, and [`fallback`] emits the bare struct plus the errors when the
+//! `attr` parses the attribute into a typed `attr::Spec` that keeps every span,
+//! `valid` checks it against the chain's rules (all errors at once, each at its key),
+//! `law` turns a custom spring law into the symbolic graph,
+//! `model` builds the chain's energy in `chain-symbolic` and derives everything from it,
+//! `expand` emits the code, and `fallback` emits the bare struct plus the errors when the
 //! model is invalid. See `docs/macro.md` for the keys.
 #![deny(missing_docs)]
 

@@ -44,6 +44,7 @@
 //! | [`shard`] | [`Shard`]: one of `N` interleaved parts of a grid, for job arrays; `--shard slurm` |
 //! | [`merge`] | [`merge_shards`]: the shard files of a split sweep joined into the whole diagram |
 //! | [`scattering`] | [`scattering::PhaseDiagram`]: one point of the scattering phase diagram, its energy budget, and [`scattering::PointRecord`], its record |
+#![deny(missing_docs)]
 
 pub mod error;
 pub mod file;

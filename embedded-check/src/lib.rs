@@ -9,12 +9,13 @@
 //! 4. [`domain_walls`] and the energies: observed at fixed intervals (Appendix C);
 //! 5. [`report`]: the text the firmware prints and the host reads back.
 //!
-//! [`run`] strings them together for a [`Scenario`]. Everything is generic over the float type
+//! [`run()`] strings them together for a [`Scenario`]. Everything is generic over the float type
 //! ([`Real`]) and the chain ([`Model`]); [`Chain16`] is the `f64` chain the firmware runs.
 //!
 //! CI also builds this crate on its own for the host (`cargo build -p embedded-check`), so
 //! `rotor-chain` resolves without its default `std` feature, and checks that no `std` or `alloc`
 //! feature reaches it.
+#![deny(missing_docs)]
 #![no_std]
 
 pub mod error;

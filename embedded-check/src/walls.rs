@@ -38,7 +38,9 @@ impl Charge {
 /// A domain wall: where it is (in rotor indices, fractional) and which kind.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Wall<T> {
+    /// Position in rotor indices: `i + theta_i / (theta_i - theta_{i+1})` (Appendix C).
     pub position: T,
+    /// Kink or antikink.
     pub charge: Charge,
 }
 

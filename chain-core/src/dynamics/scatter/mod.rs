@@ -3,8 +3,8 @@
 //!
 //! The impurity is spring `p` (the model carries its stiffness `k_i`); its centre is at
 //! `x_imp = p + 1/2`. A defect launched from one side ([`super::launch`]) is tracked
-//! ([`super::track`]), every wall is followed with its origin ([`follow`]), and the run stops once
-//! the outcome is decided, confirmed, and watched for as long as asked ([`rules`]).
+//! ([`super::track`]), every wall is followed with its origin (`follow`), and the run stops once
+//! the outcome is decided, confirmed, and watched for as long as asked (`rules`).
 //!
 //! **What an outcome means.** It answers the paper's question: what did the impurity do to the
 //! incoming defect? [`Outcome::Transmitted`], [`Outcome::Reflected`], [`Outcome::Trapped`] and,
@@ -289,7 +289,7 @@ fn check_setup<M: ChainModel + ?Sized>(model: &M, setup: &ScatterSetup) -> Resul
 }
 
 /// Launches the defect of `setup` towards the impurity and runs until the outcome is decided,
-/// confirmed and watched ([`rules`]), or until `setup.run.t_max`.
+/// confirmed and watched (`rules`), or until `setup.run.t_max`.
 pub fn scatter<M: ChainModel + ?Sized>(model: &M, setup: &ScatterSetup) -> Result<Scattering, DynamicsError> {
     check_setup(model, setup)?;
     let launched = launch(model, setup.charge, setup.start, setup.v0, setup.direction)?;
