@@ -182,6 +182,25 @@ pub struct Run {
 
 /// Runs `state` with the integrator of `options`, recording at every output and asking `stop`
 /// after each snapshot whether to end the run.
+/// # Example
+///
+/// ```
+/// use rotor_chain::RuntimeChain;
+/// use rotor_chain::dynamics::integrate::State;
+/// use rotor_chain::dynamics::run::{RunOptions, propagate};
+/// use rotor_chain::statics::kink::kink;
+///
+/// # fn main() -> Result<(), Box<dyn std::error::Error>> {
+/// let chain = RuntimeChain::builder(30, 0.8, 1.0e4, 0.58).build()?;
+/// let state = State::at_rest(kink(&chain, 15.0)?);          // a static kink stays put
+/// let options = RunOptions { t_max: 1.0, ..RunOptions::default() };
+/// let run = propagate(&chain, state, &options, &mut |_| false)?;
+/// assert_eq!(run.tracker.snapshots.len(), 101);             // t = 0, 0.01, ..., 1
+/// let x = run.tracker.snapshots[100].walls[0].position;
+/// assert!((x - 15.0).abs() < 1e-6);
+/// # Ok(())
+/// # }
+/// ```
 pub fn propagate<M: ChainModel + ?Sized>(
     model: &M,
     state: State,

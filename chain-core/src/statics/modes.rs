@@ -110,6 +110,25 @@ impl ModeOptions {
 /// # Errors
 /// `theta` not one finite angle per rotor, a setting out of range, a tangent stiffness or inertia
 /// that is not finite at `theta` (the model's parameters), or a failed eigensolver.
+/// # Example
+///
+/// ```
+/// use rotor_chain::RuntimeChain;
+/// use rotor_chain::statics::modes::{ModeKind, ModeOptions, modes};
+///
+/// # fn main() -> Result<(), Box<dyn std::error::Error>> {
+/// let chain = RuntimeChain::builder(40, 0.8, 1.0e4, 0.58).build()?;
+/// let uniform = vec![0.58; 40];
+/// let all = modes(&chain, &uniform, &ModeOptions { count: None, ..ModeOptions::default() })?;
+/// assert_eq!(all.len(), 40);
+/// // The uniform chain's one zero mode is its mechanism (paper Sec. II); the phonon band above
+/// // it starts at omega(0) = 87.8 / t for this chain (guide::statics §9).
+/// assert!(all[0].frequency < 1e-3 && all[1].frequency > 50.0);
+/// assert!(all.windows(2).all(|w| w[0].omega_squared <= w[1].omega_squared));
+/// # let _ = ModeKind::Extended;
+/// # Ok(())
+/// # }
+/// ```
 pub fn modes<M: ChainModel + ?Sized>(
     model: &M,
     theta: &[f64],

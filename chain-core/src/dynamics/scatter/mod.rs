@@ -290,6 +290,23 @@ fn check_setup<M: ChainModel + ?Sized>(model: &M, setup: &ScatterSetup) -> Resul
 
 /// Launches the defect of `setup` towards the impurity and runs until the outcome is decided,
 /// confirmed and watched (`rules`), or until `setup.run.t_max`.
+/// # Example
+///
+/// The paper's antikink at $v_0 = 4.8$, $k_i/k = 0.2$ (Sec. VI) is reflected:
+///
+/// ```
+/// use rotor_chain::RuntimeChain;
+/// use rotor_chain::dynamics::scatter::{Outcome, ScatterSetup, scatter};
+/// use rotor_chain::statics::walls::Charge;
+///
+/// # fn main() -> Result<(), Box<dyn std::error::Error>> {
+/// let k = 1.0e4;
+/// let chain = RuntimeChain::builder(60, 0.8, k, 0.28).spring(29, Some(0.2 * k), None).build()?;
+/// let result = scatter(&chain, &ScatterSetup::from_the_right(Charge::Antikink, 4.8, 29))?;
+/// assert_eq!(result.outcome, Outcome::Reflected);
+/// # Ok(())
+/// # }
+/// ```
 pub fn scatter<M: ChainModel + ?Sized>(model: &M, setup: &ScatterSetup) -> Result<Scattering, DynamicsError> {
     check_setup(model, setup)?;
     let launched = launch(model, setup.charge, setup.start, setup.v0, setup.direction)?;
