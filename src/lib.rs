@@ -1,36 +1,108 @@
 //! # rotor-chain
 //!
-//! Declare a topological mechanical rotor chain on a struct and get fast, exact,
-//! compile-time-checked code for it: energy, gradient, tangent stiffness (and its split into
-//! material part and stress matrix), spring lengths and tensions, compatibility matrix, and the
-//! branch solve of the paper "Kink-antikink asymmetry and impurity interactions in topological
-//! mechanical chains" (Zhou, Chen, Upadhyaya, Vitelli).
+//! A toolkit for topological mechanical rotor chains: rotors on a line, their tips joined by
+//! springs, a unit cell that breaks inversion symmetry, so that a zero-energy **kink** and a costly
+//! **antikink** exist. It implements Y. Zhou, B. G. Chen, N. Upadhyaya and V. Vitelli,
+//! *Kink-antikink asymmetry and impurity interactions in topological mechanical chains*,
+//! arXiv:1608.02127; equations and figures are cited by the paper's LaTeX labels.
+//!
+//! - **The model.** [`#[rotor_chain]`](macro@rotor_chain) on a struct writes the chain's energy,
+//!   gradient, tangent stiffness (material part and stress matrix), spring lengths, tensions,
+//!   compatibility matrix and branch solve, derived by a symbolic engine; an invalid model is a
+//!   compile error at its key. [`RuntimeChain`] is the same chain with its size and parameters
+//!   chosen at run time. Both implement [`ChainModel`], which every analysis is generic over.
+//! - **Statics** ([`statics`]): cobweb map, kink, antikink, Peierls–Nabarro barrier, vibrational
+//!   modes, Maxwell–Calladine counting, spring-length impurity, linkage limit, continuum closed
+//!   forms.
+//! - **Dynamics** ([`dynamics`]): velocity Verlet and DOP853, launching a defect along its
+//!   translation mode, wall tracking, scattering on a stiffness impurity.
+//! - **Sweeps** (crate `chain-sweep`, command `phase-diagram`): resumable parallel phase
+//!   diagrams; the paper's figures (crate `chain-paper`, command `paper`).
+//!
+//! Units are the paper's (Appendix B): lattice spacing $a$, tip mass $M$, an arbitrary time unit
+//! $t$; stiffness in $M/t^2$, energies in $M a^2/t^2$, angles in radians measured from the
+//! vertical ([`guide::theory`]).
+//!
+//! ## Quick start
 //!
 //! ```
 //! use rotor_chain::prelude::*;
+//! use rotor_chain::statics::antikink::{AntikinkOptions, peierls_nabarro};
+//! use rotor_chain::statics::kink::kink;
 //!
-//! #[rotor_chain(n = 60, a = 1.0, r = 0.8, theta_bar = 0.58, k = 1.0e4, mass = 1.0,
-//!               spring(29, k = k_imp),      // an identifier: read from the struct field at run time
-//!               spring(7, l0 = 2.30))]      // a literal: folded into the generated code
-//! pub struct Chain { pub k_imp: f64 }
+//! // The paper's chain: 60 rotors of length r = 0.8 a, springs of stiffness k = 1e4 M/t^2,
+//! // uniform states at theta_bar = +-0.58 rad.
+//! #[rotor_chain(n = 60, r = 0.8, theta_bar = 0.58, k = 1.0e4)]
+//! pub struct Chain;
+//!
+//! fn main() -> Result<(), Box<dyn std::error::Error>> {
+//!     let uniform = [0.58f64; Chain::N];
+//!     assert!(Chain.energy(&uniform).abs() < 1e-9);         // every spring at rest
+//!     let g = Chain.gradient(&uniform);                     // dV/dtheta_i; the forces are -g
+//!     assert!(g.iter().all(|x| x.abs() < 1e-6));
+//!
+//!     let theta = kink(&Chain, 29.5)?;                      // the zero-energy kink (Sec. II)
+//!     assert!(ChainModel::energy(&Chain, &theta) < 1e-16);
+//!
+//!     let pn = peierls_nabarro(&Chain, &AntikinkOptions::default())?; // Sec. V
+//!     println!("antikink {:.4}, barrier {:.4}", pn.minimum().energy, pn.barrier);
+//!     Ok(())
+//! }
+//! ```
+//!
+//! The same analysis on a chain built at run time:
+//!
+//! ```
+//! use rotor_chain::RuntimeChain;
+//! use rotor_chain::statics::antikink::{AntikinkOptions, peierls_nabarro};
 //!
 //! # fn main() -> Result<(), Box<dyn std::error::Error>> {
-//! let c = Chain { k_imp: 100.0 };
-//! let theta = [0.58f64; 60];
-//! let e: f64 = c.energy(&theta);                 // potential energy
-//! let g = c.gradient(&theta);                    // dV/dtheta_i, indexable g[i] (forces are -g)
-//! let h = c.hessian(&theta);                     // nalgebra matrix, h[(i, j)] = d2V/dtheta_i dtheta_j
-//! let [z0, z1] = c.next_angles(10, 0.3)?;        // both roots of the spring-10 branch solve
-//! # let _ = (e, g[0], h[(0, 0)], z0, z1);
+//! for theta_bar in [0.4, 0.5, 0.58] {
+//!     let chain = RuntimeChain::builder(60, 0.8, 1.0e4, theta_bar).build()?; // n, r, k, theta_bar
+//!     let pn = peierls_nabarro(&chain, &AntikinkOptions::default())?;
+//!     assert!(pn.resolved && pn.barrier > 0.0);
+//! }
 //! # Ok(())
 //! # }
 //! ```
 //!
-//! The model, its sign conventions and the keys of the attribute are documented in
-//! `docs/theory.md` and `docs/macro.md`. With default features off the crate is `#![no_std]`
-//! without allocation (math from `libm`), and so is the code the macro generates; a chain declared
-//! with `float = f32` computes in single precision for microcontrollers (`docs/embedded.md`,
-//! [`embedded`]).
+//! ## Map
+//!
+//! | where | what |
+//! |---|---|
+//! | [`prelude`] | the attribute, [`ChainModel`], [`RuntimeChain`], the banded matrix types, the errors |
+//! | [`macro@rotor_chain`] | the attribute: every key, with an example |
+//! | [`RuntimeChain`], [`ChainBuilder`], [`Law`] | a chain sized and parametrised at run time |
+//! | [`ChainModel`] ([`model`]) | the trait every analysis takes: slice methods, branch solve |
+//! | [`statics`] | static analyses, one module per analysis |
+//! | [`dynamics`] | integrators, launching, tracking, scattering |
+//! | [`linalg`] | the tridiagonal solvers and eigensolvers the analyses use |
+//! | [`banded`], [`Tridiagonal`], [`Bidiagonal`] | stiffness and compatibility matrices of generated chains |
+//! | [`geometry`] | the parameter rules and closed forms shared by the macro and the runtime |
+//! | [`math`], [`simd`], [`kernel`] | `no_std` maths, run-time vector dispatch, the per-spring kernels |
+//!
+//! ## Guides
+//!
+//! | guide | for |
+//! |---|---|
+//! | [`guide::readme`] | set-up, the two commands, measured numbers |
+//! | [`guide::theory`] | the model and its sign conventions, equation by equation |
+//! | [`guide::macros`] | every key, generated item and compile error of the attribute |
+//! | [`guide::statics`] | each static analysis: what it computes, the API, numbers against the paper |
+//! | [`guide::dynamics`] | integrators, launches, tracking, scattering, phase diagrams |
+//! | [`guide::paper`] | the reproduction of every figure of the paper |
+//! | [`guide::guarantees`] | what each layer promises for hostile inputs |
+//! | [`guide::benchmarks`], [`guide::embedded`], [`guide::scaling`] | speed, microcontrollers, Python and clusters |
+//!
+//! Every Rust block of the guides is a doctest (`cargo test --doc`). Math renders with KaTeX on
+//! docs.rs and with `cargo docs` locally.
+//!
+//! ## Features
+//!
+//! `std` (default) uses the platform's maths and adds `alloc`; `alloc` adds [`RuntimeChain`],
+//! the analyses and dense matrices. With default features off the crate is `#![no_std]` without
+//! allocation (maths from `libm`), and so is the code the attribute generates.
+#![deny(missing_docs)]
 #![cfg_attr(not(feature = "std"), no_std)]
 
 #[cfg(feature = "std")]
@@ -44,6 +116,8 @@ pub use chain_core::{ChainBuilder, Law, RuntimeChain, dynamics, linalg, runtime,
 pub use chain_macros::rotor_chain;
 /// The linear-algebra crate of the matrices this crate returns, re-exported so versions match.
 pub use nalgebra;
+
+pub mod guide;
 
 /// The macro and every trait and type a user needs.
 pub mod prelude {

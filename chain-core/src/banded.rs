@@ -12,7 +12,9 @@ use crate::real::Real;
 /// A symmetric tridiagonal `N x N` matrix: `diag[i] = K[i][i]`, `off[i] = K[i][i+1] = K[i+1][i]`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Tridiagonal<const N: usize, const M: usize, T = f64> {
+    /// The diagonal: entry `(i, i)` in `diag[i]`.
     pub diag: [T; N],
+    /// The off-diagonal: entry `(p, p + 1)` = `(p + 1, p)` in `off[p]`.
     pub off: [T; M],
 }
 
@@ -20,11 +22,14 @@ pub struct Tridiagonal<const N: usize, const M: usize, T = f64> {
 /// Introduction and Appendix D, whose `n_p` are its entries): row `p` has `left[p]` in column `p` and `right[p]` in column `p + 1`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Bidiagonal<const M: usize, const N: usize, T = f64> {
+    /// Entry `(p, p)` of the `(n - 1) x n` matrix in `left[p]`.
     pub left: [T; M],
+    /// Entry `(p, p + 1)` in `right[p]`.
     pub right: [T; M],
 }
 
 impl<const N: usize, const M: usize, T: Real> Tridiagonal<N, M, T> {
+    /// From its bands (no check: any numbers are a valid banded matrix).
     pub fn new(diag: [T; N], off: [T; M]) -> Self {
         const { assert!(M + 1 == N, "a chain of N rotors has N - 1 springs") };
         Self { diag, off }
@@ -54,6 +59,7 @@ impl<const N: usize, const M: usize, T: Real> Tridiagonal<N, M, T> {
 }
 
 impl<const M: usize, const N: usize, T: Real> Bidiagonal<M, N, T> {
+    /// From its bands (no check: any numbers are a valid banded matrix).
     pub fn new(left: [T; M], right: [T; M]) -> Self {
         const { assert!(M + 1 == N, "a chain of N rotors has N - 1 springs") };
         Self { left, right }

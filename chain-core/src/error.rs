@@ -14,24 +14,49 @@ pub enum BranchError {
          other rotor's pivot, but a spring of rest length {rest_length} reaches a rotor of length \
          {rotor_length} only from distances in [{min}, {max}]"
     )]
+    /// The spring cannot reach the other rotor at its rest length (paper Appendix A: the quadratic has no real root).
     NoRealRoot {
+        /// The spring being solved.
         spring: usize,
+        /// The known rotor's angle, in radians.
         theta: f64,
+        /// Distance from the known tip to the other rotor's pivot.
         distance: f64,
+        /// The other rotor's length.
         rotor_length: f64,
+        /// The spring's rest length.
         rest_length: f64,
+        /// The smallest distance from which the spring reaches the rotor (`|l0 - r|`).
         min: f64,
+        /// The largest such distance (`l0 + r`).
         max: f64,
     },
     #[error("spring {spring}: the angle {theta} is not finite")]
-    NotFinite { spring: usize, theta: f64 },
+    /// The known angle is NaN or infinite.
+    NotFinite {
+        /// The spring being solved.
+        spring: usize,
+        /// The angle given.
+        theta: f64,
+    },
     #[error("spring index {spring} is out of range: the chain has {springs} springs")]
-    NoSuchSpring { spring: usize, springs: usize },
+    /// A spring index past the end of the chain.
+    NoSuchSpring {
+        /// The spring index given.
+        spring: usize,
+        /// How many springs the chain has (`n - 1`).
+        springs: usize,
+    },
     /// The tip of rotor `p` sits exactly on the pivot of rotor `p + 1` (and the spring's rest
     /// length equals that rotor's length): every angle puts the spring at rest, none is singled out.
     #[error(
         "spring {spring}: for theta = {theta} the known tip sits on the other rotor's pivot, so \
          every angle of that rotor puts the spring at rest length"
     )]
-    Degenerate { spring: usize, theta: f64 },
+    Degenerate {
+        /// The spring being solved.
+        spring: usize,
+        /// The known angle (radians).
+        theta: f64,
+    },
 }

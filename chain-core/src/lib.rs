@@ -4,6 +4,7 @@
 //!
 //! `no_std` without allocation when default features are off (math from `libm`); the `alloc`
 //! feature adds the runtime-sized chain and dense conversions, `std` the platform math.
+#![deny(missing_docs)]
 #![cfg_attr(not(feature = "std"), no_std)]
 
 #[cfg(feature = "alloc")]

@@ -5,34 +5,42 @@
 #[cfg(feature = "std")]
 mod imp {
     #[inline(always)]
+    /// `(sin x, cos x)` of `x` in radians, in one call.
     pub fn sin_cos(x: f64) -> (f64, f64) {
         x.sin_cos()
     }
     #[inline(always)]
+    /// Square root.
     pub fn sqrt(x: f64) -> f64 {
         x.sqrt()
     }
     #[inline(always)]
+    /// Sine of `x` in radians.
     pub fn sin(x: f64) -> f64 {
         x.sin()
     }
     #[inline(always)]
+    /// Cosine of `x` in radians.
     pub fn cos(x: f64) -> f64 {
         x.cos()
     }
     #[inline(always)]
+    /// Exponential `e^x`.
     pub fn exp(x: f64) -> f64 {
         x.exp()
     }
     #[inline(always)]
+    /// Natural logarithm.
     pub fn ln(x: f64) -> f64 {
         x.ln()
     }
     #[inline(always)]
+    /// `x^n` for an integer `n`.
     pub fn powi(x: f64, n: i32) -> f64 {
         x.powi(n)
     }
     #[inline(always)]
+    /// Angle of the point `(x, y)` from the `+x` axis, radians in `[-pi, pi]`.
     pub fn atan2(y: f64, x: f64) -> f64 {
         y.atan2(x)
     }
@@ -41,34 +49,42 @@ mod imp {
 #[cfg(not(feature = "std"))]
 mod imp {
     #[inline(always)]
+    /// `(sin x, cos x)` of `x` in radians, in one call.
     pub fn sin_cos(x: f64) -> (f64, f64) {
         libm::sincos(x)
     }
     #[inline(always)]
+    /// Square root.
     pub fn sqrt(x: f64) -> f64 {
         libm::sqrt(x)
     }
     #[inline(always)]
+    /// Sine of `x` in radians.
     pub fn sin(x: f64) -> f64 {
         libm::sin(x)
     }
     #[inline(always)]
+    /// Cosine of `x` in radians.
     pub fn cos(x: f64) -> f64 {
         libm::cos(x)
     }
     #[inline(always)]
+    /// Exponential `e^x`.
     pub fn exp(x: f64) -> f64 {
         libm::exp(x)
     }
     #[inline(always)]
+    /// Natural logarithm.
     pub fn ln(x: f64) -> f64 {
         libm::log(x)
     }
     #[inline(always)]
+    /// `x^n` for an integer `n`.
     pub fn powi(x: f64, n: i32) -> f64 {
         libm::pow(x, f64::from(n))
     }
     #[inline(always)]
+    /// Angle of the point `(x, y)` from the `+x` axis, radians in `[-pi, pi]`.
     pub fn atan2(y: f64, x: f64) -> f64 {
         libm::atan2(y, x)
     }

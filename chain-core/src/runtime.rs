@@ -38,7 +38,9 @@ pub struct RuntimeChain {
 /// How the uniform state is given: by its angle or by the springs' rest length.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Uniform {
+    /// Given by its angle `theta_bar`, radians.
     ThetaBar(f64),
+    /// Given by the rest length `lbar` of its springs.
     RestLength(f64),
 }
 
@@ -59,6 +61,22 @@ pub struct ChainBuilder {
 impl RuntimeChain {
     /// A chain of `n` rotors of length `r`, springs of stiffness `k`, uniform angle `theta_bar`.
     /// Nothing is checked or allocated until [`ChainBuilder::build`].
+    /// # Example
+    ///
+    /// ```
+    /// use rotor_chain::{ChainModel, RuntimeChain};
+    ///
+    /// # fn main() -> Result<(), rotor_chain::ParameterError> {
+    /// // n = 60, r = 0.8 a, k = 1e4 M/t^2, theta_bar = 0.58 rad; an impurity spring, a longer lattice.
+    /// let chain = RuntimeChain::builder(60, 0.8, 1.0e4, 0.58)
+    ///     .lattice_spacing(1.0)
+    ///     .spring(29, Some(1.0e3), None)
+    ///     .build()?;
+    /// assert_eq!(chain.stiffness(29), 1.0e3);
+    /// assert!(RuntimeChain::builder(60, 0.8, 1.0e4, 0.7).build().is_err()); // past the flipper phase
+    /// # Ok(())
+    /// # }
+    /// ```
     pub fn builder(n: usize, r: f64, k: f64, theta_bar: f64) -> ChainBuilder {
         ChainBuilder {
             n,

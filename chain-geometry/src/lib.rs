@@ -7,6 +7,7 @@
 //! Conventions are those of `docs/theory.md` (paper Sec. II): lattice spacing `a`, rotor length
 //! `r`, equilibrium angle `theta_bar` measured from the vertical, spring rest length
 //! `lbar = sqrt(a^2 + 4 r^2 cos^2 theta_bar)`.
+#![deny(missing_docs)]
 #![no_std]
 
 use core::fmt;
@@ -18,37 +19,92 @@ use core::fmt;
 pub enum ParameterError {
     /// Fewer than two rotors: there is no spring.
     #[error("`n` must be at least 2 (a chain needs two rotors and one spring), got {n}")]
-    TooFewRotors { n: usize },
+    TooFewRotors {
+        /// The number of rotors given.
+        n: usize,
+    },
     /// A length, stiffness or mass that must be positive is not (or is not finite).
     #[error("`{key}` must be a finite number > 0, got {value}")]
-    NotPositive { key: Key, value: f64 },
+    NotPositive {
+        /// Which parameter.
+        key: Key,
+        /// The value given.
+        value: f64,
+    },
     /// `theta_bar` outside the flipper phase `0 < theta_bar < pi/2`, `2 r sin(theta_bar) < a`.
     #[error("{}", PhaseMessage { theta_bar: *theta_bar, a: *a, r: *r, two_r_sin: *two_r_sin, limit: *limit })]
-    OutsideFlipperPhase { theta_bar: f64, a: f64, r: f64, two_r_sin: f64, limit: f64 },
+    OutsideFlipperPhase {
+        /// The angle given, in radians.
+        theta_bar: f64,
+        /// Lattice spacing `a` (pivot distance), in units of length.
+        a: f64,
+        /// Rotor length `r`, in units of length.
+        r: f64,
+        /// `2 r sin(theta_bar)`, which must be below `a`.
+        two_r_sin: f64,
+        /// Where the flipper phase ends: `asin(a / 2r)`, in radians.
+        limit: f64,
+    },
     /// A rest length that no uniform state `theta_i = theta_bar` can have.
     #[error(
         "rest_length = {rest_length} admits no uniform state: need a < rest_length < \
          sqrt(a^2 + 4 r^2) = {max:.6} (a = {a}, r = {r})"
     )]
-    RestLengthOutOfRange { rest_length: f64, a: f64, r: f64, max: f64 },
+    RestLengthOutOfRange {
+        /// Rest length `l0`, in units of length (lattice spacing `a` = 1 in the paper).
+        rest_length: f64,
+        /// Lattice spacing `a` (pivot distance), in units of length.
+        a: f64,
+        /// Rotor length `r`, in units of length.
+        r: f64,
+        /// The longest rest length a uniform state admits, `sqrt(a^2 + 4 r^2)`.
+        max: f64,
+    },
     /// A spring or rotor index past the end of the chain.
     #[error("{kind} index {index} is out of range: the chain has {count} {kind}s, numbered 0 to {}", count.saturating_sub(1))]
-    IndexOutOfRange { kind: IndexKind, index: usize, count: usize },
+    IndexOutOfRange {
+        /// Spring or rotor.
+        kind: IndexKind,
+        /// The index given.
+        index: usize,
+        /// How many springs or rotors the chain has.
+        count: usize,
+    },
     /// More rotors than [`MAX_ROTORS`].
     #[error("`n` = {n} is more rotors than a chain may have: at most {max}")]
-    TooManyRotors { n: usize, max: usize },
+    TooManyRotors {
+        /// The number of rotors asked for.
+        n: usize,
+        /// The most allowed, [`MAX_ROTORS`].
+        max: usize,
+    },
     /// An override that gives no value.
     #[error("the override of {kind} {index} changes nothing: give {}", match kind {
         IndexKind::Spring => "a stiffness `k` and/or a rest length `l0`",
         IndexKind::Rotor => "a length `r`",
     })]
-    EmptyOverride { kind: IndexKind, index: usize },
+    EmptyOverride {
+        /// Spring or rotor.
+        kind: IndexKind,
+        /// The index of the override.
+        index: usize,
+    },
     /// Two overrides of the same spring or rotor.
     #[error("{kind} {index} is overridden twice: give all of its values in one override")]
-    OverriddenTwice { kind: IndexKind, index: usize },
+    OverriddenTwice {
+        /// Spring or rotor.
+        kind: IndexKind,
+        /// The index overridden twice.
+        index: usize,
+    },
     /// The memory for a chain of `n` rotors could not be allocated.
     #[error("a chain of {n} rotors needs {bytes} bytes for its parameters, which could not be allocated")]
-    AllocationFailed { n: usize, bytes: usize },
+    AllocationFailed {
+        /// Number of rotors `n`.
+        n: usize,
+        /// The bytes that could not be allocated.
+        bytes: usize,
+    },
 }
 
 /// The most rotors a chain may have, generated or built at run time. A chain that long already
@@ -88,10 +144,15 @@ impl fmt::Display for PhaseMessage {
 /// Which parameter a [`ParameterError::NotPositive`] is about.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Key {
+    /// The lattice spacing `a`.
     LatticeSpacing,
+    /// A rotor length `r`.
     RotorLength,
+    /// A spring stiffness `k`.
     Stiffness,
+    /// The tip mass `M`.
     Mass,
+    /// A spring rest length `l0`.
     RestLength,
 }
 
@@ -110,7 +171,9 @@ impl fmt::Display for Key {
 /// Spring or rotor, for [`ParameterError::IndexOutOfRange`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum IndexKind {
+    /// A spring `p` (joins rotors `p` and `p + 1`).
     Spring,
+    /// A rotor `i`.
     Rotor,
 }
 

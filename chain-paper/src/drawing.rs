@@ -15,11 +15,13 @@ use rotor_chain::ChainModel;
 /// A chain, or a window of it, ready to draw. Lengths are in units of the lattice spacing `a`.
 #[derive(Clone, Debug, PartialEq)]
 pub struct ChainDrawing {
+    /// Title above the drawing.
     pub title: String,
     /// The rotors drawn, by their index in the chain.
     pub rotors: Range<usize>,
     /// Pivot and tip of each rotor drawn.
     pub pivots: Vec<(f64, f64)>,
+    /// Tip positions `(x, y)`, in `a`.
     pub tips: Vec<(f64, f64)>,
     /// Rotor angles `θ_i` of the rotors drawn (rad), for the data file.
     pub angles: Vec<f64>,
@@ -39,9 +41,25 @@ pub struct ChainDrawing {
 #[non_exhaustive]
 pub enum DrawingError {
     #[error("{what} has {len} entries, the chain has {expected}")]
-    WrongLength { what: &'static str, len: usize, expected: usize },
+    /// An input with the wrong length.
+    WrongLength {
+        /// Which input.
+        what: &'static str,
+        /// Its length.
+        len: usize,
+        /// The length it must have.
+        expected: usize,
+    },
     #[error("rotors {start}..{end} of a chain of {n}: at least two rotors must be drawn")]
-    EmptyWindow { start: usize, end: usize, n: usize },
+    /// A window of rotors that is empty or off the chain.
+    EmptyWindow {
+        /// First rotor of the window.
+        start: usize,
+        /// One past its last rotor.
+        end: usize,
+        /// Rotors of the chain.
+        n: usize,
+    },
 }
 
 /// Stretches below this fraction of the rest length are rounding in the spring lengths and are

@@ -8,6 +8,7 @@
 //! ([`output`]). Colours come from one table, quantity by quantity ([`palette`]).
 //!
 //! Figures are named by their LaTeX labels in the paper (`fig:kcobweb`, ...).
+#![deny(missing_docs)]
 
 pub mod data;
 pub mod drawing;

@@ -9,7 +9,9 @@ pub use crate::row::{Comparison, Printed, Row, format_number};
 /// grid points, shorter runs) that exercises the same code in seconds.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Quality {
+    /// Reproduce the paper: every grid and run at full size.
     Full,
+    /// A coarse version in seconds.
     Quick,
 }
 
@@ -26,12 +28,15 @@ impl Quality {
 /// How a series is drawn.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Style {
+    /// A solid line.
     Line,
+    /// A dashed line.
     Dashed,
     /// Filled dots.
     Points,
     /// Open circles (the paper's translation-mode points, `fig:w-th`).
     OpenPoints,
+    /// A line with dots at the points.
     LinePoints,
 }
 
@@ -43,11 +48,14 @@ pub struct Series {
     pub quantity: Quantity,
     /// Legend entry (also the CSV column name); empty for no legend entry.
     pub name: String,
+    /// The points `(x, y)`, in the axes' units.
     pub points: Vec<(f64, f64)>,
+    /// How it is drawn.
     pub style: Style,
 }
 
 impl Series {
+    /// A series of `points` `(x, y)` showing `quantity`, drawn in `style`, with legend entry `name`.
     pub fn new(quantity: Quantity, name: impl Into<String>, points: Vec<(f64, f64)>, style: Style) -> Self {
         Self { quantity, name: name.into(), points, style }
     }
@@ -56,10 +64,13 @@ impl Series {
 /// A panel with axes and curves.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Panel {
+    /// Title above the panel.
     pub title: String,
     /// Axis labels with units, e.g. `"rotor index i"`, `"θ_i (rad)"`.
     pub x_label: String,
+    /// Label of the y axis, with units.
     pub y_label: String,
+    /// The curves.
     pub series: Vec<Series>,
     /// Logarithmic y axis.
     pub log_y: bool,
@@ -88,11 +99,17 @@ impl Panel {
 /// viridis (see [`crate::palette`]).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Heatmap {
+    /// Title above the map.
     pub title: String,
+    /// Label of the x axis, with units.
     pub x_label: String,
+    /// Label of the y axis, with units.
     pub y_label: String,
+    /// Column coordinates.
     pub x: Vec<f64>,
+    /// Row coordinates.
     pub y: Vec<f64>,
+    /// Values, `values[row][column]`.
     pub values: Vec<Vec<f64>>,
     /// Names of discrete values `0, 1, 2, ...` (e.g. outcomes); empty for a continuous map. A
     /// name of [`Quantity::of_category`] gets that quantity's colour.
@@ -104,7 +121,9 @@ pub struct Heatmap {
 /// One panel of a figure.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Chart {
+    /// Curves on axes.
     Lines(Panel),
+    /// A heat map.
     Heat(Heatmap),
     /// A drawing of the chain itself: pivots, rotors, springs coloured by their stretch.
     Chain(ChainDrawing),
@@ -135,6 +154,7 @@ pub struct Figure {
     pub label: &'static str,
     /// One line: what the figure shows and with which parameters.
     pub caption: String,
+    /// The panels, in reading order.
     pub panels: Vec<Chart>,
     /// Rows this figure contributes to the summary table.
     pub rows: Vec<Row>,

@@ -21,8 +21,10 @@ use std::time::{Duration, Instant};
 #[derive(Debug, thiserror::Error)]
 #[error("cannot write {}: {source}", path.display())]
 pub struct WriteError {
+    /// The file.
     pub path: PathBuf,
     #[source]
+    /// The operating system's error.
     pub source: io::Error,
 }
 

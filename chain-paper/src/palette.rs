@@ -67,24 +67,35 @@ pub enum Quantity {
     Configuration,
     /// Scattering outcomes (Sec. VI).
     Transmitted,
+    /// Outcome: reflected.
     Reflected,
+    /// Outcome: trapped.
     Trapped,
+    /// Outcome: split.
     Split,
+    /// Outcome: annihilated.
     Annihilated,
+    /// Outcome: disintegrated.
     Disintegrated,
+    /// Outcome: pair creation.
     PairCreation,
+    /// Outcome: undecided.
     Undecided,
     /// A sweep point that failed (energy budget, unreadable walls): shown, never hidden.
     Failed,
     /// Member `index` of a family of `of` curves that differ in one parameter (e.g. the launch
     /// speed): shades of the sequential map, in the parameter's order.
     Parameter {
+        /// Which member, from 0.
         index: usize,
+        /// How many members.
         of: usize,
     },
     /// Regions of the `(E, l0)` diagram (Sec. VII-B).
     Annulus,
+    /// Region of the disk orbits.
     Disk,
+    /// Region no orbit reaches.
     Forbidden,
 }
 

@@ -20,6 +20,7 @@ use std::fmt;
 /// `"0.60"`).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Printed {
+    /// The number as printed.
     pub text: String,
     /// The value, `None` when the text is not a number.
     pub value: Option<f64>,
@@ -60,9 +61,17 @@ pub enum Comparison {
     Words,
     /// `|ours − paper| / |paper|`; `within_rounding` when `|ours − paper|` is at most the
     /// paper's printed precision.
-    Relative { difference: f64, within_rounding: bool },
+    Relative {
+        /// Relative difference `(ours - paper) / paper`.
+        difference: f64,
+        /// Whether the difference is within the paper's printed precision.
+        within_rounding: bool,
+    },
     /// The two numbers cannot be compared as a relative difference, and why.
-    NotComparable { reason: String },
+    NotComparable {
+        /// Why the two numbers cannot be compared.
+        reason: String,
+    },
 }
 
 impl fmt::Display for Comparison {
@@ -88,6 +97,7 @@ impl fmt::Display for Comparison {
 /// The resolution of a quantity: the smallest magnitude that is not rounding, and what sets it.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Resolution {
+    /// The value.
     pub value: f64,
     /// E.g. "the smallest ω a double-precision ω² resolves here".
     pub what: String,
@@ -132,6 +142,7 @@ pub struct Row {
     pub quantity: String,
     /// The paper's statement (a number or a word such as "transmitted").
     pub paper: String,
+    /// Our number, as printed.
     pub ours: String,
     /// The continuum theory's value where one exists.
     pub continuum: Option<String>,

@@ -13,84 +13,197 @@ use crate::grid::GridError;
 #[non_exhaustive]
 pub enum SweepError {
     #[error("cannot {action} {}: {source}", path.display())]
+    /// A file could not be opened, read, written or locked.
     Io {
+        /// What was being done (`open`, `read`, `write`, ...).
         action: &'static str,
+        /// The file.
         path: PathBuf,
         #[source]
+        /// The operating system's error.
         source: io::Error,
     },
     #[error(
         "{} is not a chain-sweep results file: its first line should start with `{}`, found `{found}`",
         path.display(), crate::file::FORMAT_TAG
     )]
-    NotAResultsFile { path: PathBuf, found: String },
+    /// The file exists but is not a results file of a sweep.
+    NotAResultsFile {
+        /// The file.
+        path: PathBuf,
+        /// Its first line.
+        found: String,
+    },
     #[error("{} has the columns `{found}`, this sweep writes `{expected}`", path.display())]
-    HeaderMismatch { path: PathBuf, expected: String, found: String },
+    /// The file has other columns than this sweep writes.
+    HeaderMismatch {
+        /// The file concerned.
+        path: PathBuf,
+        /// The columns this sweep writes.
+        expected: String,
+        /// The file's columns.
+        found: String,
+    },
     #[error(
         "{} belongs to another grid: it was written for `{found}`, this sweep is over `{expected}`; \
          use another output file or the same ranges",
         path.display()
     )]
-    GridMismatch { path: PathBuf, expected: String, found: String },
+    /// The file belongs to a sweep over another grid.
+    GridMismatch {
+        /// The file concerned.
+        path: PathBuf,
+        /// This sweep's grid.
+        expected: String,
+        /// The file's grid.
+        found: String,
+    },
     #[error(
         "{} belongs to another run: it was written for `{found}`, this sweep computes `{expected}`; \
          use another output file or the same parameters",
         path.display()
     )]
-    RunMismatch { path: PathBuf, expected: String, found: String },
+    /// The file belongs to a sweep with other run settings.
+    RunMismatch {
+        /// The file concerned.
+        path: PathBuf,
+        /// This sweep's run settings.
+        expected: String,
+        /// The file's run settings.
+        found: String,
+    },
     #[error(
         "{} belongs to another part of the sweep: it holds {found}, this sweep computes {expected}; \
          use another output file or the same --shard",
         path.display()
     )]
-    ShardMismatch { path: PathBuf, expected: String, found: String },
+    /// The file belongs to another part (shard) of the sweep.
+    ShardMismatch {
+        /// The file concerned.
+        path: PathBuf,
+        /// The part this sweep computes.
+        expected: String,
+        /// The part the file holds.
+        found: String,
+    },
     #[error("{} line {line}: {reason}", path.display())]
-    Parse { path: PathBuf, line: usize, reason: String },
+    /// A line of the file cannot be read.
+    Parse {
+        /// The file.
+        path: PathBuf,
+        /// The line (from 1).
+        line: usize,
+        /// What is wrong with it.
+        reason: String,
+    },
     /// A point appended to a [`crate::ResultsFile`] that is not one of its sweep's.
     #[error(
         "point {index:?} is not part of the sweep of {} ({sweep} of a {nx} x {ny} grid)",
         path.display()
     )]
-    NotInSweep { path: PathBuf, index: (usize, usize), sweep: String, nx: usize, ny: usize },
+    NotInSweep {
+        /// The results file.
+        path: PathBuf,
+        /// The point's grid index `(i, j)`.
+        index: (usize, usize),
+        /// The part of the sweep the file holds.
+        sweep: String,
+        /// Grid points along x.
+        nx: usize,
+        /// Grid points along y.
+        ny: usize,
+    },
     /// A point appended to a [`crate::ResultsFile`] that already holds it.
     #[error("point {index:?} is already in {}: a point is written once", path.display())]
-    AlreadyDone { path: PathBuf, index: (usize, usize) },
+    AlreadyDone {
+        /// The results file.
+        path: PathBuf,
+        /// The point's grid index `(i, j)`.
+        index: (usize, usize),
+    },
     /// [`crate::merge_shards`] was given no shard files, or found none.
     #[error("no shard files to merge: {reason}")]
-    NoShards { reason: String },
+    NoShards {
+        /// Why none were found.
+        reason: String,
+    },
     /// A file given to [`crate::merge_shards`] is the results file of a whole sweep.
     #[error("{} is not the file of a shard (its first line has no `; shard I/N`)", path.display())]
-    NotAShard { path: PathBuf },
+    NotAShard {
+        /// The file.
+        path: PathBuf,
+    },
     /// The shard files do not make up one split sweep.
     #[error("the shard files do not make up one sweep: {reason}")]
-    ShardSet { reason: String },
+    ShardSet {
+        /// What does not fit.
+        reason: String,
+    },
     /// A grid point is in two shard files (or twice in one).
     #[error("point {index:?} appears twice: in {} and in {}", first.display(), second.display())]
-    DuplicatePoint { index: (usize, usize), first: PathBuf, second: PathBuf },
+    DuplicatePoint {
+        /// The point's grid index `(i, j)`.
+        index: (usize, usize),
+        /// The first file that holds it.
+        first: PathBuf,
+        /// The second.
+        second: PathBuf,
+    },
     /// Grid points are in no shard file: those shards have not finished.
     #[error(
         "{missing} of the {total} grid points are in no shard file, first {first:?}; unfinished shards: {unfinished}. \
          Run those shards again (each resumes where it stopped), then merge"
     )]
-    MissingPoints { missing: usize, total: usize, first: (usize, usize), unfinished: String },
+    MissingPoints {
+        /// How many grid points are in no file.
+        missing: usize,
+        /// Grid points in all.
+        total: usize,
+        /// The first missing point `(i, j)`.
+        first: (usize, usize),
+        /// The shards that have not finished.
+        unfinished: String,
+    },
     /// The merged file would replace a file that is not the results file of the same sweep.
     #[error("will not replace {}: {reason}", path.display())]
-    WouldOverwrite { path: PathBuf, reason: String },
+    WouldOverwrite {
+        /// The file that would be replaced.
+        path: PathBuf,
+        /// Why it is not the same sweep's.
+        reason: String,
+    },
     #[error("{} is in use by another sweep (it holds the file's lock)", path.display())]
-    Locked { path: PathBuf },
+    /// Another sweep holds the results file's lock.
+    Locked {
+        /// The results file.
+        path: PathBuf,
+    },
     /// The results path names something that is not a regular file (a directory, a FIFO, a
     /// device such as /dev/null): reading it back could block or lose every point.
     #[error("{} is {kind}, not a regular file: give a file path for the results", path.display())]
-    NotAFile { path: PathBuf, kind: &'static str },
+    NotAFile {
+        /// The path given.
+        path: PathBuf,
+        /// What it is (a directory, a FIFO, ...).
+        kind: &'static str,
+    },
     #[error("the record type's columns are unusable: {reason}")]
-    InvalidRecord { reason: String },
+    /// The record type's columns cannot be written (a programming error in a record type).
+    InvalidRecord {
+        /// What is wrong with the columns.
+        reason: String,
+    },
     #[error("cannot start {threads} worker threads: {source}")]
+    /// The worker threads could not be started.
     ThreadPool {
+        /// Worker threads asked for.
         threads: usize,
         #[source]
+        /// rayon's error.
         source: rayon::ThreadPoolBuildError,
     },
     #[error(transparent)]
+    /// An axis or grid that cannot be built.
     Grid(#[from] GridError),
 }
 

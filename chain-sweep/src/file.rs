@@ -40,6 +40,7 @@ const ERROR_COLUMN: &str = "error";
 pub struct Point<R> {
     /// `(i, j)`: the point is `(xs[i], ys[j])`.
     pub index: (usize, usize),
+    /// The point's `(x, y)` values.
     pub coords: (f64, f64),
     /// The record, or the error message of a point that failed.
     pub outcome: Result<R, String>,

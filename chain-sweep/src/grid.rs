@@ -15,19 +15,55 @@ pub const MAX_GRID_POINTS: usize = 10_000_000;
 #[non_exhaustive]
 pub enum GridError {
     #[error("an axis needs at least 1 point, got count = {count}")]
-    EmptyAxis { count: usize },
+    /// An axis of no points.
+    EmptyAxis {
+        /// The number of points asked for.
+        count: usize,
+    },
     #[error("an axis may have at most {MAX_AXIS_COUNT} points, got count = {count}")]
-    TooManyPoints { count: usize },
+    /// An axis of more points than allowed.
+    TooManyPoints {
+        /// The number of points asked for.
+        count: usize,
+    },
     #[error("the grid has {nx} x {ny} points, more than the limit of {MAX_GRID_POINTS}")]
-    TooLarge { nx: usize, ny: usize },
+    /// A grid of more points than allowed.
+    TooLarge {
+        /// Points along x.
+        nx: usize,
+        /// Points along y.
+        ny: usize,
+    },
     #[error("axis value {value} is not a finite number")]
-    NotFinite { value: f64 },
+    /// A bound that is NaN or infinite.
+    NotFinite {
+        /// The value.
+        value: f64,
+    },
     #[error("a 1-point axis needs FROM = TO, got {from}:{to}:1 (write {from}:{from}:1)")]
-    AmbiguousSinglePoint { from: f64, to: f64 },
+    /// One point asked for between two different bounds.
+    AmbiguousSinglePoint {
+        /// The range's start.
+        from: f64,
+        /// Its end.
+        to: f64,
+    },
     #[error("`{text}` is not a range FROM:TO:COUNT or FROM:TO:COUNT:log: {reason}")]
-    BadRange { text: String, reason: String },
+    /// A range that cannot be read (`from:to:count[:log]`).
+    BadRange {
+        /// The range as written.
+        text: String,
+        /// What is wrong with it.
+        reason: String,
+    },
     #[error("a logarithmic axis needs FROM and TO > 0, got {from}:{to}")]
-    NotPositive { from: f64, to: f64 },
+    /// A logarithmic axis with a bound <= 0.
+    NotPositive {
+        /// The range's start.
+        from: f64,
+        /// Its end.
+        to: f64,
+    },
 }
 
 /// The sample values of one axis.
@@ -96,10 +132,12 @@ impl Axis {
         Ok(Self { values })
     }
 
+    /// The axis's values, in order.
     pub fn values(&self) -> &[f64] {
         &self.values
     }
 
+    /// How many values.
     pub fn len(&self) -> usize {
         self.values.len()
     }
@@ -142,6 +180,7 @@ pub struct Grid {
 }
 
 impl Grid {
+    /// The grid of every `(x, y)` pair of the two axes.
     pub fn new(x: Axis, y: Axis) -> Result<Self, GridError> {
         let (nx, ny) = (x.len(), y.len());
         if nx.checked_mul(ny).is_none_or(|points| points > MAX_GRID_POINTS) {
@@ -150,10 +189,12 @@ impl Grid {
         Ok(Self { xs: x.values, ys: y.values })
     }
 
+    /// The x values.
     pub fn xs(&self) -> &[f64] {
         &self.xs
     }
 
+    /// The y values.
     pub fn ys(&self) -> &[f64] {
         &self.ys
     }

@@ -35,6 +35,32 @@
 //! # }
 //! ```
 //!
+//! The paper's phase diagram (Sec. VI, Fig. `fig:phasediagram`): every point is one scattering
+//! run of [`scattering::PhaseDiagram::compute_point`], here on a small grid of the antikink
+//! diagram (the paper's chain at $\bar\theta = 0.28$, the impurity on the middle spring):
+//!
+//! ```
+//! use chain_sweep::{Axis, Grid, SweepOptions, read_results, run_sweep};
+//! use chain_sweep::scattering::{Defect, Outcome, PhaseDiagram, PointRecord};
+//!
+//! # fn main() -> Result<(), Box<dyn std::error::Error>> {
+//! # let dir = tempfile::tempdir()?;
+//! // n = 60, r = 0.8 a, k = 1e4 M/t^2, theta_bar = 0.28 rad; free ends, Verlet, t_max = 20 t.
+//! let diagram = PhaseDiagram::new(60, 0.8, 1.0e4, 0.28, Defect::Antikink)?;
+//! let grid = Grid::new("0.2:0.8:2".parse()?, "4:4.8:2".parse()?)?;   // k_i/k by v0 (a/t)
+//! let path = dir.path().join("antikink.csv");
+//! let options = SweepOptions::new("antikink", diagram.run_label());
+//! run_sweep(&grid, &path, |ki, v0| diagram.compute_point(ki, v0), &options)?;
+//!
+//! let points = read_results::<PointRecord>(&path)?;
+//! assert_eq!(points.len(), 4);                             // (index, (k_i/k, v0), record)
+//! let at = |ki: f64, v0: f64| points.iter().find(|(_, xy, _)| *xy == (ki, v0)).map(|p| p.2.outcome);
+//! assert_eq!(at(0.2, 4.8), Some(Outcome::Reflected));       // the paper's named points
+//! assert_eq!(at(0.8, 4.0), Some(Outcome::Transmitted));
+//! # Ok(())
+//! # }
+//! ```
+//!
 //! | module | what |
 //! | --- | --- |
 //! | [`grid`] | [`Axis`] (`FROM:TO:COUNT`), [`Grid`] and its signature |
@@ -44,6 +70,7 @@
 //! | [`shard`] | [`Shard`]: one of `N` interleaved parts of a grid, for job arrays; `--shard slurm` |
 //! | [`merge`] | [`merge_shards`]: the shard files of a split sweep joined into the whole diagram |
 //! | [`scattering`] | [`scattering::PhaseDiagram`]: one point of the scattering phase diagram, its energy budget, and [`scattering::PointRecord`], its record |
+#![deny(missing_docs)]
 
 pub mod error;
 pub mod file;

@@ -13,10 +13,25 @@ use std::str::FromStr;
 #[non_exhaustive]
 pub enum ParseError {
     #[error("expected {expected} fields, found {found}")]
-    FieldCount { expected: usize, found: usize },
+    /// A line with the wrong number of columns.
+    FieldCount {
+        /// Columns expected.
+        expected: usize,
+        /// Columns found.
+        found: usize,
+    },
     #[error("column `{column}`: cannot read `{value}`: {reason}")]
-    Field { column: String, value: String, reason: String },
+    /// A column that cannot be read.
+    Field {
+        /// The column.
+        column: String,
+        /// The text in it.
+        value: String,
+        /// Why it cannot be read.
+        reason: String,
+    },
     #[error("unterminated quoted field")]
+    /// A quoted field that is not closed.
     Unterminated,
 }
 

@@ -36,6 +36,7 @@ pub enum Defect {
 }
 
 impl Defect {
+    /// The name used on the command line and in the results file.
     pub fn name(self) -> &'static str {
         match self {
             Defect::Kink => "kink",
@@ -43,6 +44,7 @@ impl Defect {
         }
     }
 
+    /// The wall charge of this defect.
     pub fn charge(self) -> Charge {
         match self {
             Defect::Kink => Charge::Kink,
@@ -63,12 +65,13 @@ pub enum Ends {
     /// Free ends, as in the paper (the default).
     Free,
     /// A damping sponge on the last rotors at each end
-    /// ([`ABSORBING_ENDS`](rotor_chain::dynamics::run::ABSORBING_ENDS)): nothing comes back from
+    /// ([`ABSORBING_ENDS`]): nothing comes back from
     /// the ends, as in an infinite chain.
     Absorbing,
 }
 
 impl Ends {
+    /// The name used on the command line and in the results file.
     pub fn name(self) -> &'static str {
         match self {
             Ends::Free => "free",
@@ -87,6 +90,7 @@ pub enum Integrator {
 }
 
 impl Integrator {
+    /// The name used on the command line and in the results file.
     pub fn name(self) -> &'static str {
         match self {
             Integrator::Verlet => "verlet",
@@ -106,9 +110,18 @@ impl fmt::Display for Integrator {
 #[non_exhaustive]
 pub enum ConfigError {
     #[error("invalid chain: {0}")]
+    /// The chain breaks a parameter rule.
     Chain(#[from] ParameterError),
     #[error("invalid {name}: {value} must be {rule}")]
-    Value { name: &'static str, value: f64, rule: &'static str },
+    /// A setting out of its range.
+    Value {
+        /// The setting.
+        name: &'static str,
+        /// Its value.
+        value: f64,
+        /// The rule it breaks.
+        rule: &'static str,
+    },
 }
 
 /// The energy tolerance of a sweep point: 5e-3 of the run's initial energy.
@@ -128,12 +141,19 @@ pub struct PhaseDiagram {
     /// Rotors `n`, rotor length `r` (lattice spacing `a = 1`), stiffness `k`, angle
     /// `theta_bar`, tip mass `M` (default 1).
     pub n: usize,
+    /// Rotor length `r`, in units of `a`.
     pub r: f64,
+    /// Spring stiffness `k`, in `M / t^2`.
     pub k: f64,
+    /// Equilibrium angle, radians.
     pub theta_bar: f64,
+    /// Tip mass `M`.
     pub mass: f64,
+    /// The incoming defect.
     pub defect: Defect,
+    /// Free (the paper's) or absorbing ends.
     pub ends: Ends,
+    /// The integrator every point starts with.
     pub integrator: Integrator,
     /// Verlet's step; `None`: a tenth of its stability limit.
     pub dt: Option<f64>,
@@ -332,23 +352,42 @@ pub enum PointError {
     /// own 10 % energy limit, or a state that is not finite).
     #[error("{integrator}: {source}")]
     Run {
+        /// The integrator that ran.
         integrator: Integrator,
         #[source]
+        /// Its error.
         source: DynamicsError,
     },
     /// The run's largest relative energy error is above the tolerance.
     #[error("energy error {error:.3e} above the tolerance {tolerance:.1e} ({integrator})")]
-    EnergyBudget { error: f64, tolerance: f64, integrator: Integrator },
+    EnergyBudget {
+        /// The run's largest relative energy error.
+        error: f64,
+        /// The tolerance.
+        tolerance: f64,
+        /// The integrator that ran.
+        integrator: Integrator,
+    },
     /// The Verlet run broke the energy budget (or failed), and its DOP853 recomputation did not
     /// succeed either: `dop853` is a [`PointError::Run`] or a [`PointError::EnergyBudget`].
     #[error("{}", recomputed_message(verlet, dop853))]
-    Recomputed { verlet: VerletBreach, dop853: Box<PointError> },
+    Recomputed {
+        /// Why the Verlet run was not kept.
+        verlet: VerletBreach,
+        /// How the DOP853 recomputation failed.
+        dop853: Box<PointError>,
+    },
     /// The tracker's charge check failed: rotors spun through `|theta| = pi`, so the walls
     /// cannot be read from the signs of the angles. `time` is the first output where it failed.
     #[error(
         "the rotors spun through |theta| = pi at t = {time} ({outputs} outputs): walls cannot be read from signs"
     )]
-    SpunThroughPi { time: f64, outputs: usize },
+    SpunThroughPi {
+        /// The first output where it failed, in `t`.
+        time: f64,
+        /// Outputs recorded until then.
+        outputs: usize,
+    },
     /// The run ended before its first output.
     #[error("the run recorded nothing")]
     NothingRecorded,
@@ -359,9 +398,15 @@ pub enum PointError {
 #[non_exhaustive]
 pub enum VerletBreach {
     /// Its largest relative energy error, above the tolerance.
-    EnergyError { error: f64 },
+    EnergyError {
+        /// The run's largest relative energy error.
+        error: f64,
+    },
     /// It stopped with an error.
-    Failed { source: DynamicsError },
+    Failed {
+        /// Its error.
+        source: DynamicsError,
+    },
 }
 
 impl fmt::Display for VerletBreach {
@@ -418,6 +463,7 @@ impl FromStr for Recomputed {
 /// One scattering simulation's result: the columns of a phase-diagram results file.
 #[derive(Clone, Debug, PartialEq)]
 pub struct PointRecord {
+    /// What the impurity did to the defect.
     pub outcome: Outcome,
     /// When the outcome was decided, in the time unit of the dynamics (the run's end if
     /// undecided).
@@ -428,6 +474,7 @@ pub struct PointRecord {
     pub later: Option<(LaterEvent, f64)>,
     /// Kinks and antikinks at the end of the run, boundary walls included.
     pub kinks_final: usize,
+    /// Antikinks at the end of the run.
     pub antikinks_final: usize,
     /// The run's largest relative energy error (`Report::relative_energy_error`).
     pub energy_error: f64,

@@ -20,19 +20,41 @@ use crate::grid::Grid;
 #[non_exhaustive]
 pub enum ShardError {
     #[error("`{text}` is not a shard I/N (for example 0/8, the first of 8) or `slurm`: {reason}")]
-    BadSpec { text: String, reason: String },
+    /// Not `I/N` or `slurm`.
+    BadSpec {
+        /// The shard as written.
+        text: String,
+        /// What is wrong with it.
+        reason: String,
+    },
     #[error("shard {index}/{count} does not exist: shards are numbered 0 to {}", count - 1)]
-    OutOfRange { index: usize, count: usize },
+    /// A shard index past the last.
+    OutOfRange {
+        /// The shard index given.
+        index: usize,
+        /// The number of shards.
+        count: usize,
+    },
     #[error("a sweep cannot be split into 0 shards")]
+    /// Zero shards.
     NoShards,
     /// `--shard slurm` outside a SLURM job array.
     #[error(
         "--shard slurm needs the environment variable {variable}, which SLURM sets only in a job \
          array (sbatch --array=0-N); outside one, give the shard as I/N"
     )]
-    SlurmMissing { variable: &'static str },
+    SlurmMissing {
+        /// The environment variable.
+        variable: &'static str,
+    },
     #[error("the environment variable {variable} = `{value}` is not a whole number")]
-    SlurmNotANumber { variable: &'static str, value: String },
+    /// A SLURM variable that is not a whole number.
+    SlurmNotANumber {
+        /// The environment variable.
+        variable: &'static str,
+        /// Its value.
+        value: String,
+    },
     /// The array's task ids are not a contiguous range of `count` ids (a list such as
     /// `--array=1,5,9`, or a step that skips ids).
     #[error(
@@ -40,7 +62,18 @@ pub enum ShardError {
          and this task's id is {id}: use a contiguous range such as --array=0-{}",
         count.saturating_sub(1)
     )]
-    SlurmInconsistent { id: usize, min: usize, max: usize, step: usize, count: usize },
+    SlurmInconsistent {
+        /// This task's id.
+        id: usize,
+        /// The smallest task id.
+        min: usize,
+        /// The largest task id.
+        max: usize,
+        /// The step between ids.
+        step: usize,
+        /// `SLURM_ARRAY_TASK_COUNT`.
+        count: usize,
+    },
 }
 
 /// Shard `index` of `count` (see the module doc).
@@ -51,6 +84,7 @@ pub struct Shard {
 }
 
 impl Shard {
+    /// Shard `index` of `count` (`index < count`).
     pub fn new(index: usize, count: usize) -> Result<Self, ShardError> {
         match count {
             0 => Err(ShardError::NoShards),

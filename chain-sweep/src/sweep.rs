@@ -61,6 +61,7 @@ pub struct SweepOptions {
 }
 
 impl SweepOptions {
+    /// A sweep named `name` with the run settings `run` (both written to the results file's first line).
     pub fn new(name: impl Into<String>, run: impl Into<String>) -> Self {
         Self {
             name: name.into(),
@@ -95,6 +96,7 @@ pub struct Summary {
     pub duplicates: Vec<(usize, usize)>,
     /// Bytes of an unfinished last line (a write cut short by a kill) that were cut off.
     pub repaired_bytes: usize,
+    /// Wall-clock time of the sweep.
     pub elapsed: Duration,
 }
 
@@ -197,10 +199,12 @@ impl<R: Record> ResultsFile<R> {
         })
     }
 
+    /// The results file.
     pub fn path(&self) -> &Path {
         &self.appender.path
     }
 
+    /// The grid of the sweep.
     pub fn grid(&self) -> &Grid {
         &self.grid
     }

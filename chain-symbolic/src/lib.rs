@@ -8,7 +8,7 @@
 //!   interned, so common subexpressions are shared the moment they are built, and the smart
 //!   constructors simplify as they go (constant folding, identities).
 //! - [`diff`]: symbolic differentiation with one table of local partial derivatives per operation.
-//! - [`lower`]: a straight-line program (one `let` per shared node, in arena order) for a chosen set
+//! - [`lower()`]: a straight-line program (one `let` per shared node, in arena order) for a chosen set
 //!   of outputs; it implements `Display` so generated code can be read and snapshotted.
 //! - [`spring`]: the physics in symbols: the length of spring `p` in the rotor angles (paper
 //!   Eq. `eq:instantlength`), a spring law, and everything derived from them (paper Appendix D).

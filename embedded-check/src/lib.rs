@@ -9,14 +9,14 @@
 //! 3. [`Verlet`]: stepped with velocity Verlet;
 //! 4. [`domain_walls`] and the energies: observed at fixed intervals (Appendix C).
 //!
-//! This crate adds [`run`], which strings them together for a [`Scenario`], and [`report`], the
-//! text the firmware prints and the host reads back. Everything is generic over the float type
-//! ([`Real`]) and the chain ([`FloatChain`]); [`Chain16`] is the `f64` chain of the firmware and
-//! [`Chain16F32`] the same chain declared with `float = f32`.
+//! [`run()`] strings them together for a [`Scenario`]. Everything is generic over the float type
+//! ([`Real`]) and the chain ([`FloatChain`]); [`Chain16`] is the `f64` chain the firmware runs and
+//! [`Chain16F32`] the same chain in `f32`.
 //!
 //! CI also builds this crate on its own for the host (`cargo build -p embedded-check`), so
 //! `rotor-chain` resolves without its default `std` feature, and checks that no `std` or `alloc`
 //! feature reaches it.
+#![deny(missing_docs)]
 #![no_std]
 
 pub mod report;

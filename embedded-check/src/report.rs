@@ -25,6 +25,7 @@ pub struct Header<'a> {
     pub n: usize,
     /// [`Real::NAME`] of the float type the chain computed in.
     pub float: &'a str,
+    /// The run's settings.
     pub scenario: Scenario,
 }
 
@@ -34,10 +35,16 @@ pub struct Header<'a> {
 pub enum ParseError {
     /// The field `key=...` was expected next.
     #[error("expected the field `{key}=...`")]
-    Missing { key: &'static str },
+    Missing {
+        /// The key.
+        key: &'static str,
+    },
     /// The field's value does not parse as the number it should be.
     #[error("the value of `{key}` is not a valid number")]
-    Number { key: &'static str },
+    Number {
+        /// The key.
+        key: &'static str,
+    },
     /// A wall is written `kink@position` or `antikink@position`.
     #[error("expected a wall `kink@x` or `antikink@x`")]
     Wall,
@@ -88,8 +95,11 @@ impl<T: Real> fmt::Display for Summary<T> {
 /// One line of the firmware's output, recognised by its first word.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Record<'a, T> {
+    /// The first line: chain and scenario.
     Header(Header<'a>),
+    /// One sample.
     Sample(Sample<T>),
+    /// The last line: the summary.
     Done(Summary<T>),
     /// Any other line (a panic message, an error report).
     Other(&'a str),

@@ -67,6 +67,7 @@ impl Scenario {
 /// The chain observed after a step.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Sample<T> {
+    /// Verlet steps taken.
     pub step: u32,
     /// `step * dt`.
     pub time: f64,
@@ -132,6 +133,7 @@ impl<T: Real> Sample<T> {
 /// The energy monitor of a whole run, from its samples.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Summary<T> {
+    /// Verlet steps taken.
     pub steps: u32,
     /// `E = T + V` at step 0.
     pub energy_initial: T,

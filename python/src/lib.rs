@@ -1,13 +1,14 @@
 //! `rotor_chain._native`: the compiled half of the Python package `rotor_chain`.
 //!
-//! Every class and function wraps the Rust library one to one: [`chain::Chain`] is a
+//! Every class and function wraps the Rust library one to one: `chain::Chain` is a
 //! `RuntimeChain` (the same builder and its checks), its statics and dynamics methods call
-//! `rotor_chain::statics` and `rotor_chain::dynamics`, and [`sweep`] exposes chain-sweep's
+//! `rotor_chain::statics` and `rotor_chain::dynamics`, and `sweep` exposes chain-sweep's
 //! `PhaseDiagram::compute_point` and results files, which `rotor_chain/sweep.py` drives on one
 //! machine or on a Dask cluster. Arrays cross as numpy `float64` arrays (copied in, so a computation
 //! never reads memory Python may change); every computation longer than a few microseconds runs
 //! with the GIL released (`Python::detach`). Errors become the exceptions of
-//! `rotor_chain/errors.py` ([`errors`]).
+//! `rotor_chain/errors.py` (`errors`).
+#![deny(missing_docs)]
 
 use pyo3::prelude::*;
 

@@ -141,7 +141,7 @@ def test_long_computations_release_the_gil(what):
         theta = c.kink(1000.0)
         call = lambda: c.propagate(theta, np.zeros(2000), t_max=1.0)  # noqa: E731
     else:
-        c = rc.Chain(3000, 0.8, 1.0e4, 0.2)
+        c = rc.Chain(12000, 0.8, 1.0e4, 0.2)  # long enough (> 0.05 s) on a quiet machine too
         call = lambda: c.peierls_nabarro()  # noqa: E731
     count, elapsed = _main_thread_progress(call)
     assert elapsed > 0.05, f"{what} took only {elapsed:.3f} s: too short to tell"

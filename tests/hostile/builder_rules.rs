@@ -1,6 +1,6 @@
 //! `RuntimeChain::builder` applies the macro's rules (chain-geometry's, one set for both) and
 //! returns a typed error for every hostile size or override: never a panic, an abort or a
-//! silently accepted override. The compile-time side of the same rules is in `tests/ui/`.
+//! silently accepted override. The compile-time side of the same rules is in `ui-tests/tests/ui/`.
 
 use rotor_chain::geometry::{IndexKind, MAX_ROTORS};
 use rotor_chain::prelude::*;
@@ -71,7 +71,7 @@ fn overrides_of_missing_springs_and_rotors_are_errors() {
 
 #[test]
 fn the_runtime_error_says_what_the_compile_error_says() {
-    // The texts of tests/ui/compile_fail/keys/spring_overrides_nothing.stderr and
+    // The texts of ui-tests/tests/ui/compile_fail/keys/spring_overrides_nothing.stderr and
     // spring_overridden_twice.stderr, from the same Display.
     let empty = builder(10).spring(3, None, None).build().unwrap_err().to_string();
     assert_eq!(

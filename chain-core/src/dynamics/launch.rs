@@ -59,6 +59,7 @@ pub struct Launch {
     pub mode: Vec<f64>,
     /// Where the defect starts (Appendix C wall position).
     pub position: f64,
+    /// Kink or antikink.
     pub charge: Charge,
 }
 
@@ -178,6 +179,23 @@ pub fn translation_mode<M: ChainModel + ?Sized>(
 
 /// A `charge` defect at `position` launched towards `direction` with speed amplitude `v0`
 /// (Appendix B: `r_i thetadot_i = v0 e_i`, kinetic energy `M v0^2 / 2`).
+/// # Example
+///
+/// ```
+/// use rotor_chain::RuntimeChain;
+/// use rotor_chain::dynamics::launch::{Direction, launch};
+/// use rotor_chain::statics::walls::Charge;
+///
+/// # fn main() -> Result<(), Box<dyn std::error::Error>> {
+/// let chain = RuntimeChain::builder(60, 0.8, 1.0e4, 0.58).build()?; // M = 1
+/// let v0 = 3.0;                                                     // a / t
+/// let kink = launch(&chain, Charge::Kink, 40.0, v0, Direction::Left)?;
+/// let r = 0.8;
+/// let kinetic: f64 = kink.state.omega.iter().map(|w| 0.5 * r * r * w * w).sum();
+/// assert!((kinetic - 0.5 * v0 * v0).abs() < 1e-9);                 // M v0^2 / 2
+/// # Ok(())
+/// # }
+/// ```
 pub fn launch<M: ChainModel + ?Sized>(
     model: &M,
     charge: Charge,

@@ -24,20 +24,39 @@ use integrate::IntegrateError;
 #[non_exhaustive]
 pub enum DynamicsError {
     #[error("integration: {0}")]
+    /// The integrator failed.
     Integrate(#[from] IntegrateError),
     /// Building the static defect or its modes failed.
     #[error("statics: {0}")]
     Statics(#[from] StaticsError),
     /// No mode localised at the defect was classified as its translation mode.
     #[error("no translation mode found for the defect at {position}")]
-    NoTranslationMode { position: f64 },
+    NoTranslationMode {
+        /// Where the defect was, in rotor indices.
+        position: f64,
+    },
     /// A launch speed that is negative or not finite.
     #[error("launch speed v0 = {v0} must be finite and >= 0")]
-    BadSpeed { v0: f64 },
+    BadSpeed {
+        /// The launch speed given, in `a / t`.
+        v0: f64,
+    },
     /// A scattering setup naming a spring the chain does not have.
     #[error("spring {spring} does not exist: the chain has {springs} springs")]
-    NoSuchSpring { spring: usize, springs: usize },
+    NoSuchSpring {
+        /// The spring index given.
+        spring: usize,
+        /// How many springs the chain has (`n - 1`).
+        springs: usize,
+    },
     /// A number of a scattering setup outside its range.
     #[error("{name} = {value} is invalid: it must be {rule}")]
-    InvalidSetup { name: &'static str, value: f64, rule: &'static str },
+    InvalidSetup {
+        /// The setting of [`scatter::ScatterSetup`].
+        name: &'static str,
+        /// The value given.
+        value: f64,
+        /// The rule it breaks, in words.
+        rule: &'static str,
+    },
 }

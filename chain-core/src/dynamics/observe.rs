@@ -15,6 +15,7 @@ use crate::statics::walls::Charge;
 pub struct Propagation {
     /// `(t, x)`: the interior wall of the launched charge nearest to its previous position.
     pub positions: Vec<(f64, f64)>,
+    /// The whole run.
     pub run: Run,
 }
 
@@ -132,6 +133,7 @@ pub struct DampingSearch {
     /// The bracket `[below, above]` left after the search: with `below` the defect stops past the
     /// target (or not at all), with `above` before it.
     pub bracket: (f64, f64),
+    /// Bisection steps taken.
     pub iterations: usize,
     /// The run with [`DampingSearch::damping`].
     pub propagation: Propagation,

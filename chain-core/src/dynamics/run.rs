@@ -21,7 +21,12 @@ pub enum Method {
     /// Velocity Verlet with the step [`RunOptions::dt`]: symplectic, one gradient per step.
     Verlet,
     /// DOP853 with these tolerances (the run's damping, sponge and energy limit apply).
-    Dop853 { rtol: f64, atol: f64 },
+    Dop853 {
+        /// Relative tolerance of the error control.
+        rtol: f64,
+        /// Absolute tolerance of the error control, in radians and radians per `t`.
+        atol: f64,
+    },
 }
 
 impl Method {
@@ -88,7 +93,9 @@ pub const ABSORBING_ENDS: Sponge = Sponge { width: 10, strength: 30.0 };
 /// [`Integrator`].
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum RunIntegrator {
+    /// Velocity Verlet with these options.
     Verlet(VerletOptions),
+    /// DOP853 with these options.
     Dop853(AdaptiveOptions),
 }
 
@@ -159,11 +166,15 @@ impl RunOptions {
 /// What a run recorded.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Run {
+    /// The walls at every output (Appendix C).
     pub tracker: Tracker,
     /// `(t, kinetic energy)` at every output (paper Fig. `fig:ketimeplot`).
     pub kinetic: Vec<(f64, f64)>,
+    /// The angles at every output, if [`RunOptions::space_time`] was set.
     pub space_time: SpaceTime,
+    /// Steps taken and the energy record.
     pub report: Report,
+    /// The state at the end of the run.
     pub final_state: State,
     /// Which integrator ran: `verlet` or `dop853`.
     pub integrator: &'static str,
@@ -171,6 +182,25 @@ pub struct Run {
 
 /// Runs `state` with the integrator of `options`, recording at every output and asking `stop`
 /// after each snapshot whether to end the run.
+/// # Example
+///
+/// ```
+/// use rotor_chain::RuntimeChain;
+/// use rotor_chain::dynamics::integrate::State;
+/// use rotor_chain::dynamics::run::{RunOptions, propagate};
+/// use rotor_chain::statics::kink::kink;
+///
+/// # fn main() -> Result<(), Box<dyn std::error::Error>> {
+/// let chain = RuntimeChain::builder(30, 0.8, 1.0e4, 0.58).build()?;
+/// let state = State::at_rest(kink(&chain, 15.0)?);          // a static kink stays put
+/// let options = RunOptions { t_max: 1.0, ..RunOptions::default() };
+/// let run = propagate(&chain, state, &options, &mut |_| false)?;
+/// assert_eq!(run.tracker.snapshots.len(), 101);             // t = 0, 0.01, ..., 1
+/// let x = run.tracker.snapshots[100].walls[0].position;
+/// assert!((x - 15.0).abs() < 1e-6);
+/// # Ok(())
+/// # }
+/// ```
 pub fn propagate<M: ChainModel + ?Sized>(
     model: &M,
     state: State,

@@ -17,6 +17,7 @@ use crate::statics::walls::{Charge, Wall, domain_walls};
 /// The walls at one output time.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Snapshot {
+    /// Time of the output, in `t`.
     pub time: f64,
     /// Interior walls, left to right, then boundary walls (at `0` or `n - 1`).
     pub walls: Vec<Wall>,
@@ -53,6 +54,7 @@ pub struct Tracker {
     left_lean: f64,
     right_lean: f64,
     charge: isize,
+    /// One snapshot per output, in time order.
     pub snapshots: Vec<Snapshot>,
     /// Outputs at which the net charge differed from the initial one.
     pub violations: Vec<f64>,
@@ -108,11 +110,14 @@ impl Tracker {
 /// The angles at every output, for a space-time image (rows: times, columns: rotors).
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct SpaceTime {
+    /// Output times, in `t`.
     pub times: Vec<f64>,
+    /// The angles at each output time, radians.
     pub theta: Vec<Vec<f64>>,
 }
 
 impl SpaceTime {
+    /// Records the angles `theta` (radians) at `time` (in `t`).
     pub fn push(&mut self, time: f64, theta: &[f64]) {
         self.times.push(time);
         self.theta.push(theta.to_vec());

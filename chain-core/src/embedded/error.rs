@@ -9,13 +9,30 @@ use crate::BranchError;
 pub enum EmbeddedError {
     /// The chain and the arrays disagree on the number of rotors.
     #[error("the chain has {rotors} rotors, but the arrays hold {expected} angles")]
-    WrongRotorCount { rotors: usize, expected: usize },
+    WrongRotorCount {
+        /// Rotors of the chain.
+        rotors: usize,
+        /// Angles the arrays hold.
+        expected: usize,
+    },
     /// A parameter outside its range (a time step, a launch speed).
     #[error("{name} = {value} must be {rule}")]
-    InvalidParameter { name: &'static str, value: f64, rule: &'static str },
+    InvalidParameter {
+        /// The parameter.
+        name: &'static str,
+        /// Its value.
+        value: f64,
+        /// The rule it breaks.
+        rule: &'static str,
+    },
     /// The kink centre is not inside the chain.
     #[error("kink centre {centre} is outside the chain: need 0 <= centre <= {max}")]
-    CentreOutOfRange { centre: f64, max: f64 },
+    CentreOutOfRange {
+        /// The centre given, in rotor indices.
+        centre: f64,
+        /// The largest allowed centre.
+        max: f64,
+    },
     /// The branch solve found no angle that puts a spring at rest length.
     #[error("branch solve: {0}")]
     Branch(#[from] BranchError),
@@ -25,11 +42,32 @@ pub enum EmbeddedError {
         "no translation mode: spring {spring} has compatibility entries C[p][p] = {left}, \
          C[p][p+1] = {right}, so its zero mode cannot be continued past it"
     )]
-    NoTranslationMode { spring: usize, left: f64, right: f64 },
+    NoTranslationMode {
+        /// The spring where the recurrence broke down.
+        spring: usize,
+        /// Its entry `C_{p,p}` of the compatibility matrix.
+        left: f64,
+        /// Its entry `C_{p,p+1}`.
+        right: f64,
+    },
     /// A rotor with zero, negative or non-finite moment of inertia has no dynamics.
     #[error("rotor {index} has moment of inertia {inertia}: it must be positive and finite")]
-    BadInertia { index: usize, inertia: f64 },
+    BadInertia {
+        /// The rotor.
+        index: usize,
+        /// Its moment of inertia `M r_i^2`.
+        inertia: f64,
+    },
     /// A number of the state became NaN or infinite (an unstable time step, or a NaN force).
     #[error("{what}[{index}] = {value} is not finite after step {step}")]
-    NotFinite { what: &'static str, step: u32, index: usize, value: f64 },
+    NotFinite {
+        /// Which input.
+        what: &'static str,
+        /// The Verlet step.
+        step: u32,
+        /// Which entry.
+        index: usize,
+        /// The value found.
+        value: f64,
+    },
 }

@@ -72,9 +72,13 @@ impl<F: Fn(usize) -> [f64; 5]> Springs for F {
 /// `rest_lengths` `n - 1`.
 #[derive(Clone, Copy, Debug)]
 pub struct SpringSlices<'a> {
+    /// Lattice spacing `a`.
     pub a: f64,
+    /// Rotor lengths `r_i`, one per rotor.
     pub rotor_lengths: &'a [f64],
+    /// Spring stiffnesses `k_p`, one per spring.
     pub stiffness: &'a [f64],
+    /// Spring rest lengths `l0_p`, one per spring.
     pub rest_lengths: &'a [f64],
 }
 
@@ -96,7 +100,9 @@ impl Springs for SpringSlices<'_> {
 pub struct UniformSprings<'a, F> {
     /// `[a, r, r, k, l0]` of every spring not in `exceptions`.
     pub params: [f64; 5],
+    /// The springs whose parameters differ, sorted, without repeats.
     pub exceptions: &'a [usize],
+    /// `each(p)`: the parameters of spring `p`, for the exceptions.
     pub each: F,
 }
 

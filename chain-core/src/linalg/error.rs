@@ -37,23 +37,59 @@ pub enum LinalgError {
         "off has {off} entries, but a matrix with {diag} diagonal entries needs {expected}",
         expected = .diag.saturating_sub(1)
     )]
-    DimensionMismatch { diag: usize, off: usize },
+    DimensionMismatch {
+        /// Length of the diagonal.
+        diag: usize,
+        /// Length of the off-diagonal (must be one less).
+        off: usize,
+    },
     /// The right-hand side of a solve must have one entry per row.
     #[error("the right-hand side has {rhs} entries, but the matrix has {n} rows")]
-    RhsMismatch { n: usize, rhs: usize },
+    RhsMismatch {
+        /// The matrix size.
+        n: usize,
+        /// The right-hand side's length.
+        rhs: usize,
+    },
     /// A NaN or an infinity in the input.
     #[error("{input}[{index}] = {value} is not finite")]
-    NotFinite { input: Input, index: usize, value: f64 },
+    NotFinite {
+        /// Which input.
+        input: Input,
+        /// Which entry.
+        index: usize,
+        /// The value found.
+        value: f64,
+    },
     /// Eigenvalues `lo..hi` (0-based, ascending) were asked for, but the matrix has `n`.
     #[error("eigenvalues {lo}..{hi} were asked for, but the matrix has {n}")]
-    IndexOutOfRange { lo: usize, hi: usize, n: usize },
+    IndexOutOfRange {
+        /// The first index asked for.
+        lo: usize,
+        /// The last index asked for.
+        hi: usize,
+        /// The matrix size.
+        n: usize,
+    },
     /// Gaussian elimination met a zero pivot (0-based `row` of `U`), or the solution overflows:
     /// the matrix is singular to working precision. `pivot` is the smallest pivot of `U`.
     #[error("the matrix is singular to working precision: pivot {pivot:e} in row {row}")]
-    Singular { row: usize, pivot: f64 },
+    Singular {
+        /// The row whose pivot vanished.
+        row: usize,
+        /// The pivot.
+        pivot: f64,
+    },
     /// An iteration stopped before converging: the QL iteration on eigenvalue `index` (with
     /// `residual` the off-diagonal entry left), or inverse iteration on the eigenvalue of
     /// ascending `index` (with `residual` = `||T v - lambda v||`).
     #[error("no convergence for eigenvalue {index} after {iterations} iterations: residual {residual:e}")]
-    NoConvergence { iterations: usize, index: usize, residual: f64 },
+    NoConvergence {
+        /// Iterations used.
+        iterations: usize,
+        /// Which eigenpair.
+        index: usize,
+        /// The residual reached (relative, as the message says).
+        residual: f64,
+    },
 }

@@ -41,7 +41,9 @@ use crate::math;
 /// An eigenvalue and its unit eigenvector (entry of largest magnitude positive).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Eigenpair {
+    /// The eigenvalue.
     pub value: f64,
+    /// Its eigenvector, unit length.
     pub vector: Vec<f64>,
 }
 

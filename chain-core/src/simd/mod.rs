@@ -166,11 +166,17 @@ pub trait Lane:
 {
     /// `x` in every lane.
     fn splat(x: f64) -> Self;
+    /// Square root, lane by lane.
     fn sqrt(self) -> Self;
+    /// `x^n` for an integer `n`, lane by lane.
     fn powi(self, n: i32) -> Self;
+    /// Exponential, lane by lane.
     fn exp(self) -> Self;
+    /// Natural logarithm, lane by lane.
     fn ln(self) -> Self;
+    /// Sine (radians), lane by lane.
     fn sin(self) -> Self;
+    /// Cosine (radians), lane by lane.
     fn cos(self) -> Self;
 }
 

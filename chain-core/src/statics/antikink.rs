@@ -56,10 +56,13 @@ pub enum Ends {
 /// Settings of the antikink analyses.
 #[derive(Clone, Copy, Debug, PartialEq, Default)]
 pub struct AntikinkOptions {
+    /// Settings of the Newton polish.
     pub newton: NewtonOptions,
+    /// Settings of the dissipative relaxation.
     pub relax: RelaxOptions,
     /// Relative tolerance for counting eigenvalues as zero ([`classify`]); default below.
     pub zero_tolerance: Option<f64>,
+    /// How the chain's ends are treated. Default [`Ends::Held`].
     pub ends: Ends,
 }
 
@@ -94,6 +97,7 @@ const DEFAULT_ZERO_TOLERANCE: f64 = 1e-10;
 /// An antikink equilibrium.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Antikink {
+    /// The angles, radians, one per rotor.
     pub theta: Vec<f64>,
     /// Potential energy `V`.
     pub energy: f64,
@@ -180,6 +184,20 @@ pub fn antikink_at<M: ChainModel + ?Sized>(
 /// started on a saddle, stops where it is, and the polish then returns the saddle or a
 /// fixed-centring point. In those cases both centrings next to where the relaxation stopped are
 /// solved ([`antikink_at`]) and the lower one is returned, so the answer is always the minimum.
+/// # Example
+///
+/// ```
+/// use rotor_chain::RuntimeChain;
+/// use rotor_chain::statics::antikink::{AntikinkOptions, antikink_relaxed};
+///
+/// # fn main() -> Result<(), Box<dyn std::error::Error>> {
+/// let chain = RuntimeChain::builder(60, 0.8, 1.0e4, 0.58).build()?;
+/// let antikink = antikink_relaxed(&chain, 29.5, &AntikinkOptions::default())?; // starts on the saddle
+/// assert!(!antikink.is_saddle());
+/// assert!((antikink.centre - antikink.centre.round()).abs() < 1e-9); // ends rotor-centred
+/// # Ok(())
+/// # }
+/// ```
 pub fn antikink_relaxed<M: ChainModel + ?Sized>(
     model: &M,
     centre: f64,
@@ -239,6 +257,24 @@ impl PeierlsNabarro {
 
 /// The Peierls-Nabarro barrier of `model` (paper Sec. V): the antikink centred on the middle
 /// rotor and on the neighbouring spring, and their energy difference.
+/// # Example
+///
+/// ```
+/// use rotor_chain::prelude::*;
+/// use rotor_chain::statics::antikink::{AntikinkOptions, peierls_nabarro};
+///
+/// #[rotor_chain(n = 60, r = 0.8, theta_bar = 0.58, k = 1.0e4)]
+/// pub struct Chain;
+///
+/// # fn main() -> Result<(), Box<dyn std::error::Error>> {
+/// let pn = peierls_nabarro(&Chain, &AntikinkOptions::default())?;
+/// assert!(pn.resolved);
+/// assert_eq!(pn.minimum().classification.index, 0);  // rotor-centred: the minimum
+/// assert_eq!(pn.saddle().classification.index, 1);   // spring-centred: the saddle
+/// assert!((pn.barrier - (pn.saddle().energy - pn.minimum().energy)).abs() < 1e-12);
+/// # Ok(())
+/// # }
+/// ```
 pub fn peierls_nabarro<M: ChainModel + ?Sized>(
     model: &M,
     options: &AntikinkOptions,

@@ -15,9 +15,15 @@ pub enum EquilibriumKind {
     /// Every eigenvalue above the tolerance.
     Minimum,
     /// No negative eigenvalue, but `nullity` within the tolerance of zero (flat directions).
-    DegenerateMinimum { nullity: usize },
+    DegenerateMinimum {
+        /// How many zero eigenvalues.
+        nullity: usize,
+    },
     /// `index` eigenvalues below `-tolerance`.
-    Saddle { index: usize },
+    Saddle {
+        /// How many negative eigenvalues (the Morse index).
+        index: usize,
+    },
 }
 
 /// The inertia of the tangent stiffness at an equilibrium.
@@ -29,6 +35,7 @@ pub struct Classification {
     pub nullity: usize,
     /// The absolute tolerance used, `relative * ||K||`.
     pub tolerance: f64,
+    /// Minimum, saddle or degenerate.
     pub kind: EquilibriumKind,
 }
 

@@ -18,17 +18,22 @@ use crate::model::ChainModel;
 /// Whether a fixed point attracts or repels forward iteration.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Stability {
+    /// `|F'| < 1`: deformations shrink under the map.
     Attracting,
+    /// `|F'| > 1`: deformations grow under the map.
     Repelling,
+    /// `|F'| = 1` within rounding.
     Marginal,
 }
 
 /// A fixed point of spring `p`'s branch map.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct FixedPoint {
+    /// The fixed point `-theta_bar` or `+theta_bar`, radians.
     pub theta: f64,
     /// `F'` at the fixed point.
     pub slope: f64,
+    /// Whether the branch map attracts or repels there.
     pub stability: Stability,
     /// `|1 / ln F'|`, in sites.
     pub decay_length: f64,

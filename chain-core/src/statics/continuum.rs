@@ -101,7 +101,12 @@ pub const PN_ASYMPTOTIC_LOG_SLOPE: f64 = -PI * PI;
 pub enum ContinuumError {
     /// The Lorentz factor of Eq. (`eq:kinksolution`) needs `|v| < c`.
     #[error("a wall moving at v = {speed} is not described: the speed must satisfy |v| < c = {sound_speed}")]
-    NotSubsonic { speed: f64, sound_speed: f64 },
+    NotSubsonic {
+        /// The wall speed given, in `a / t`.
+        speed: f64,
+        /// The continuum sound speed `c`, in `a / t`.
+        sound_speed: f64,
+    },
 }
 
 /// The parameters of the continuum theory: lattice spacing `a`, rotor length `r`, equilibrium angle

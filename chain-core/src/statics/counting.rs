@@ -26,12 +26,15 @@ use crate::model::ChainModel;
 /// The outcome of the counting at one configuration.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Counting {
+    /// Rotors (degrees of freedom).
     pub rotors: usize,
+    /// Springs (constraints).
     pub springs: usize,
     /// Singular values of `C`, descending.
     pub singular_values: Vec<f64>,
     /// Singular values at or below this count as zero.
     pub tolerance: f64,
+    /// Rank of the compatibility matrix.
     pub rank: usize,
     /// Orthonormal basis of the zero modes (rotor displacements `r_i dtheta_i`).
     pub zero_modes: Vec<Vec<f64>>,
@@ -49,7 +52,9 @@ impl Counting {
 /// A tensional mode: an eigenvector of `C C^T` (spring tensions), with its eigenvalue.
 #[derive(Clone, Debug, PartialEq)]
 pub struct TensionalMode {
+    /// Its eigenvalue.
     pub eigenvalue: f64,
+    /// Spring tensions, one per spring.
     pub tensions: Vec<f64>,
 }
 

@@ -103,7 +103,9 @@ impl Default for RelaxOptions {
 /// An equilibrium found by [`newton`].
 #[derive(Clone, Debug, PartialEq)]
 pub struct Solution {
+    /// The angles found, radians.
     pub theta: Vec<f64>,
+    /// Newton steps taken.
     pub iterations: usize,
     /// `max_i |(P dV/dtheta)_i| / ||K||` at the end, `P` projecting out the near-null modes.
     pub residual: f64,

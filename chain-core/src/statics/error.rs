@@ -18,36 +18,96 @@ pub enum StaticsError {
     Linalg(#[from] LinalgError),
     /// A requested defect centre outside the chain.
     #[error("centre {centre} is outside the chain: it must lie in [0, {max}] for {n} rotors")]
-    CentreOutOfRange { centre: f64, n: usize, max: f64 },
+    CentreOutOfRange {
+        /// The centre given, in rotor indices.
+        centre: f64,
+        /// Number of rotors `n`.
+        n: usize,
+        /// The largest allowed centre.
+        max: f64,
+    },
     /// An iterative method stopped before reaching its tolerance.
     #[error(
         "{method} did not converge: after {iterations} iterations the residual is {residual:e} \
          (tolerance {tolerance:e})"
     )]
-    NoConvergence { method: &'static str, iterations: usize, residual: f64, tolerance: f64 },
+    NoConvergence {
+        /// Which method.
+        method: &'static str,
+        /// Iterations used.
+        iterations: usize,
+        /// The residual reached (relative, as the message says).
+        residual: f64,
+        /// The tolerance it had to meet.
+        tolerance: f64,
+    },
     /// The relaxed configuration no longer holds the defect it started with (for example an
     /// antikink annihilated by a kink entering from a free end).
     #[error(
         "the relaxed configuration lost its {expected}: it has {kinks} kink(s) and {antikinks} antikink(s)"
     )]
-    DefectLost { expected: &'static str, kinks: usize, antikinks: usize },
+    DefectLost {
+        /// The defect the analysis was about.
+        expected: &'static str,
+        /// Kinks found.
+        kinks: usize,
+        /// Antikinks found.
+        antikinks: usize,
+    },
     /// A spring-length impurity with no symmetric zero-energy state: beyond `l_critical` (paper
     /// Sec. VII-A), or shorter than the spring between rotors leaning at `+theta_bar`, `-theta_bar`.
     #[error(
         "spring {spring} with rest length {rest_length} has no symmetric zero-energy state: with its \
          rotors at -phi, +phi (|phi| <= theta_bar) it spans lengths from {min} to {max} (= l_critical)"
     )]
-    NoZeroEnergyState { spring: usize, rest_length: f64, min: f64, max: f64 },
+    NoZeroEnergyState {
+        /// The impurity spring.
+        spring: usize,
+        /// Its rest length.
+        rest_length: f64,
+        /// The shortest rest length with a zero-energy state.
+        min: f64,
+        /// The longest.
+        max: f64,
+    },
     /// A slice with the wrong length for the chain.
     #[error("{what} has {len} entries, the chain needs {expected}")]
-    WrongLength { what: &'static str, len: usize, expected: usize },
+    WrongLength {
+        /// Which input.
+        what: &'static str,
+        /// Its length.
+        len: usize,
+        /// The length it must have.
+        expected: usize,
+    },
     /// A non-finite number where a finite one is needed.
     #[error("{what} is not finite ({value}) at index {index}")]
-    NotFinite { what: &'static str, index: usize, value: f64 },
+    NotFinite {
+        /// Which input.
+        what: &'static str,
+        /// Which entry.
+        index: usize,
+        /// The value found.
+        value: f64,
+    },
     /// A setting or a model parameter outside its range (`expected` says the range).
     #[error("{what} = {value} is invalid: expected {expected}")]
-    InvalidValue { what: &'static str, value: f64, expected: &'static str },
+    InvalidValue {
+        /// What the value is (the name of the input or quantity).
+        what: &'static str,
+        /// The value given.
+        value: f64,
+        /// What it must be.
+        expected: &'static str,
+    },
     /// A count larger than the analysis accepts (its result would not fit in memory).
     #[error("{what} = {value} is too large: at most {max}")]
-    TooLarge { what: &'static str, value: usize, max: usize },
+    TooLarge {
+        /// What the value is (the name of the input or quantity).
+        what: &'static str,
+        /// The size asked for.
+        value: usize,
+        /// The most allowed.
+        max: usize,
+    },
 }

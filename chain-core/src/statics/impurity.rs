@@ -92,6 +92,7 @@ pub fn two_kink_configuration<M: ChainModel + ?Sized>(model: &M, p: usize) -> Re
 pub struct ImpurityAnalysis {
     /// The impurity's rest length and the critical length.
     pub rest_length: f64,
+    /// `l_critical`: the rest length at which the soft mode vanishes (Sec. VII-A), in units of length.
     pub critical_length: f64,
     /// The zero-energy two-kink configuration.
     pub theta: Vec<f64>,

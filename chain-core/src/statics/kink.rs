@@ -20,6 +20,21 @@ use crate::embedded::{self, EmbeddedError};
 use crate::model::ChainModel;
 
 /// The zero-energy kink of `model` centred at `centre` (in rotor indices, `0 <= centre <= n - 1`).
+/// # Example
+///
+/// ```
+/// use rotor_chain::RuntimeChain;
+/// use rotor_chain::statics::kink::kink;
+/// use rotor_chain::statics::walls::domain_walls;
+///
+/// # fn main() -> Result<(), Box<dyn std::error::Error>> {
+/// let chain = RuntimeChain::builder(60, 0.8, 1.0e4, 0.58).build()?; // n, r, k, theta_bar
+/// let theta = kink(&chain, 41.25)?;                               // any centre, fractional too
+/// assert!((domain_walls(&theta)[0].position - 41.25).abs() < 1e-9);
+/// assert!(rotor_chain::ChainModel::energy(&chain, &theta) < 1e-16); // zero energy, in M a^2/t^2
+/// # Ok(())
+/// # }
+/// ```
 pub fn kink<M: ChainModel + ?Sized>(model: &M, centre: f64) -> Result<Vec<f64>, StaticsError> {
     wall_profile(model, centre, Wall::Kink)
 }

@@ -111,37 +111,87 @@ use crate::runtime::RuntimeChain;
 #[non_exhaustive]
 pub enum LinkageError {
     #[error(transparent)]
+    /// The chain's parameters are invalid.
     Parameter(#[from] ParameterError),
     #[error("branch solve: {0}")]
+    /// The branch solve failed.
     Branch(#[from] BranchError),
     #[error("{what} must be finite, got {value}")]
-    NotFinite { what: &'static str, value: f64 },
+    /// A non-finite input.
+    NotFinite {
+        /// Which input.
+        what: &'static str,
+        /// The value found.
+        value: f64,
+    },
     #[error("{what} must be a finite number > 0, got {value}")]
-    NotPositive { what: &'static str, value: f64 },
+    /// An input that must be positive is not.
+    NotPositive {
+        /// Which input.
+        what: &'static str,
+        /// The value given.
+        value: f64,
+    },
     /// The sub-chain's angles do not change sign once, from `+` (far end) to `-` (head).
     #[error("not a single kink: rotor {rotor} leans back to theta = {theta} after the sign change")]
-    NotAKink { rotor: usize, theta: f64 },
+    NotAKink {
+        /// The rotor that leans back.
+        rotor: usize,
+        /// Its angle, radians.
+        theta: f64,
+    },
     /// The head rotor has turned past collinear with its bar: outside the coordinate's range.
     #[error("the head rotor has flipped over its bar (lean {lean} < 0): the kink coordinate ends at m + 1")]
-    HeadFlipped { lean: f64 },
+    HeadFlipped {
+        /// The head rotor's lean.
+        lean: f64,
+    },
     /// The regimes of Sec. VII-B are for `l0 > lbar`.
     #[error("l0 = {rest_length} must exceed the bar length lbar = {bar_length} (paper Sec. VII-B)")]
-    RestLengthNotAboveBar { rest_length: f64, bar_length: f64 },
+    RestLengthNotAboveBar {
+        /// The impurity rest length `l0`.
+        rest_length: f64,
+        /// The bar length `lbar`.
+        bar_length: f64,
+    },
     /// The implicit half kick has no real solution: the step is too large for the mass gradient.
     #[error("step {step}: dt = {dt} is too large for the kink mass gradient (half kick has no real root)")]
-    StepTooLarge { step: usize, dt: f64 },
+    StepTooLarge {
+        /// The step.
+        step: usize,
+        /// The time step, in `t`.
+        dt: f64,
+    },
     /// The implicit drift did not converge.
     #[error("step {step}: the implicit drift did not converge (last correction {residual:e})")]
-    StepNotConverged { step: usize, residual: f64 },
+    StepNotConverged {
+        /// The step.
+        step: usize,
+        /// The residual reached (relative, as the message says).
+        residual: f64,
+    },
     /// The state left the finite numbers (a kink escaped through a head, where its mass vanishes).
     #[error("step {step}: the state is no longer finite")]
-    StateNotFinite { step: usize },
+    StateNotFinite {
+        /// The step.
+        step: usize,
+    },
     /// The impurity model must be one spring between two rotors.
     #[error("the impurity model must have 2 rotors (one spring), it has {rotors}")]
-    ImpurityNotOneSpring { rotors: usize },
+    ImpurityNotOneSpring {
+        /// Rotors of the impurity model.
+        rotors: usize,
+    },
     /// The impurity model's geometry differs from the chain's.
     #[error("the impurity model's {what} is {impurity}, the chain's is {chain}: they must be equal")]
-    ImpurityGeometry { what: &'static str, impurity: f64, chain: f64 },
+    ImpurityGeometry {
+        /// What the value is (the name of the input or quantity).
+        what: &'static str,
+        /// The impurity model's value.
+        impurity: f64,
+        /// The chain's value.
+        chain: f64,
+    },
 }
 
 /// The effective mass of each kink.
@@ -156,19 +206,28 @@ pub enum KinkMass {
 /// A point of the two-kink phase space.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PhaseState {
+    /// Position of the first kink (Appendix C coordinate), in `a`.
     pub x1: f64,
+    /// Position of the second kink.
     pub x2: f64,
+    /// Momentum conjugate to `x1`.
     pub p1: f64,
+    /// Momentum conjugate to `x2`.
     pub p2: f64,
 }
 
 /// One recorded step of [`LinkageChain::trajectory`].
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct TrajectoryPoint {
+    /// Time, in `t`.
     pub t: f64,
+    /// Position of the first kink, in `a`.
     pub x1: f64,
+    /// Position of the second kink.
     pub x2: f64,
+    /// Momentum conjugate to `x1`.
     pub p1: f64,
+    /// Momentum conjugate to `x2`.
     pub p2: f64,
     /// `H(x1, x2, p1, p2)`.
     pub energy: f64,
@@ -177,9 +236,11 @@ pub struct TrajectoryPoint {
 /// An equilibrium of one kink with the other held at `x2 = 0`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Equilibrium {
+    /// Where, in the kink coordinate.
     pub x: f64,
     /// `V(x, 0)`.
     pub energy: f64,
+    /// Whether it is a minimum of the reduced potential.
     pub stable: bool,
 }
 

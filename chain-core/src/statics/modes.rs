@@ -34,7 +34,10 @@ pub enum ModeKind {
     /// At a domain wall, deforming it.
     Shape,
     /// At the left (`0`) or right (`n - 1`) end of the chain.
-    Edge { left: bool },
+    Edge {
+        /// `true` at rotor 0, `false` at rotor `n - 1`.
+        left: bool,
+    },
     /// Spread over the chain.
     Extended,
 }
@@ -52,6 +55,7 @@ pub struct Mode {
     pub position: f64,
     /// Participation number `1 / sum_i w_i^2`: how many rotors take part.
     pub participation: f64,
+    /// Where the mode lives (translation, shape, edge, extended).
     pub kind: ModeKind,
 }
 
@@ -67,6 +71,7 @@ pub struct ModeOptions {
     /// A mode is localised when fewer than `localised_fraction * n` rotors take part, and fewer
     /// than `localised_widths` wall widths.
     pub localised_fraction: f64,
+    /// See [`ModeOptions::localised_fraction`].
     pub localised_widths: f64,
     /// A localised mode within `reach` wall widths (at least 4 rotors) of an end or of a wall
     /// belongs to it. The width is the continuum `w = a^2 / (2 r sin theta_bar)` (App. E).
@@ -105,6 +110,25 @@ impl ModeOptions {
 /// # Errors
 /// `theta` not one finite angle per rotor, a setting out of range, a tangent stiffness or inertia
 /// that is not finite at `theta` (the model's parameters), or a failed eigensolver.
+/// # Example
+///
+/// ```
+/// use rotor_chain::RuntimeChain;
+/// use rotor_chain::statics::modes::{ModeKind, ModeOptions, modes};
+///
+/// # fn main() -> Result<(), Box<dyn std::error::Error>> {
+/// let chain = RuntimeChain::builder(40, 0.8, 1.0e4, 0.58).build()?;
+/// let uniform = vec![0.58; 40];
+/// let all = modes(&chain, &uniform, &ModeOptions { count: None, ..ModeOptions::default() })?;
+/// assert_eq!(all.len(), 40);
+/// // The uniform chain's one zero mode is its mechanism (paper Sec. II); the phonon band above
+/// // it starts at omega(0) = 87.8 / t for this chain (guide::statics §9).
+/// assert!(all[0].frequency < 1e-3 && all[1].frequency > 50.0);
+/// assert!(all.windows(2).all(|w| w[0].omega_squared <= w[1].omega_squared));
+/// # let _ = ModeKind::Extended;
+/// # Ok(())
+/// # }
+/// ```
 pub fn modes<M: ChainModel + ?Sized>(
     model: &M,
     theta: &[f64],

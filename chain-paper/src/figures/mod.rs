@@ -19,9 +19,13 @@ pub mod statics_b;
 /// The chain of the paper's figures (Appendix B: `a = 1`, `M = 1`, `k = 1e4`, `r/a = 0.8`).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Params {
+    /// Rotors.
     pub n: usize,
+    /// Rotor length, in `a`.
     pub r: f64,
+    /// Spring stiffness, in `M / t^2`.
     pub k: f64,
+    /// Tip mass `M`.
     pub mass: f64,
 }
 
@@ -36,9 +40,12 @@ impl Default for Params {
 #[derive(Debug, thiserror::Error)]
 #[error("{label}{}: {cause}", at_text(.at))]
 pub struct FigureError {
+    /// The figure's LaTeX label (`fig:...`).
     pub label: &'static str,
+    /// The parameters of the point that failed, as `(name, value)`.
     pub at: Vec<(&'static str, f64)>,
     #[source]
+    /// Why.
     pub cause: Cause,
 }
 
@@ -55,18 +62,25 @@ fn at_text(at: &[(&'static str, f64)]) -> String {
 #[non_exhaustive]
 pub enum Cause {
     #[error(transparent)]
+    /// The chain breaks a parameter rule.
     Parameter(#[from] ParameterError),
     #[error("branch solve: {0}")]
+    /// The branch solve failed.
     Branch(#[from] BranchError),
     #[error(transparent)]
+    /// A static analysis failed.
     Statics(#[from] StaticsError),
     #[error(transparent)]
+    /// A continuum closed form does not apply.
     Continuum(#[from] ContinuumError),
     #[error("linkage limit: {0}")]
+    /// The linkage-limit analysis failed.
     Linkage(#[from] LinkageError),
     #[error(transparent)]
+    /// A dynamics run failed.
     Dynamics(#[from] DynamicsError),
     #[error("chain drawing: {0}")]
+    /// A drawing of the chain could not be made.
     Drawing(#[from] DrawingError),
     /// A phase diagram's settings (chain-sweep).
     #[error("phase diagram: {0}")]
@@ -79,13 +93,30 @@ pub enum Cause {
     Sweep(#[from] chain_sweep::SweepError),
     /// A fit or a figure needs more resolved points than the computation gave.
     #[error("{what}: {found} resolved, at least {needed} needed")]
-    TooFewPoints { what: &'static str, found: usize, needed: usize },
+    TooFewPoints {
+        /// The fit or figure.
+        what: &'static str,
+        /// Resolved points.
+        found: usize,
+        /// Points needed.
+        needed: usize,
+    },
     /// A mode the figure shows was not found among the lowest modes.
     #[error("no {kind} mode of the {defect} among the lowest {searched} modes")]
-    NoSuchMode { defect: &'static str, kind: &'static str, searched: usize },
+    NoSuchMode {
+        /// Kink or antikink.
+        defect: &'static str,
+        /// The mode's kind.
+        kind: &'static str,
+        /// Modes searched.
+        searched: usize,
+    },
     /// A figure function returned a figure with another label (a bug in the figure list).
     #[error("the figure function returned a figure labelled `{returned}`")]
-    WrongLabel { returned: &'static str },
+    WrongLabel {
+        /// The label it returned.
+        returned: &'static str,
+    },
 }
 
 impl FigureError {

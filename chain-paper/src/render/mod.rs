@@ -4,12 +4,12 @@
 //! A figure is its caption above rows of panels ([`layout`]): line panels and heat maps two to a
 //! row ([`CELL`] each; [`SINGLE`] for a figure of one panel), drawings of the chain two to a
 //! shorter row, or alone across the whole width. The parts, one file each:
-//! - [`lines`]: line panels (colours by quantity from [`crate::palette`], a y axis of a
+//! - `lines`: line panels (colours by quantity from [`crate::palette`], a y axis of a
 //!   non-negative quantity that does not start at zero marked broken);
-//! - [`legend`]: legends where the data leave room, outside the plot otherwise;
-//! - [`heatmap`]: heat maps (diverging colours centred on zero for signed values) and colour bars;
-//! - [`chain`]: drawings of the chain;
-//! - [`text`]: text drawn glyph by glyph, combining marks (`θ̄`, `l̄`) placed over their letter.
+//! - `legend`: legends where the data leave room, outside the plot otherwise;
+//! - `heatmap`: heat maps (diverging colours centred on zero for signed values) and colour bars;
+//! - `chain`: drawings of the chain;
+//! - `text`: text drawn glyph by glyph, combining marks (`θ̄`, `l̄`) placed over their letter.
 
 use std::error::Error;
 use std::path::{Path, PathBuf};
@@ -36,20 +36,28 @@ pub use text::{glyph_font, missing_glyphs};
 #[non_exhaustive]
 pub enum RenderError {
     #[error("the embedded font could not be loaded")]
+    /// The embedded font could not be loaded.
     Font,
     #[error("cannot draw {}: {source}", path.display())]
+    /// plotters could not draw the figure.
     Draw {
+        /// The figure's file.
         path: PathBuf,
         #[source]
+        /// plotters' error.
         source: Box<dyn Error + Send + Sync>,
     },
     #[error("cannot encode {}: {source}", path.display())]
+    /// The PNG could not be encoded.
     Encode {
+        /// The figure's file.
         path: PathBuf,
         #[source]
+        /// The encoder's error.
         source: image::ImageError,
     },
     #[error(transparent)]
+    /// The file could not be written.
     Write(#[from] WriteError),
 }
 
@@ -70,7 +78,9 @@ type Drawn = Result<(), Box<dyn Error>>;
 /// and the size of the whole grid.
 #[derive(Debug, PartialEq)]
 pub struct Layout {
+    /// Size of the whole grid, pixels `(width, height)`.
     pub size: (u32, u32),
+    /// Per panel: `(panel index, left, top, width, height)`, pixels.
     pub slots: Vec<(usize, u32, u32, u32, u32)>,
 }
 

@@ -1,11 +1,10 @@
 //! Firmware output against the host's run of the same computation.
 //!
-//! Both sides call [`embedded_check::run`] with [`Scenario::FIRMWARE`] on the same chain, so the
-//! only differences left are the machines' arithmetic and elementary functions. For `f64` and for
-//! `f32` they are the same IEEE-754 operations (soft-float for `f64` and the FPU for `f32` on the
-//! Cortex-M4F, SSE2 on x86-64, all correctly rounded; Rust contracts nothing into FMAs), and
-//! `sin`/`cos`/`atan2`/`sqrt` (`sinf`/`cosf`/... for `f32`) come from the `libm` crate on the
-//! firmware and, on the host, from `libm` too, or from the platform's C library when
+//! Both sides call [`embedded_check::run()`] with [`Scenario::FIRMWARE`] on the same chain, so the
+//! only differences left are the machines' arithmetic and elementary functions. For `f64` they
+//! are the same IEEE-754 operations (soft-float on the Cortex-M4F, SSE2 on x86-64, both correctly
+//! rounded; Rust contracts nothing into FMAs), and `sin`/`cos`/`atan2`/`sqrt` come from the `libm`
+//! crate on the firmware and, on the host, from `libm` too, or from the platform's C library when
 //! `rotor-chain`'s `std` feature is on (feature `platform-math`, or any build that unifies `std`
 //! in). The tolerance is per float type: [`Tolerated::TOLERANCE`].
 //!
@@ -28,7 +27,7 @@ pub struct Tolerance {
 
 /// A float type with a documented firmware-against-host tolerance.
 pub trait Tolerated: Real {
-    /// The firmware against the host's run in the same float type.
+    /// How far firmware and host may differ for this float type.
     const TOLERANCE: Tolerance;
     /// The firmware against the host's `f64` run of the same chain: the accuracy of this type.
     const ACCURACY: Tolerance;
@@ -68,6 +67,7 @@ const F32_EPSILON: f64 = f32::EPSILON as f64;
 /// The largest deviations found, and how the two runs compare.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Agreement {
+    /// Samples compared.
     pub samples: usize,
     /// Largest `|x_firmware - x_host|` over every wall of every sample.
     pub position: f64,
@@ -95,36 +95,88 @@ impl fmt::Display for Agreement {
 #[non_exhaustive]
 pub enum CompareError {
     #[error("line {line}: {error}: `{text}`")]
-    Parse { line: usize, error: ParseError, text: String },
+    /// A line of the firmware's output that cannot be read.
+    Parse {
+        /// The line (from 1).
+        line: usize,
+        /// What is wrong.
+        error: ParseError,
+        /// The line.
+        text: String,
+    },
     /// The firmware printed something that is not a record: an error report or a panic.
     #[error("line {line}: the firmware reported `{text}`")]
-    Firmware { line: usize, text: String },
+    Firmware {
+        /// The line (from 1).
+        line: usize,
+        /// The line.
+        text: String,
+    },
     #[error("the firmware's output has no `rotor-chain kink run:` header line")]
+    /// No header line.
     NoHeader,
     #[error("the firmware's output ends without a `done` line (it stopped after {samples} samples)")]
-    Unfinished { samples: usize },
+    /// The output ends before the summary.
+    Unfinished {
+        /// Samples read.
+        samples: usize,
+    },
     #[error("the firmware ran {firmware}, the host compares {host}")]
-    DifferentRun { firmware: String, host: String },
+    /// The firmware ran another chain or scenario.
+    DifferentRun {
+        /// The firmware's header.
+        firmware: String,
+        /// The host's header.
+        host: String,
+    },
     #[error("no field `energy_bits=0x...` with 16 hex digits")]
+    /// The summary has no final energy.
     NoFinalEnergy,
     #[error("the host run failed: {0}")]
+    /// The host run failed.
     Host(#[from] EmbeddedError),
     #[error("the firmware printed {firmware} samples, the host computed {host}")]
-    SampleCount { firmware: usize, host: usize },
+    /// Different numbers of samples.
+    SampleCount {
+        /// Samples from the firmware.
+        firmware: usize,
+        /// Samples from the host.
+        host: usize,
+    },
     #[error(
         "sample {index} (step {step}): {what}: firmware {firmware}, host {host}, difference {difference:.3e} > {tolerance:.1e}"
     )]
+    /// A number differs beyond the tolerance.
     Mismatch {
+        /// The sample.
         index: usize,
+        /// Its Verlet step.
         step: u32,
+        /// The quantity.
         what: &'static str,
+        /// The firmware's value.
         firmware: f64,
+        /// The host's value.
         host: f64,
+        /// Their difference.
         difference: f64,
+        /// The tolerance.
         tolerance: f64,
     },
     #[error("sample {index} (step {step}): {what} differ: firmware {firmware}, host {host}")]
-    Structure { index: usize, step: u32, what: &'static str, firmware: String, host: String },
+    /// The samples differ in structure (wall count, charges).
+    Structure {
+        /// The sample.
+        index: usize,
+        /// Its Verlet step.
+        step: u32,
+        /// What differs.
+        what: &'static str,
+        /// The firmware's.
+        firmware: String,
+        /// The host's.
+        host: String,
+    },
 }
 
 /// The host's run of `scenario`: its samples and summary.

@@ -72,7 +72,7 @@ pub struct AdaptiveOptions {
     pub sponge: Option<Sponge>,
     /// The largest relative energy change before the run stops with
     /// [`IntegrateError::EnergyNotConserved`] (checked at every output). Default
-    /// [`DEFAULT_ENERGY_LIMIT`](super::DEFAULT_ENERGY_LIMIT); infinite switches it off.
+    /// [`DEFAULT_ENERGY_LIMIT`]; infinite switches it off.
     pub energy_limit: f64,
 }
 

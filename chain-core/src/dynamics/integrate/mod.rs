@@ -72,7 +72,9 @@ use crate::model::ChainModel;
 /// A point of a trajectory: the angles and angular velocities at a time.
 #[derive(Clone, Debug, PartialEq)]
 pub struct State {
+    /// Time, in `t`.
     pub time: f64,
+    /// Rotor angles in radians, measured from the vertical (docs/theory.md §1), one per rotor.
     pub theta: Vec<f64>,
     /// `dtheta/dt`.
     pub omega: Vec<f64>,
@@ -113,7 +115,9 @@ impl State {
 /// outcome is decided).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Flow {
+    /// Go on integrating.
     Continue,
+    /// End the run after this output.
     Stop,
 }
 
@@ -126,7 +130,9 @@ pub struct Report {
     pub steps: usize,
     /// Steps rejected by the error control (always 0 for fixed-step methods).
     pub rejected: usize,
+    /// Total energy `E0` at the start, in `M a^2 / t^2`.
     pub energy_initial: f64,
+    /// Total energy at the end, in `M a^2 / t^2`.
     pub energy_final: f64,
     /// The largest `|E - E0|` seen at the outputs.
     pub max_energy_error: f64,
@@ -235,7 +241,9 @@ pub const DEFAULT_ENERGY_LIMIT: f64 = 0.1;
 /// (the last output at `start + count * interval`).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Schedule {
+    /// Time between outputs, in `t`.
     pub interval: f64,
+    /// Number of outputs after the start.
     pub count: usize,
 }
 

@@ -49,7 +49,7 @@ pub struct VerletOptions {
     pub max_steps: u64,
     /// The largest relative energy change before the run stops with
     /// [`IntegrateError::EnergyNotConserved`] (checked at every output). Default
-    /// [`DEFAULT_ENERGY_LIMIT`](super::DEFAULT_ENERGY_LIMIT); infinite switches it off.
+    /// [`DEFAULT_ENERGY_LIMIT`]; infinite switches it off.
     pub energy_limit: f64,
 }
 

@@ -29,8 +29,11 @@ pub enum Origin {
 /// A wall followed through the run.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Followed {
+    /// Its latest position, in rotor indices.
     pub position: f64,
+    /// Kink or antikink.
     pub charge: Charge,
+    /// Where it came from.
     pub origin: Origin,
     /// When it first appeared.
     pub born: f64,
@@ -44,6 +47,7 @@ pub struct Followed {
 /// A wall that stayed unseen for the grace time, and where it was last.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Vanished {
+    /// The wall, as last seen.
     pub wall: Followed,
     /// Whether a wall from a free end vanished within `max_jump` sites and the grace time of
     /// it: the two annihilated.
@@ -56,6 +60,7 @@ pub struct Vanished {
 /// The walls of a run, with their origins.
 #[derive(Clone, Debug)]
 pub struct Follower {
+    /// The walls followed now.
     pub walls: Vec<Followed>,
     ghosts: Vec<Followed>,
     /// Recently vanished walls, kept to pair annihilations.

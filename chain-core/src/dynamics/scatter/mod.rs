@@ -3,8 +3,8 @@
 //!
 //! The impurity is spring `p` (the model carries its stiffness `k_i`); its centre is at
 //! `x_imp = p + 1/2`. A defect launched from one side ([`super::launch`]) is tracked
-//! ([`super::track`]), every wall is followed with its origin ([`follow`]), and the run stops once
-//! the outcome is decided, confirmed, and watched for as long as asked ([`rules`]).
+//! ([`super::track`]), every wall is followed with its origin (`follow`), and the run stops once
+//! the outcome is decided, confirmed, and watched for as long as asked (`rules`).
 //!
 //! **What an outcome means.** It answers the paper's question: what did the impurity do to the
 //! incoming defect? [`Outcome::Transmitted`], [`Outcome::Reflected`], [`Outcome::Trapped`] and,
@@ -135,6 +135,7 @@ impl core::str::FromStr for LaterEvent {
 /// default was chosen). Times in the unit `t` of Appendix B, distances in sites.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ScatterSetup {
+    /// The incoming defect: kink or antikink.
     pub charge: Charge,
     /// Launch speed amplitude (Appendix B).
     pub v0: f64,
@@ -142,6 +143,7 @@ pub struct ScatterSetup {
     pub impurity: usize,
     /// Where the defect starts (rotor index, fractional allowed).
     pub start: f64,
+    /// Which way it is launched.
     pub direction: Direction,
     /// The impurity's range: a wall within `reach` of its centre is at the impurity. Default 4
     /// (1.8 wall widths at `theta_bar = 0.28`).
@@ -191,6 +193,7 @@ pub struct ScatterSetup {
     pub confirm: f64,
     /// After the confirmation, the run goes on this long to record a later event. Default 0.
     pub watch: f64,
+    /// The run's settings (span, integrator, damping, ends).
     pub run: RunOptions,
 }
 
@@ -230,6 +233,7 @@ impl ScatterSetup {
 /// The result of [`scatter`].
 #[derive(Clone, Debug, PartialEq)]
 pub struct Scattering {
+    /// What the impurity did to the defect.
     pub outcome: Outcome,
     /// When the outcome was decided (the run's end time if undecided).
     pub decided_at: f64,
@@ -237,6 +241,7 @@ pub struct Scattering {
     pub confirmed: bool,
     /// An event after the outcome was settled, and when.
     pub later: Option<(LaterEvent, f64)>,
+    /// The run.
     pub run: Run,
 }
 
@@ -284,7 +289,24 @@ fn check_setup<M: ChainModel + ?Sized>(model: &M, setup: &ScatterSetup) -> Resul
 }
 
 /// Launches the defect of `setup` towards the impurity and runs until the outcome is decided,
-/// confirmed and watched ([`rules`]), or until `setup.run.t_max`.
+/// confirmed and watched (`rules`), or until `setup.run.t_max`.
+/// # Example
+///
+/// The paper's antikink at $v_0 = 4.8$, $k_i/k = 0.2$ (Sec. VI) is reflected:
+///
+/// ```
+/// use rotor_chain::RuntimeChain;
+/// use rotor_chain::dynamics::scatter::{Outcome, ScatterSetup, scatter};
+/// use rotor_chain::statics::walls::Charge;
+///
+/// # fn main() -> Result<(), Box<dyn std::error::Error>> {
+/// let k = 1.0e4;
+/// let chain = RuntimeChain::builder(60, 0.8, k, 0.28).spring(29, Some(0.2 * k), None).build()?;
+/// let result = scatter(&chain, &ScatterSetup::from_the_right(Charge::Antikink, 4.8, 29))?;
+/// assert_eq!(result.outcome, Outcome::Reflected);
+/// # Ok(())
+/// # }
+/// ```
 pub fn scatter<M: ChainModel + ?Sized>(model: &M, setup: &ScatterSetup) -> Result<Scattering, DynamicsError> {
     check_setup(model, setup)?;
     let launched = launch(model, setup.charge, setup.start, setup.v0, setup.direction)?;

@@ -1,6 +1,6 @@
 //! Figures of Secs. II-V (see [`super::all`]): the kink and antikink configurations and cobweb
-//! plots ([`cobweb`]: `fig:kcobweb`, `fig:akcobweb`, `fig:aktheta`), and the antikink's energy and
-//! Peierls-Nabarro barrier ([`barrier`]: `fig:akenergy`, `fig:akconfigpn`, `fig:logvpn-theta`,
+//! plots (`cobweb`: `fig:kcobweb`, `fig:akcobweb`, `fig:aktheta`), and the antikink's energy and
+//! Peierls-Nabarro barrier (`barrier`: `fig:akenergy`, `fig:akconfigpn`, `fig:logvpn-theta`,
 //! `fig:logvpn-size`).
 //!
 //! Units are those of the paper (Appendix B): `a = 1`, so `k a^2` is `params.k`. Energies in the

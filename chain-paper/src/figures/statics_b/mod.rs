@@ -1,7 +1,7 @@
 //! Figures of the paper's linear modes and bond-length impurity (Secs. IV and VII, see
-//! [`super::all`]): the localised modes of the kink and the antikink ([`modes`]:
+//! [`super::all`]): the localised modes of the kink and the antikink (`modes`:
 //! `fig:mode-config`, `fig:w-th`), the zero, soft and tensional modes of a long middle spring
-//! ([`longbar`]: `fig:longbar`), and the linkage limit ([`linkage`]: the two-kink potential and
+//! ([`longbar`]: `fig:longbar`), and the linkage limit (`linkage`: the two-kink potential and
 //! phase portraits `fig:defectiveKL`, two-kink orbits `fig:orbit`, the `(E, l0)` diagram
 //! `fig:ELdiagram`).
 //!
