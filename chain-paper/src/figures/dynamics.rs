@@ -47,7 +47,7 @@ const THETA_BAR_PAPER_BARRIER: f64 = 0.575132;
 /// Where the paper's slow antikink is trapped (Fig. `fig:akpntrapprofile`).
 const PAPER_TRAP_ROTOR: f64 = 35.0;
 /// The equilibrium angle of Sec. VI (scattering).
-const THETA_BAR_SCATTERING: f64 = 0.28;
+pub(crate) const THETA_BAR_SCATTERING: f64 = 0.28;
 /// The most rows of a space-time image.
 const MAX_IMAGE_ROWS: usize = 400;
 
@@ -546,11 +546,15 @@ fn slowing(params: &Params, v0: f64, ki_ratio: f64) -> Result<Option<f64>, Cause
 // --- fig:phasediagram -----------------------------------------------------------------------------
 
 /// The label of a point that failed (energy budget, unreadable walls): shown, never hidden.
-const FAILED: &str = "failed";
+pub(crate) const FAILED: &str = "failed";
 
 /// One phase diagram over `grid` (x: `k_i/k`, y: `v0`), computed by chain-sweep's
 /// [`PhaseDiagram::compute_point`] in parallel: `labels[j][i]` for `v0 = ys[j]`, `k_i/k = xs[i]`.
-fn phase_diagram(params: &Params, defect: Defect, grid: &Grid) -> Result<Vec<Vec<Option<Outcome>>>, Cause> {
+pub(crate) fn phase_diagram(
+    params: &Params,
+    defect: Defect,
+    grid: &Grid,
+) -> Result<Vec<Vec<Option<Outcome>>>, Cause> {
     let mut d = PhaseDiagram::new(params.n, params.r, params.k, THETA_BAR_SCATTERING, defect)?;
     d.mass = params.mass;
     d.check()?;
@@ -562,7 +566,8 @@ fn phase_diagram(params: &Params, defect: Defect, grid: &Grid) -> Result<Vec<Vec
     Ok(labels)
 }
 
-fn category(outcome: Option<Outcome>) -> f64 {
+/// A phase-diagram label's colour index: its place in [`Outcome::ALL`], then [`FAILED`].
+pub(crate) fn category(outcome: Option<Outcome>) -> f64 {
     match outcome {
         Some(o) => Outcome::ALL.iter().position(|&x| x == o).unwrap_or(0) as f64,
         None => Outcome::ALL.len() as f64,

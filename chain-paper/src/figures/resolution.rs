@@ -7,10 +7,11 @@
 //! `phase-diagram` tool and `fig:phasediagram`: the scattering issue's clean launch and lasting
 //! outcomes, the energy budget with its DOP853 recomputation).
 
-use chain_sweep::scattering::{Defect, PhaseDiagram};
-use chain_sweep::{Axis, Grid, compute_grid};
+use chain_sweep::scattering::Defect;
+use chain_sweep::{Axis, Grid};
 use rotor_chain::dynamics::scatter::Outcome;
 
+use super::dynamics::{FAILED, THETA_BAR_SCATTERING, category, phase_diagram};
 use super::{Cause, FigureError, FigureFn, Params};
 use crate::model::{Chart, Figure, Heatmap, Quality, Row};
 
@@ -21,28 +22,11 @@ pub fn figures() -> Vec<(&'static str, FigureFn)> {
 
 const LABEL: &str = "fig:phasediagram-resolution";
 /// The equilibrium angle of the paper's scattering runs (Sec. VI).
-const THETA_BAR: f64 = 0.28;
-/// The label of a point that failed (energy budget, unreadable walls): shown, never hidden.
-const FAILED: &str = "failed";
+const THETA_BAR: f64 = THETA_BAR_SCATTERING;
 
 /// The antikink's outcome at every point of `grid` (x: `k_i/k`, y: `v0`): `labels[j][i]`.
 fn antikink_diagram(params: &Params, grid: &Grid) -> Result<Vec<Vec<Option<Outcome>>>, Cause> {
-    let mut d = PhaseDiagram::new(params.n, params.r, params.k, THETA_BAR, Defect::Antikink)?;
-    d.mass = params.mass;
-    d.check()?;
-    let points = compute_grid(grid, |ki, v0| d.compute_point(ki, v0), None)?;
-    let mut labels = vec![vec![None; grid.xs().len()]; grid.ys().len()];
-    for p in points {
-        labels[p.index.1][p.index.0] = p.outcome.ok().map(|r| r.outcome);
-    }
-    Ok(labels)
-}
-
-fn category(outcome: Option<Outcome>) -> f64 {
-    match outcome {
-        Some(o) => Outcome::ALL.iter().position(|&x| x == o).unwrap_or(0) as f64,
-        None => Outcome::ALL.len() as f64,
-    }
+    phase_diagram(params, Defect::Antikink, grid)
 }
 
 /// `1023 reflected, 384 trapped, ...`: every label that occurs, with its count.

@@ -189,6 +189,22 @@ pub fn host_run<T: Real, M: FloatChain<T>, const N: usize>(
     Ok((samples, summary))
 }
 
+/// The firmware's output `text`, read as a run of `scenario` on `N` rotors in float type `T`.
+fn read_run<'a, T: Tolerated, const N: usize>(
+    text: &'a str,
+    scenario: &Scenario,
+) -> Result<Output<'a, T>, CompareError> {
+    let firmware = read::<T>(text)?;
+    let expected = Header { n: N, float: T::NAME, scenario: *scenario };
+    if firmware.header != expected {
+        return Err(CompareError::DifferentRun {
+            firmware: firmware.header.to_string(),
+            host: expected.to_string(),
+        });
+    }
+    Ok(firmware)
+}
+
 /// The firmware's output `text` against the host's run of [`Scenario::FIRMWARE`] on `model`, in
 /// float type `T`, within `T`'s [`Tolerance`].
 pub fn compare<T: Tolerated, M: FloatChain<T>, const N: usize>(
@@ -196,14 +212,7 @@ pub fn compare<T: Tolerated, M: FloatChain<T>, const N: usize>(
     text: &str,
 ) -> Result<Agreement, CompareError> {
     let scenario = Scenario::FIRMWARE;
-    let firmware = read::<T>(text)?;
-    let expected = Header { n: N, float: T::NAME, scenario };
-    if firmware.header != expected {
-        return Err(CompareError::DifferentRun {
-            firmware: firmware.header.to_string(),
-            host: expected.to_string(),
-        });
-    }
+    let firmware = read_run::<T, N>(text, &scenario)?;
     let (samples, summary) = host_run::<T, M, N>(model, &scenario)?;
     check::<T>(&firmware.samples, &firmware.summary, &samples, &summary, &T::TOLERANCE)
 }
@@ -216,14 +225,7 @@ pub fn compare_accuracy<T: Tolerated, M: FloatChain<f64>, const N: usize>(
     text: &str,
 ) -> Result<Agreement, CompareError> {
     let scenario = Scenario::FIRMWARE;
-    let firmware = read::<T>(text)?;
-    let expected = Header { n: N, float: T::NAME, scenario };
-    if firmware.header != expected {
-        return Err(CompareError::DifferentRun {
-            firmware: firmware.header.to_string(),
-            host: expected.to_string(),
-        });
-    }
+    let firmware = read_run::<T, N>(text, &scenario)?;
     let (samples, summary) = host_run::<f64, M, N>(reference, &scenario)?;
     let widened: Vec<Sample<f64>> = firmware.samples.iter().map(Sample::widen).collect();
     check::<f64>(&widened, &firmware.summary.widen(), &samples, &summary, &T::ACCURACY)
