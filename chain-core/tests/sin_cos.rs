@@ -49,7 +49,7 @@ fn within_two_ulp_next_to_multiples_of_half_pi() {
             theta.extend([x + d, x - d, x + 1.5 * d, x - 0.75 * d]);
         }
     }
-    theta.extend([2.0f64.powi(-28), -2.0f64.powi(-28), 3e-9, 4e-9, 1e-300]);
+    theta.extend([2.0f64.powi(-28), -2.0f64.powi(-28), 3e-9, 4e-9, 1e-300, 1e-12, -1e-12, 0.0, -0.0]);
     let reference: Vec<_> = theta.iter().map(|&x| ulp::reference(x)).collect();
     for level in levels() {
         let (sin, cos) = at_level(level, &theta);

@@ -52,7 +52,9 @@ pub(crate) trait Trig: Vector {
     /// Whether any lane is NaN, infinite or beyond [`LIMIT`].
     fn any_outside(x: Self) -> bool;
     /// Whether any lane of `x` needs [`careful`]: NaN, infinite or beyond [`LIMIT`], or a
-    /// short-reduction remainder `hi` with `|hi| < TINY` (near a multiple of `pi/2`, or 0).
+    /// short-reduction remainder `hi` with `|hi| < TINY` near a non-zero multiple of `pi/2`
+    /// (`hi != x`). Near 0 (`k = 0`, so `hi == x` and the error term is exactly 0) the short
+    /// reduction is exact, so zero padding lanes and small angles stay on the fast path.
     fn unusual(x: Self, hi: Self) -> bool;
     /// [`careful`] compiled once for the level (a cold call, not inlined into every loop).
     fn careful(x: Self) -> (Self, Self);

@@ -330,7 +330,9 @@ impl Trig for F64x4 {
             let outside =
                 _mm256_cmp_pd::<_CMP_NLE_UQ>(_mm256_andnot_pd(sign, x.0), _mm256_set1_pd(trig::LIMIT));
             let tiny = _mm256_cmp_pd::<_CMP_LT_OQ>(_mm256_andnot_pd(sign, hi.0), _mm256_set1_pd(trig::TINY));
-            _mm256_movemask_pd(_mm256_or_pd(outside, tiny)) != 0
+            // `hi == x` exactly when `k = 0`: no reduction, nothing to recover (trig::sin_cos).
+            let reduced = _mm256_cmp_pd::<_CMP_NEQ_UQ>(hi.0, x.0);
+            _mm256_movemask_pd(_mm256_or_pd(outside, _mm256_and_pd(tiny, reduced))) != 0
         }
     }
     #[inline(always)]
@@ -422,7 +424,9 @@ impl Trig for F64x8 {
         unsafe {
             let outside = _mm512_cmp_pd_mask::<_CMP_NLE_UQ>(_mm512_abs_pd(x.0), _mm512_set1_pd(trig::LIMIT));
             let tiny = _mm512_cmp_pd_mask::<_CMP_LT_OQ>(_mm512_abs_pd(hi.0), _mm512_set1_pd(trig::TINY));
-            (outside | tiny) != 0
+            // `hi == x` exactly when `k = 0`: no reduction, nothing to recover (trig::sin_cos).
+            let reduced = _mm512_cmp_pd_mask::<_CMP_NEQ_UQ>(hi.0, x.0);
+            (outside | (tiny & reduced)) != 0
         }
     }
     #[inline(always)]
