@@ -534,12 +534,18 @@ pub fn ak_scatter(params: &Params, quality: Quality) -> Result<Figure, FigureErr
 /// `None` unless it was transmitted and seen long enough on both sides.
 fn slowing(params: &Params, v0: f64, ki_ratio: f64) -> Result<Option<f64>, Cause> {
     let model = chain(params, THETA_BAR_SCATTERING, Some(ki_ratio))?;
-    let impurity = middle_spring(params);
-    let start = impurity as f64 + 0.5 + 15.0;
+    // The paper's scattering setup: where the antikink starts, how near walls count, the margins.
+    let setup = ScatterSetup::from_the_right(Charge::Antikink, v0, middle_spring(params));
     let options = RunOptions { t_max: 20.0, ..RunOptions::default() };
-    let p = propagation(&model, Charge::Antikink, start, v0, Direction::Left, Some(4.0), &options)?;
-    let (v_in, v_out) =
-        passage_speeds(&p.positions, impurity as f64 + 0.5, 8.0, (params.n - 1) as f64, 8.0, 0.1);
+    let p = propagation(&model, setup.charge, setup.start, v0, setup.direction, Some(setup.reach), &options)?;
+    let (v_in, v_out) = passage_speeds(
+        &p.positions,
+        setup.impurity as f64 + 0.5,
+        setup.clear,
+        (params.n - 1) as f64,
+        setup.clear,
+        0.1,
+    );
     Ok(v_in.zip(v_out).map(|(a, b)| b / a))
 }
 
@@ -578,19 +584,30 @@ fn count(labels: &[Vec<Option<Outcome>>], which: Option<Outcome>) -> usize {
     labels.iter().flatten().filter(|&&o| o == which).count()
 }
 
-/// `1536 transmitted, 55 split, ... (undecided 0.0 %)`: every label that occurs.
-fn counts(labels: &[Vec<Option<Outcome>>]) -> String {
-    let total = labels.iter().map(Vec::len).sum::<usize>().max(1);
-    let mut parts: Vec<String> = Outcome::ALL
+/// `1536 transmitted, 55 split, ...`: every label that occurs, with its count.
+pub(crate) fn label_counts(labels: &[Vec<Option<Outcome>>]) -> Vec<String> {
+    Outcome::ALL
         .iter()
         .map(|&o| (count(labels, Some(o)), o.name()))
         .chain([(count(labels, None), FAILED)])
         .filter(|(c, _)| *c > 0)
         .map(|(c, name)| format!("{c} {name}"))
-        .collect();
+        .collect()
+}
+
+/// [`label_counts`] and the share of undecided points: `..., undecided 0.0 %`.
+fn counts(labels: &[Vec<Option<Outcome>>]) -> String {
+    let total = labels.iter().map(Vec::len).sum::<usize>().max(1);
+    let mut parts = label_counts(labels);
     let undecided = count(labels, Some(Outcome::Undecided));
     parts.push(format!("undecided {:.1} %", 100.0 * undecided as f64 / total as f64));
     parts.join(", ")
+}
+
+/// The colour categories of a phase diagram: every outcome in [`Outcome::ALL`]'s order, then
+/// [`FAILED`] (as [`category`] numbers them).
+pub(crate) fn outcome_categories() -> Vec<String> {
+    Outcome::ALL.iter().map(|o| o.name()).chain([FAILED]).map(str::to_owned).collect()
 }
 
 /// The boundary between two regimes along each `v0` row: where the longest run of `left` labels
@@ -703,11 +720,11 @@ fn alternation(outcomes: &[Option<Outcome>], v0s: &[f64]) -> String {
 fn stability_scan(params: &Params, v0s: &[f64]) -> Result<Vec<(f64, usize, f64)>, FigureError> {
     let fail = |e: Cause, v0: f64| FigureError::new("fig:phasediagram", e).at("v0", v0);
     let model = chain(params, THETA_BAR_SCATTERING, None).map_err(|e| fail(e.into(), f64::NAN))?;
-    let start = middle_spring(params) as f64 + 0.5 + 15.0;
+    let setup = ScatterSetup::from_the_right(Charge::Antikink, 0.0, middle_spring(params));
     let options = RunOptions { t_max: 5.0, ..RunOptions::default() };
     v0s.par_iter()
         .map(|&v0| {
-            stability(&model, Charge::Antikink, start, v0, Direction::Left, 8.0, &options)
+            stability(&model, setup.charge, setup.start, v0, setup.direction, setup.clear, &options)
                 .map(|s| (v0, s.most_walls, s.longest_extra))
                 .map_err(|e| fail(e.into(), v0))
         })
@@ -727,8 +744,7 @@ pub fn phasediagram(params: &Params, quality: Quality) -> Result<Figure, FigureE
     let kis = Axis::geomspace(0.01, 3.0, size).map_err(FigureError::on(LABEL))?;
     let v0s = Axis::linspace(0.5, 12.0, size).map_err(FigureError::on(LABEL))?;
     let grid = Grid::new(kis, v0s).map_err(FigureError::on(LABEL))?;
-    let mut categories: Vec<String> = Outcome::ALL.iter().map(|o| o.name().to_owned()).collect();
-    categories.push(FAILED.to_owned());
+    let categories = outcome_categories();
     let mut panels = Vec::new();
     let mut diagrams = Vec::new();
     for defect in [Defect::Kink, Defect::Antikink] {
@@ -850,7 +866,7 @@ pub fn phasediagram(params: &Params, quality: Quality) -> Result<Figure, FigureE
             format!(
                 "launched from rotor {:.0} towards rotor 0 and followed to 8 sites from the end (or t = 5), walls from \
                  the free ends left out; v0 = {:.1}..{:.1}",
-                middle_spring(params) as f64 + 15.5,
+                ScatterSetup::from_the_right(Charge::Antikink, 0.0, middle_spring(params)).start,
                 stable_v0s[0],
                 stable_v0s[stable_v0s.len() - 1]
             ),

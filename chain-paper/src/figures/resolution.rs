@@ -11,7 +11,7 @@ use chain_sweep::scattering::Defect;
 use chain_sweep::{Axis, Grid};
 use rotor_chain::dynamics::scatter::Outcome;
 
-use super::dynamics::{FAILED, THETA_BAR_SCATTERING, category, phase_diagram};
+use super::dynamics::{THETA_BAR_SCATTERING, category, label_counts, outcome_categories, phase_diagram};
 use super::{Cause, FigureError, FigureFn, Params};
 use crate::model::{Chart, Figure, Heatmap, Quality, Row};
 
@@ -31,15 +31,7 @@ fn antikink_diagram(params: &Params, grid: &Grid) -> Result<Vec<Vec<Option<Outco
 
 /// `1023 reflected, 384 trapped, ...`: every label that occurs, with its count.
 fn counts(labels: &[Vec<Option<Outcome>>]) -> String {
-    let count = |which: Option<Outcome>| labels.iter().flatten().filter(|&&o| o == which).count();
-    Outcome::ALL
-        .iter()
-        .map(|&o| (count(Some(o)), o.name()))
-        .chain([(count(None), FAILED)])
-        .filter(|(c, _)| *c > 0)
-        .map(|(c, name)| format!("{c} {name}"))
-        .collect::<Vec<_>>()
-        .join(", ")
+    label_counts(labels).join(", ")
 }
 
 /// Along each `v0` column at the `k_i/k` nearest `ki`: how many times the outcome changes
@@ -68,11 +60,9 @@ pub fn phasediagram_resolution(params: &Params, quality: Quality) -> Result<Figu
         Axis::linspace(0.5, 12.0, size).map_err(&on)?,
     )
     .map_err(&on)?;
-    let mut categories: Vec<String> = Outcome::ALL.iter().map(|o| o.name().to_owned()).collect();
-    categories.push(FAILED.to_owned());
-    let fail = FigureError::on(LABEL);
-    let window_labels = antikink_diagram(params, &window).map_err(&fail)?;
-    let plane_labels = antikink_diagram(params, &plane).map_err(&fail)?;
+    let categories = outcome_categories();
+    let window_labels = antikink_diagram(params, &window).map_err(FigureError::on(LABEL))?;
+    let plane_labels = antikink_diagram(params, &plane).map_err(FigureError::on(LABEL))?;
     let heat = |title: String, x_label: &str, x: Vec<f64>, grid: &Grid, labels: &[Vec<Option<Outcome>>]| {
         Chart::Heat(Heatmap {
             title,

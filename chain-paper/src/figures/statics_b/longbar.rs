@@ -4,7 +4,7 @@
 use rotor_chain::RuntimeChain;
 use rotor_chain::prelude::ChainModel;
 use rotor_chain::statics::counting::maxwell_calladine;
-use rotor_chain::statics::impurity::{critical_length, impurity_analysis, two_kink_configuration};
+use rotor_chain::statics::impurity::{impurity_analysis, two_kink_configuration};
 use rotor_chain::statics::kink::kink;
 use rotor_chain::statics::modes::{Mode, ModeKind, ModeOptions, modes};
 
@@ -121,7 +121,7 @@ pub fn longbar(params: &Params, _quality: Quality) -> Result<Figure, FigureError
         Row::number(
             "l_critical / a (θ̄ = 0.58, r/a = 0.8)",
             "2.31",
-            critical_length(&model, p).map_err(FigureError::on(LABEL))?,
+            analysis.critical_length,
             Some(cont.l_critical()),
             "2.3051 rounds to the paper's 2.31",
         ),
