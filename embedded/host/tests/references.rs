@@ -7,7 +7,6 @@ use embedded_check::{
 };
 use rotor_chain::dynamics::integrate::{self, AdaptiveOptions, Flow, State, VerletOptions};
 use rotor_chain::dynamics::launch::{Direction, launch};
-use rotor_chain::statics::kink::kink;
 use rotor_chain::statics::walls::Charge;
 use rotor_chain::{ChainModel, RuntimeChain};
 
@@ -22,22 +21,29 @@ fn max_difference(a: &[f64], b: &[f64]) -> f64 {
     a.iter().zip(b).map(|(x, y)| (x - y).abs()).fold(0.0, f64::max)
 }
 
+/// The largest `|l_p - l0_p|` over the springs: zero for a kink built by the branch solve.
+fn worst_stretch(model: &impl ChainModel, theta: &[f64]) -> f64 {
+    let mut lengths = vec![0.0; theta.len() - 1];
+    model.spring_lengths_into(theta, &mut lengths);
+    lengths.iter().enumerate().map(|(p, l)| (l - model.rest_length(p)).abs()).fold(0.0, f64::max)
+}
+
+/// `statics::kink::kink` is this builder collected into a `Vec`, so the checks here are the
+/// kink's own properties (paper Sec. II): every spring at rest, zero energy, the wall at the centre.
 #[test]
-fn kink_equals_the_statics_kink_at_integer_and_fractional_centres() {
+fn kink_has_every_spring_at_rest_at_integer_and_fractional_centres() {
     let chain = runtime_chain();
     for centre in [0.0, 0.5, 3.0, 4.25, 7.999, 14.5, 15.0] {
         let mut ours = [0.0; 16];
         kink_into(&Chain16, centre, &mut ours).unwrap();
-        let reference = kink(&Chain16, centre).unwrap();
-        assert!(max_difference(&ours, &reference) <= 1e-14, "centre {centre}: {ours:?} vs {reference:?}");
+        assert!(worst_stretch(&Chain16, &ours) <= 1e-13, "centre {centre}: {ours:?}");
         // The kink costs no energy (paper Sec. II).
         assert!(ChainModel::energy(&Chain16, &ours) < 1e-20, "centre {centre}");
     }
     for centre in [2.0, 11.3, 20.0, 38.75] {
         let mut ours = [0.0; 40];
         kink_into(&chain, centre, &mut ours).unwrap();
-        let reference = kink(&chain, centre).unwrap();
-        assert!(max_difference(&ours, &reference) <= 1e-14, "n = 40, centre {centre}");
+        assert!(worst_stretch(&chain, &ours) <= 1e-13, "n = 40, centre {centre}");
         let wall = domain_walls(&ours).next().unwrap();
         if centre <= 38.0 {
             assert!((wall.position - centre).abs() < 1e-9, "wall at {} for centre {centre}", wall.position);
