@@ -121,6 +121,7 @@ pub fn previous_angles<T: Real>(
         BranchError::Degenerate { spring, .. } => {
             BranchError::Degenerate { spring, theta: theta_next.widen() }
         }
+        BranchError::NotFinite { spring, .. } => BranchError::NotFinite { spring, theta: theta_next.widen() },
         other => other,
     })
 }
@@ -264,7 +265,8 @@ mod tests {
             other => panic!("unexpected {other:?}"),
         }
         let err = previous_angles(4, 1.0f32, 0.8, 0.8, 1.7, f32::INFINITY).unwrap_err();
-        assert_eq!(err, BranchError::NotFinite { spring: 4, theta: f64::NEG_INFINITY });
+        // The angle given, not the mirrored one next_angles saw.
+        assert_eq!(err, BranchError::NotFinite { spring: 4, theta: f64::INFINITY });
     }
 
     #[test]
