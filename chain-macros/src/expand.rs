@@ -298,15 +298,14 @@ fn fused_fit(n: usize) -> (bool, bool) {
 }
 
 /// The unrolled fused methods: one straight-line body each, every angle's `sin_cos` once.
-fn unrolled_fused_bodies(model: &Model) -> FusedBodies {
-    let (g, out) = model.unrolled_outputs();
-    let (eg, egk) = fused_fit(model.n);
+fn unrolled_fused_bodies(n: usize, g: &Graph, out: &ChainOutputs) -> FusedBodies {
+    let (eg, egk) = fused_fit(n);
     let shape =
         |stiffness| Shape::Fused { energy_partial: &out.energy_partial, gradient: &out.gradient, stiffness };
     FusedBodies {
-        energy_and_gradient: eg.then(|| unrolled_body(&g, &out, shape(None), Float::F64)),
+        energy_and_gradient: eg.then(|| unrolled_body(g, out, shape(None), Float::F64)),
         energy_gradient_stiffness: egk
-            .then(|| unrolled_body(&g, &out, shape(Some((&out.hessian_diag, &out.hessian_off))), Float::F64)),
+            .then(|| unrolled_body(g, out, shape(Some((&out.hessian_diag, &out.hessian_off))), Float::F64)),
     }
 }
 
@@ -450,11 +449,10 @@ struct Bodies {
     support: TokenStream,
 }
 
-fn unrolled_bodies(model: &Model) -> Bodies {
-    let (g, out) = model.unrolled_outputs();
-    let body = |shape| Some(unrolled_body(&g, &out, shape, model.float));
+fn unrolled_bodies(model: &Model, g: &Graph, out: &ChainOutputs) -> Bodies {
+    let body = |shape| Some(unrolled_body(g, out, shape, model.float));
     Bodies {
-        energy: unrolled_body(&g, &out, Shape::Scalar(out.energy), model.float),
+        energy: unrolled_body(g, out, Shape::Scalar(out.energy), model.float),
         gradient: body(Shape::Array(&out.gradient)),
         tangent_stiffness: body(Shape::Tridiagonal(&out.hessian_diag, &out.hessian_off)),
         material: body(Shape::Tridiagonal(&out.material_diag, &out.material_off)),
@@ -751,15 +749,21 @@ fn emit(item: &ItemStruct, model: &Model) -> TokenStream {
     let ident = &item.ident;
     let (n, m, float) = (model.n, model.springs(), model.float);
     let t = float_type(float);
-    let (bodies, trait_bodies) = if model.unrolled() {
-        (unrolled_bodies(model), unrolled_trait_bodies(ident))
+    // One derivation of the unrolled chain serves the separate and the fused methods; the fused
+    // methods exist on `f64` chains only (they serve the analyses and integrators).
+    let (bodies, trait_bodies, fused, fused_trait_bodies) = if model.unrolled() {
+        let (g, out) = model.unrolled_outputs();
+        let fused = (float == Float::F64).then(|| unrolled_fused_bodies(n, &g, &out));
+        (
+            unrolled_bodies(model, &g, &out),
+            unrolled_trait_bodies(ident),
+            fused,
+            unrolled_fused_trait_bodies(ident),
+        )
     } else {
-        looped_bodies(model)
-    };
-    let (fused, fused_trait_bodies) = if model.unrolled() {
-        (unrolled_fused_bodies(model), unrolled_fused_trait_bodies(ident))
-    } else {
-        looped_fused_bodies(model)
+        let (bodies, trait_bodies) = looped_bodies(model);
+        let (fused, fused_trait_bodies) = looped_fused_bodies(model);
+        (bodies, trait_bodies, Some(fused), fused_trait_bodies)
     };
     let Bodies {
         energy,
@@ -837,10 +841,9 @@ fn emit(item: &ItemStruct, model: &Model) -> TokenStream {
             pub fn tensions(&self, theta: &[#t; #n]) -> [#t; #m] #body
         }
     });
-    // Fused methods are f64 only: they serve the analyses and integrators, which take f64 chains.
-    let (fused, fused_trait_bodies) = match float {
-        Float::F64 => (fused_methods(n, m, fused, &doc_strategy), fused_trait_bodies),
-        Float::F32 => (TokenStream::new(), TokenStream::new()),
+    let (fused, fused_trait_bodies) = match fused {
+        Some(fused) => (fused_methods(n, m, fused, &doc_strategy), fused_trait_bodies),
+        None => (TokenStream::new(), TokenStream::new()),
     };
     let compatibility = compatibility.map(|body| {
         quote! {

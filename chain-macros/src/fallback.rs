@@ -80,20 +80,23 @@ impl Stubs {
                 quote!(#p::Bidiagonal<#m_ty, #n_ty, #t>),
                 &generic_nm,
             ),
+            // The fused methods exist on `f64` chains only (`expand::emit`).
             method(
                 quote!(energy_and_gradient),
                 n_value + 1,
                 Returns::Array,
                 quote!((f64, [f64; #n_ty])),
                 &generic_n,
-            ),
+            )
+            .filter(|_| self.float == Float::F64),
             method(
                 quote!(energy_gradient_stiffness),
                 3 * n_value,
                 Returns::Banded,
                 quote!((f64, [f64; #n_ty], #p::Tridiagonal<#n_ty, #m_ty>)),
                 &generic_nm,
-            ),
+            )
+            .filter(|_| self.float == Float::F64),
             method(
                 quote!(hessian),
                 n_value * n_value,
