@@ -131,16 +131,9 @@ impl RunOptions {
     ) -> Result<RunIntegrator, DynamicsError> {
         Ok(match self.method {
             Method::Verlet => {
+                // A given `dt` is checked where every Verlet run checks it (`VerletOptions::integrate`).
                 let dt = match self.dt {
-                    Some(dt) if dt > 0.0 && dt.is_finite() => dt,
-                    Some(dt) => {
-                        return Err(IntegrateError::InvalidOption {
-                            name: "dt",
-                            value: dt,
-                            rule: "positive and finite",
-                        }
-                        .into());
-                    }
+                    Some(dt) => dt,
                     None => VerletOptions::stable_for(model, theta, VerletOptions::DEFAULT_SAFETY)?.dt,
                 };
                 RunIntegrator::Verlet(VerletOptions {
