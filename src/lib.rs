@@ -113,6 +113,11 @@ pub use chain_core::{
 };
 #[cfg(feature = "alloc")]
 pub use chain_core::{ChainBuilder, Law, RuntimeChain, dynamics, linalg, runtime, statics};
+// The attribute's page: the keys and a runnable example of each. Written here, on the re-export,
+// so that the examples are this crate's doctests (the proc-macro crate would need the facade as a
+// dev-dependency, which compiles the facade and all its dependencies a second time for the host).
+#[doc = include_str!("attribute.md")]
+#[doc(inline)]
 pub use chain_macros::rotor_chain;
 /// The linear-algebra crate of the matrices this crate returns, re-exported so versions match.
 pub use nalgebra;

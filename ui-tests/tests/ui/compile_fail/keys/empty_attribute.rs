@@ -1,6 +1,0 @@
-use rotor_chain::prelude::*;
-
-#[rotor_chain]
-pub struct Chain;
-
-fn main() {}

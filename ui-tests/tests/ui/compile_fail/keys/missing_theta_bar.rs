@@ -1,6 +1,0 @@
-use rotor_chain::prelude::*;
-
-#[rotor_chain(n = 10, r = 0.8, k = 1.0e4)]
-pub struct Chain;
-
-fn main() {}
