@@ -130,19 +130,33 @@ def _main_thread_progress(call) -> tuple:
     return count, elapsed
 
 
-@pytest.mark.parametrize("what", ["sweep points", "propagate", "peierls_nabarro"])
-def test_long_computations_release_the_gil(what):
+def _call_of(what: str, scale: int):
+    """The computation ``what`` at a size that grows with ``scale``."""
     if what == "sweep points":
         d = rc._native.PhaseDiagram("antikink")
-        pts = [(0, j, 0.7, 4.0 + 0.1 * j) for j in range(6)]
-        call = lambda: d.compute_points(pts, 1)  # noqa: E731
-    elif what == "propagate":
+        pts = [(0, j, 0.7, 4.0 + 0.1 * (j % 20)) for j in range(6 * scale)]
+        return lambda: d.compute_points(pts, 1)
+    if what == "propagate":
         c = rc.Chain(2000, 0.8, 1.0e4, 0.28)
         theta = c.kink(1000.0)
-        call = lambda: c.propagate(theta, np.zeros(2000), t_max=1.0)  # noqa: E731
-    else:
-        c = rc.Chain(12000, 0.8, 1.0e4, 0.2)  # long enough (> 0.05 s) on a quiet machine too
-        call = lambda: c.peierls_nabarro()  # noqa: E731
+        return lambda: c.propagate(theta, np.zeros(2000), t_max=1.0 * scale)
+    c = rc.Chain(12000 * scale, 0.8, 1.0e4, 0.2)
+    return lambda: c.peierls_nabarro()
+
+
+@pytest.mark.parametrize("what", ["sweep points", "propagate", "peierls_nabarro"])
+def test_long_computations_release_the_gil(what):
+    # One call long enough to tell (> 0.05 s) whatever the build's speed: the size doubles until
+    # a call alone takes 0.1 s (at most 2^6 times the smallest).
+    scale = 1
+    call = _call_of(what, scale)
+    while scale < 64:
+        t0 = time.perf_counter()
+        call()
+        if time.perf_counter() - t0 >= 0.1:
+            break
+        scale *= 2
+        call = _call_of(what, scale)
     count, elapsed = _main_thread_progress(call)
     assert elapsed > 0.05, f"{what} took only {elapsed:.3f} s: too short to tell"
     # The main thread ran its loop throughout (millions of iterations per second when free).

@@ -1,20 +1,32 @@
 //! `cargo xtask`: the repository's tasks that are more than one cargo command.
 //!
 //! ```text
-//! cargo xtask test            the whole test suite: cargo test --workspace, then the Python tests
+//! cargo xtask test            the whole test suite: every Rust test (cargo test --workspace),
+//!                             then the Python tests
 //! cargo xtask python [ARGS]   only the Python tests (ARGS go to pytest, e.g. -k dask -x)
 //! ```
 //!
+//! **`test`** runs exactly what `cargo test --workspace` runs, plus the Python tests, arranged so
+//! that the two cores stay busy:
+//! 1. `cargo test --workspace --no-run` compiles every test target once (its diagnostics on
+//!    stderr; the list of test executables read from its JSON messages);
+//! 2. then two lanes run side by side:
+//!    - this process: `cargo test --workspace -- --exact --skip ui` (every unit, integration and
+//!      doc test except the one trybuild test, nothing left to compile), streamed;
+//!    - a second thread: the trybuild test `ui-tests/tests/ui.rs` (`ui`, compile-fail and pass
+//!      cases, which builds in its own target folder), run as cargo would run it, then the
+//!      Python half below; their output is kept and printed when the lane ends.
+//!
 //! The Python half: a virtual environment at `target/python/venv` (from `python3`, or `$PYTHON`),
 //! the packages of `python/requirements-test.txt` installed into it with pip (only when that file
-//! changed since the last install, so a second run skips it), the extension built in debug by
+//! changed since the last install, so a second run skips it; it runs while the Rust tests
+//! compile: one waits on the network, the other on the CPU), the extension built in debug by
 //! `maturin develop` (it reuses the workspace's build of every Rust crate), and pytest on
 //! `python/tests/`, told where the Rust reference programs are (`ROTOR_CHAIN_REFERENCE`,
-//! `PHASE_DIAGRAM`). The pip install runs while `cargo test` compiles and runs: one waits on the
-//! network, the other on the CPU.
+//! `PHASE_DIAGRAM`).
 //!
 //! Written by hand with `std::process` only: a task runner that needs nothing compiled beyond
-//! itself is the point of the xtask pattern.
+//! itself is the point of the xtask pattern (so the JSON of step 1 is searched, not parsed).
 
 use std::env;
 use std::ffi::OsString;
@@ -79,21 +91,130 @@ fn run(what: &str, command: &mut Command) -> Step {
     }
 }
 
+/// The name of the trybuild test: the one test of `ui-tests/tests/ui.rs`.
+const UI_TEST: &str = "ui";
+
 fn test(pytest_args: &[OsString]) -> Step {
     let root = root();
-    // The Python environment is prepared (pip, network-bound) while cargo test runs (CPU-bound).
+    // The Python environment is prepared (pip, network-bound) while cargo compiles (CPU-bound).
     let venv = {
         let root = root.clone();
         thread::spawn(move || prepare_venv(&root))
     };
-    let rust =
-        run("cargo test --workspace", Command::new(cargo()).current_dir(&root).args(["test", "--workspace"]));
-    let venv = venv.join().map_err(|_| Failure("preparing the Python environment panicked".to_owned()))?;
+    let ui = build_tests(&root)?;
+    // Lane two: the trybuild test, then the Python tests, output kept for the end.
+    let lane = {
+        let (root, pytest_args) = (root.clone(), pytest_args.to_vec());
+        thread::spawn(move || {
+            let mut log = Vec::new();
+            let ui = run_ui_test(&root, &ui, &mut log);
+            let python = venv
+                .join()
+                .map_err(|_| Failure("preparing the Python environment panicked".to_owned()))
+                .and_then(|venv| venv)
+                .and_then(|venv| python_tests_logged(&root, &venv, &pytest_args, &mut log));
+            (ui, python, log)
+        })
+    };
+    // Lane one: every other Rust test, streamed. `--exact` makes `--skip` match the whole name.
+    let rust = run(
+        "cargo test --workspace (all but the trybuild test, which runs beside it)",
+        Command::new(cargo()).current_dir(&root).args([
+            "test",
+            "--workspace",
+            "--",
+            "--exact",
+            "--skip",
+            UI_TEST,
+        ]),
+    );
+    let (ui, python, log) =
+        lane.join().map_err(|_| Failure("the trybuild and Python lane panicked".to_owned()))?;
+    eprintln!("\nxtask: the trybuild test and the Python tests, run beside the other tests:");
+    let mut stderr = std::io::stderr().lock();
+    let _ = std::io::Write::write_all(&mut stderr, &log);
+    drop(stderr);
     rust?;
-    // `cargo test --workspace` has built both reference programs (their integration tests need
-    // them), with the workspace's features; building them again with `cargo build -p` would
-    // compile their dependencies anew with other features.
-    python_tests(&root, &venv?, pytest_args)
+    ui?;
+    python
+}
+
+/// Step 1: `cargo test --workspace --no-run`; the trybuild test's executable.
+fn build_tests(root: &Path) -> Step<PathBuf> {
+    let start = Instant::now();
+    let output = Command::new(cargo())
+        .current_dir(root)
+        .args(["test", "--workspace", "--no-run", "--message-format=json-render-diagnostics"])
+        .stderr(Stdio::inherit())
+        .output()
+        .map_err(|e| Failure(format!("cannot start cargo: {e}")))?;
+    if !output.status.success() {
+        return Err(Failure(format!("cargo test --workspace --no-run failed ({})", output.status)));
+    }
+    eprintln!("xtask: cargo test --workspace --no-run: done in {:.1} s", start.elapsed().as_secs_f64());
+    let messages = String::from_utf8_lossy(&output.stdout);
+    let wanted = format!(r#""name":"{UI_TEST}","src_path":"#);
+    messages
+        .lines()
+        .filter(|m| m.contains(r#""reason":"compiler-artifact""#) && m.contains(&wanted))
+        .filter(|m| m.contains(r#""kind":["test"]"#) && m.contains("ui-tests"))
+        .find_map(|m| json_string_after(m, r#""executable":""#))
+        .map(PathBuf::from)
+        .ok_or_else(|| {
+            Failure(format!("cargo built no test executable named `{UI_TEST}` (ui-tests/tests/ui.rs)"))
+        })
+}
+
+/// The JSON string value that follows `key` in `message` (escapes `\\` and `\"` undone).
+fn json_string_after(message: &str, key: &str) -> Option<String> {
+    let rest = &message[message.find(key)? + key.len()..];
+    let mut value = String::new();
+    let mut chars = rest.chars();
+    while let Some(c) = chars.next() {
+        match c {
+            '"' => return Some(value),
+            '\\' => value.push(chars.next()?),
+            c => value.push(c),
+        }
+    }
+    None
+}
+
+/// The trybuild test, run the way `cargo test` runs it: from its package's folder, with the
+/// variables cargo sets for a test (trybuild reads the manifest folder and the package name).
+fn run_ui_test(root: &Path, executable: &Path, log: &mut Vec<u8>) -> Step {
+    let package = root.join("ui-tests");
+    let mut command = Command::new(executable);
+    command
+        .current_dir(&package)
+        .args(["--exact", UI_TEST])
+        .env("CARGO", cargo())
+        .env("CARGO_MANIFEST_DIR", &package)
+        .env("CARGO_MANIFEST_PATH", package.join("Cargo.toml"))
+        .env("CARGO_PKG_NAME", "ui-tests")
+        .env("CARGO_CRATE_NAME", UI_TEST)
+        .env("CARGO_TARGET_TMPDIR", target_dir(root).join("tmp"));
+    run_logged("trybuild test (ui-tests/tests/ui.rs)", &mut command, log)
+}
+
+/// Runs `command` with its stdout and stderr appended to `log`; an error unless it exits with 0.
+fn run_logged(what: &str, command: &mut Command, log: &mut Vec<u8>) -> Step {
+    let start = Instant::now();
+    let output = command
+        .stdin(Stdio::null())
+        .output()
+        .map_err(|e| Failure(format!("{what}: cannot start {:?}: {e}", command.get_program())))?;
+    log.extend_from_slice(&output.stdout);
+    log.extend_from_slice(&output.stderr);
+    let line = if output.status.success() {
+        format!("xtask: {what}: done in {:.1} s\n", start.elapsed().as_secs_f64())
+    } else {
+        format!("xtask: {what}: failed ({})\n", output.status)
+    };
+    log.extend_from_slice(line.as_bytes());
+    // One line now, so the lane's progress shows among the streamed tests.
+    eprint!("{line}");
+    if output.status.success() { Ok(()) } else { Err(Failure(format!("{what} failed ({})", output.status))) }
 }
 
 fn python_only(pytest_args: &[OsString]) -> Step {
@@ -162,8 +283,23 @@ fn prepare_venv(root: &Path) -> Step<PathBuf> {
     Ok(venv)
 }
 
-/// Build the extension (debug), then run pytest with the reference programs of `target/debug`.
+/// Build the extension (debug), then run pytest with the reference programs of `target/debug`;
+/// output streamed.
 fn python_tests(root: &Path, venv: &Path, pytest_args: &[OsString]) -> Step {
+    let [mut maturin, mut pytest] = python_commands(root, venv, pytest_args)?;
+    run("maturin develop (the extension, debug)", &mut maturin)?;
+    run("pytest", &mut pytest)
+}
+
+/// [`python_tests`] with the output appended to `log`.
+fn python_tests_logged(root: &Path, venv: &Path, pytest_args: &[OsString], log: &mut Vec<u8>) -> Step {
+    let [mut maturin, mut pytest] = python_commands(root, venv, pytest_args)?;
+    run_logged("maturin develop (the extension, debug)", &mut maturin, log)?;
+    run_logged("pytest", &mut pytest, log)
+}
+
+/// `maturin develop` and pytest, set up to use the venv and the reference programs.
+fn python_commands(root: &Path, venv: &Path, pytest_args: &[OsString]) -> Step<[Command; 2]> {
     let debug = target_dir(root).join("debug");
     for program in ["rotor-chain-reference", "phase-diagram"] {
         if !debug.join(program).is_file() {
@@ -179,24 +315,21 @@ fn python_tests(root: &Path, venv: &Path, pytest_args: &[OsString]) -> Step {
         path.push(":");
         path.push(old);
     }
-    run(
-        "maturin develop (the extension, debug)",
-        Command::new(bin.join("maturin"))
-            .current_dir(root.join("python"))
-            .args(["develop", "--quiet"])
-            .env("VIRTUAL_ENV", venv)
-            .env("PATH", &path)
-            .env_remove("CONDA_PREFIX"),
-    )?;
-    let status = Command::new(bin.join("python"))
+    let mut maturin = Command::new(bin.join("maturin"));
+    maturin
+        .current_dir(root.join("python"))
+        .args(["develop", "--quiet"])
+        .env("VIRTUAL_ENV", venv)
+        .env("PATH", &path)
+        .env_remove("CONDA_PREFIX");
+    let mut pytest = Command::new(bin.join("python"));
+    pytest
         .current_dir(root.join("python"))
         .args(["-m", "pytest", "tests", "-q", "-p", "no:cacheprovider"])
         .args(pytest_args)
         .env("VIRTUAL_ENV", venv)
         .env("PATH", &path)
         .env("ROTOR_CHAIN_REFERENCE", debug.join("rotor-chain-reference"))
-        .env("PHASE_DIAGRAM", debug.join("phase-diagram"))
-        .status()
-        .map_err(|e| Failure(format!("cannot run pytest: {e}")))?;
-    if status.success() { Ok(()) } else { Err(Failure(format!("pytest failed ({status})"))) }
+        .env("PHASE_DIAGRAM", debug.join("phase-diagram"));
+    Ok([maturin, pytest])
 }
