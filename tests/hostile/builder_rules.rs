@@ -71,8 +71,8 @@ fn overrides_of_missing_springs_and_rotors_are_errors() {
 
 #[test]
 fn the_runtime_error_says_what_the_compile_error_says() {
-    // The texts of ui-tests/tests/ui/compile_fail/keys/spring_overrides_nothing.stderr and
-    // spring_overridden_twice.stderr, from the same Display.
+    // The texts of the modules spring_overrides_nothing and spring_overridden_twice in
+    // ui-tests/tests/ui/compile_fail/keys.stderr, from the same Display.
     let empty = builder(10).spring(3, None, None).build().unwrap_err().to_string();
     assert_eq!(
         empty,
