@@ -309,30 +309,41 @@ fn unrolled_fused_bodies(n: usize, g: &Graph, out: &ChainOutputs) -> FusedBodies
     }
 }
 
-/// The unrolled strategy's fused trait methods: copies of the inherent results.
-fn unrolled_fused_trait_bodies(ident: &Ident) -> TokenStream {
-    let p = private();
-    let theta = quote!(#p::as_array(theta));
+/// The fused methods of `ChainModel` with the given bodies: one place for their signatures.
+fn fused_trait_items(
+    energy_and_gradient: TokenStream,
+    energy_gradient_stiffness: TokenStream,
+) -> TokenStream {
     quote! {
-        fn energy_and_gradient_into(&self, theta: &[f64], out: &mut [f64]) -> f64 {
-            let (energy, grad) = #ident::energy_and_gradient(self, #theta);
-            out.copy_from_slice(&grad);
-            energy
-        }
+        fn energy_and_gradient_into(&self, theta: &[f64], out: &mut [f64]) -> f64 #energy_and_gradient
         fn energy_gradient_stiffness_into(
             &self,
             theta: &[f64],
             grad: &mut [f64],
             diag: &mut [f64],
             off: &mut [f64],
-        ) -> f64 {
+        ) -> f64 #energy_gradient_stiffness
+    }
+}
+
+/// The unrolled strategy's fused trait methods: copies of the inherent results.
+fn unrolled_fused_trait_bodies(ident: &Ident) -> TokenStream {
+    let p = private();
+    let theta = quote!(#p::as_array(theta));
+    fused_trait_items(
+        quote!({
+            let (energy, grad) = #ident::energy_and_gradient(self, #theta);
+            out.copy_from_slice(&grad);
+            energy
+        }),
+        quote!({
             let (energy, g, t) = #ident::energy_gradient_stiffness(self, #theta);
             grad.copy_from_slice(&g);
             diag.copy_from_slice(&t.diag);
             off.copy_from_slice(&t.off);
             energy
-        }
-    }
+        }),
+    )
 }
 
 /// The looped strategy's fused methods: the trait's slice methods call the fused drivers, the
@@ -343,16 +354,7 @@ fn looped_fused_bodies(model: &Model) -> (FusedBodies, TokenStream) {
     let eg = looped_call(model, "energy_and_gradient", "EnergyGradient", quote!(out));
     let egk =
         looped_call(model, "energy_gradient_stiffness", "EnergyGradientHessian", quote!(grad, diag, off));
-    let trait_bodies = quote! {
-        fn energy_and_gradient_into(&self, theta: &[f64], out: &mut [f64]) -> f64 #eg
-        fn energy_gradient_stiffness_into(
-            &self,
-            theta: &[f64],
-            grad: &mut [f64],
-            diag: &mut [f64],
-            off: &mut [f64],
-        ) -> f64 #egk
-    };
+    let trait_bodies = fused_trait_items(eg, egk);
     let t = quote!(#p::ChainModel);
     let (fits_eg, fits_egk) = fused_fit(n);
     let bodies = FusedBodies {
