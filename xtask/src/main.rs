@@ -77,17 +77,37 @@ fn cargo() -> OsString {
     env::var_os("CARGO").unwrap_or_else(|| "cargo".into())
 }
 
-/// Runs `command`, inheriting stdout and stderr; an error unless it exits with status 0.
-fn run(what: &str, command: &mut Command) -> Step {
+/// Where a step's output goes: inherited (streamed to the terminal), or appended to a log that
+/// is printed later (a lane running beside a streamed one).
+type Log<'a> = Option<&'a mut Vec<u8>>;
+
+/// Runs `command`, its output streamed or logged; an error unless it exits with status 0. A logged
+/// step still prints its one-line result at once, so its progress shows among streamed output.
+fn run(what: &str, command: &mut Command, log: Log) -> Step {
     let start = Instant::now();
-    let status = command
-        .status()
-        .map_err(|e| Failure(format!("{what}: cannot start {:?}: {e}", command.get_program())))?;
+    let program = command.get_program().to_owned();
+    let cannot_start = |e| Failure(format!("{what}: cannot start {program:?}: {e}"));
+    let status = match log {
+        None => command.status().map_err(cannot_start)?,
+        Some(log) => {
+            let output = command.stdin(Stdio::null()).output().map_err(cannot_start)?;
+            log.extend_from_slice(&output.stdout);
+            log.extend_from_slice(&output.stderr);
+            let line = format!("xtask: {what}: {}\n", outcome(output.status, start));
+            log.extend_from_slice(line.as_bytes());
+            output.status
+        }
+    };
+    eprintln!("xtask: {what}: {}", outcome(status, start));
+    if status.success() { Ok(()) } else { Err(Failure(format!("{what} failed ({status})"))) }
+}
+
+/// "done in X s" or "failed (status)".
+fn outcome(status: std::process::ExitStatus, start: Instant) -> String {
     if status.success() {
-        eprintln!("xtask: {what}: done in {:.1} s", start.elapsed().as_secs_f64());
-        Ok(())
+        format!("done in {:.1} s", start.elapsed().as_secs_f64())
     } else {
-        Err(Failure(format!("{what} failed ({status})")))
+        format!("failed ({status})")
     }
 }
 
@@ -112,7 +132,7 @@ fn test(pytest_args: &[OsString]) -> Step {
                 .join()
                 .map_err(|_| Failure("preparing the Python environment panicked".to_owned()))
                 .and_then(|venv| venv)
-                .and_then(|venv| python_tests_logged(&root, &venv, &pytest_args, &mut log));
+                .and_then(|venv| python_tests(&root, &venv, &pytest_args, Some(&mut log)));
             (ui, python, log)
         })
     };
@@ -127,6 +147,7 @@ fn test(pytest_args: &[OsString]) -> Step {
             "--skip",
             UI_TEST,
         ]),
+        None,
     );
     let (ui, python, log) =
         lane.join().map_err(|_| Failure("the trybuild and Python lane panicked".to_owned()))?;
@@ -165,7 +186,8 @@ fn build_tests(root: &Path) -> Step<PathBuf> {
         })
 }
 
-/// The JSON string value that follows `key` in `message` (escapes `\\` and `\"` undone).
+/// The JSON string value that follows `key` in `message`, with the escapes `\\`, `\"` and `\/`
+/// undone; `None` for any other escape (a control character in a path), which is not decoded.
 fn json_string_after(message: &str, key: &str) -> Option<String> {
     let rest = &message[message.find(key)? + key.len()..];
     let mut value = String::new();
@@ -173,7 +195,10 @@ fn json_string_after(message: &str, key: &str) -> Option<String> {
     while let Some(c) = chars.next() {
         match c {
             '"' => return Some(value),
-            '\\' => value.push(chars.next()?),
+            '\\' => match chars.next()? {
+                c @ ('\\' | '"' | '/') => value.push(c),
+                _ => return None,
+            },
             c => value.push(c),
         }
     }
@@ -194,27 +219,7 @@ fn run_ui_test(root: &Path, executable: &Path, log: &mut Vec<u8>) -> Step {
         .env("CARGO_PKG_NAME", "ui-tests")
         .env("CARGO_CRATE_NAME", UI_TEST)
         .env("CARGO_TARGET_TMPDIR", target_dir(root).join("tmp"));
-    run_logged("trybuild test (ui-tests/tests/ui.rs)", &mut command, log)
-}
-
-/// Runs `command` with its stdout and stderr appended to `log`; an error unless it exits with 0.
-fn run_logged(what: &str, command: &mut Command, log: &mut Vec<u8>) -> Step {
-    let start = Instant::now();
-    let output = command
-        .stdin(Stdio::null())
-        .output()
-        .map_err(|e| Failure(format!("{what}: cannot start {:?}: {e}", command.get_program())))?;
-    log.extend_from_slice(&output.stdout);
-    log.extend_from_slice(&output.stderr);
-    let line = if output.status.success() {
-        format!("xtask: {what}: done in {:.1} s\n", start.elapsed().as_secs_f64())
-    } else {
-        format!("xtask: {what}: failed ({})\n", output.status)
-    };
-    log.extend_from_slice(line.as_bytes());
-    // One line now, so the lane's progress shows among the streamed tests.
-    eprint!("{line}");
-    if output.status.success() { Ok(()) } else { Err(Failure(format!("{what} failed ({})", output.status))) }
+    run("trybuild test (ui-tests/tests/ui.rs)", &mut command, Some(log))
 }
 
 fn python_only(pytest_args: &[OsString]) -> Step {
@@ -230,8 +235,9 @@ fn python_only(pytest_args: &[OsString]) -> Step {
             "chain-sweep",
             "--bins",
         ]),
+        None,
     )?;
-    python_tests(&root, &venv, pytest_args)
+    python_tests(&root, &venv, pytest_args, None)
 }
 
 /// The virtual environment with `python/requirements-test.txt` installed; its folder.
@@ -283,19 +289,11 @@ fn prepare_venv(root: &Path) -> Step<PathBuf> {
     Ok(venv)
 }
 
-/// Build the extension (debug), then run pytest with the reference programs of `target/debug`;
-/// output streamed.
-fn python_tests(root: &Path, venv: &Path, pytest_args: &[OsString]) -> Step {
+/// Build the extension (debug), then run pytest with the reference programs of `target/debug`.
+fn python_tests(root: &Path, venv: &Path, pytest_args: &[OsString], mut log: Log) -> Step {
     let [mut maturin, mut pytest] = python_commands(root, venv, pytest_args)?;
-    run("maturin develop (the extension, debug)", &mut maturin)?;
-    run("pytest", &mut pytest)
-}
-
-/// [`python_tests`] with the output appended to `log`.
-fn python_tests_logged(root: &Path, venv: &Path, pytest_args: &[OsString], log: &mut Vec<u8>) -> Step {
-    let [mut maturin, mut pytest] = python_commands(root, venv, pytest_args)?;
-    run_logged("maturin develop (the extension, debug)", &mut maturin, log)?;
-    run_logged("pytest", &mut pytest, log)
+    run("maturin develop (the extension, debug)", &mut maturin, log.as_deref_mut())?;
+    run("pytest", &mut pytest, log)
 }
 
 /// `maturin develop` and pytest, set up to use the venv and the reference programs.
@@ -332,4 +330,19 @@ fn python_commands(root: &Path, venv: &Path, pytest_args: &[OsString]) -> Step<[
         .env("ROTOR_CHAIN_REFERENCE", debug.join("rotor-chain-reference"))
         .env("PHASE_DIAGRAM", debug.join("phase-diagram"));
     Ok([maturin, pytest])
+}
+
+#[cfg(test)]
+mod tests {
+    use super::json_string_after;
+
+    #[test]
+    fn the_executable_is_read_from_a_cargo_message() {
+        let message = r#"{"reason":"compiler-artifact","target":{"kind":["test"],"name":"ui","src_path":"/r/ui-tests/tests/ui.rs"},"executable":"/r/a \"b\"\\c\/target/debug/deps/ui-0f","fresh":true}"#;
+        let key = r#""executable":""#;
+        assert_eq!(json_string_after(message, key).as_deref(), Some(r#"/r/a "b"\c/target/debug/deps/ui-0f"#));
+        assert_eq!(json_string_after(r#"{"executable":"a\nb"}"#, key), None, "an escape not decoded");
+        assert_eq!(json_string_after(r#"{"executable":"unterminated"#, key), None);
+        assert_eq!(json_string_after(r#"{"executable":null}"#, key), None);
+    }
 }
