@@ -11,9 +11,10 @@
 //! 1. `cargo test --workspace --no-run` compiles every test target once (its diagnostics on
 //!    stderr; the list of test executables read from its JSON messages);
 //! 2. then two lanes run side by side:
-//!    - this process: `cargo test --workspace -- --exact --skip ui` (every unit, integration and
-//!      doc test except the one trybuild test, nothing left to compile), streamed;
-//!    - a second thread: the trybuild test `ui-tests/tests/ui.rs` (`ui`, compile-fail and pass
+//!    - this process: `cargo test --workspace -- --exact --skip rotor_chain_compile_time_checks`
+//!      (every unit, integration and doc test except the one trybuild test, nothing left to
+//!      compile), streamed;
+//!    - a second thread: the trybuild test `ui-tests/tests/ui.rs` (compile-fail and pass
 //!      cases, which builds in its own target folder), run as cargo would run it, then the
 //!      Python half below; their output is kept and printed when the lane ends.
 //!
@@ -111,8 +112,11 @@ fn outcome(status: std::process::ExitStatus, start: Instant) -> String {
     }
 }
 
-/// The name of the trybuild test: the one test of `ui-tests/tests/ui.rs`.
-const UI_TEST: &str = "ui";
+/// The trybuild test target, `ui-tests/tests/ui.rs`.
+const UI_TARGET: &str = "ui";
+/// Its one test function: a name no other test in the workspace may take, since lane one skips
+/// it by name (`--exact --skip`); see `ui-tests/tests/ui.rs`.
+const UI_TEST: &str = "rotor_chain_compile_time_checks";
 
 fn test(pytest_args: &[OsString]) -> Step {
     let root = root();
@@ -174,7 +178,7 @@ fn build_tests(root: &Path) -> Step<PathBuf> {
     }
     eprintln!("xtask: cargo test --workspace --no-run: done in {:.1} s", start.elapsed().as_secs_f64());
     let messages = String::from_utf8_lossy(&output.stdout);
-    let wanted = format!(r#""name":"{UI_TEST}","src_path":"#);
+    let wanted = format!(r#""name":"{UI_TARGET}","src_path":"#);
     messages
         .lines()
         .filter(|m| m.contains(r#""reason":"compiler-artifact""#) && m.contains(&wanted))
@@ -182,7 +186,7 @@ fn build_tests(root: &Path) -> Step<PathBuf> {
         .find_map(|m| json_string_after(m, r#""executable":""#))
         .map(PathBuf::from)
         .ok_or_else(|| {
-            Failure(format!("cargo built no test executable named `{UI_TEST}` (ui-tests/tests/ui.rs)"))
+            Failure(format!("cargo built no test executable named `{UI_TARGET}` (ui-tests/tests/ui.rs)"))
         })
 }
 
@@ -217,7 +221,7 @@ fn run_ui_test(root: &Path, executable: &Path, log: &mut Vec<u8>) -> Step {
         .env("CARGO_MANIFEST_DIR", &package)
         .env("CARGO_MANIFEST_PATH", package.join("Cargo.toml"))
         .env("CARGO_PKG_NAME", "ui-tests")
-        .env("CARGO_CRATE_NAME", UI_TEST)
+        .env("CARGO_CRATE_NAME", UI_TARGET)
         .env("CARGO_TARGET_TMPDIR", target_dir(root).join("tmp"));
     run("trybuild test (ui-tests/tests/ui.rs)", &mut command, Some(log))
 }
