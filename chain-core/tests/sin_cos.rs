@@ -108,6 +108,30 @@ fn special_and_large_angles_give_exactly_the_scalar_result() {
     }
 }
 
+/// Signed zeros and tiny angles among ordinary ones (so their vector takes the short path, not
+/// the careful one that NaN or huge lanes send it to): `sin(-0)` is `-0`, `sin(+0)` is `+0`, and
+/// a tiny angle's sine is the angle itself, with its sign, as the scalar path gives.
+#[test]
+fn signed_zeros_and_tiny_angles_keep_their_sign_among_ordinary_angles() {
+    let tiny = [-0.0, 0.0, -5e-324, 5e-324, -1e-300, 1e-300, -f64::MIN_POSITIVE, 1e-20, -1e-20];
+    for shift in 0..8 {
+        let mut theta: Vec<f64> = (0..24).map(|i| 0.37 * i as f64 - 3.0).collect();
+        for (j, &x) in tiny.iter().enumerate() {
+            theta[(shift + 2 * j) % 24] = x;
+        }
+        for level in levels() {
+            let (sin, cos) = at_level(level, &theta);
+            for (i, &x) in theta.iter().enumerate() {
+                if !tiny.iter().any(|t| t.to_bits() == x.to_bits()) {
+                    continue;
+                }
+                assert_eq!(sin[i].to_bits(), x.to_bits(), "{}: sin({x:e}) = {:e}", level.name(), sin[i]);
+                assert_eq!(cos[i], 1.0, "{}: cos({x:e})", level.name());
+            }
+        }
+    }
+}
+
 #[test]
 fn an_angle_gets_the_same_result_in_every_position() {
     let theta: Vec<f64> = (0..37).map(|i| 0.58 * (0.3 * i as f64).cos() + 0.01 * i as f64).collect();

@@ -309,6 +309,10 @@ impl Trig for F64x4 {
         }
     }
     #[inline(always)]
+    fn or_sign(h: F64x4, s: F64x4) -> F64x4 {
+        unsafe { F64x4(_mm256_or_pd(s.0, _mm256_and_pd(h.0, _mm256_set1_pd(-0.0)))) }
+    }
+    #[inline(always)]
     fn keep_zero(x: F64x4, s: F64x4) -> F64x4 {
         unsafe {
             let zero = _mm256_cmp_pd::<_CMP_EQ_OQ>(x.0, _mm256_setzero_pd());
@@ -402,6 +406,17 @@ impl Trig for F64x8 {
                 F64x8(_mm512_castsi512_pd(_mm512_xor_si512(sin, sin_sign))),
                 F64x8(_mm512_castsi512_pd(_mm512_xor_si512(cos, cos_sign))),
             )
+        }
+    }
+    #[inline(always)]
+    fn or_sign(h: F64x8, s: F64x8) -> F64x8 {
+        unsafe {
+            // s | (h & sign) in one instruction (truth table 0xF8 = A | (B & C)).
+            F64x8(_mm512_castsi512_pd(_mm512_ternarylogic_epi64::<0xF8>(
+                _mm512_castpd_si512(s.0),
+                _mm512_castpd_si512(h.0),
+                _mm512_set1_epi64(i64::MIN),
+            )))
         }
     }
     #[inline(always)]
