@@ -156,8 +156,11 @@ impl<'a> Angles<'a> {
             let end = (i + TRIG_CHUNK).min(n);
             simd::sin_cos_lanes::<V>(&self.theta[i..end], &mut self.sin.0, &mut self.cos.0);
         }
-        let j = i - self.start;
-        (V::load(&self.sin.0[j..]), V::load(&self.cos.0[j..]))
+        // `i` and `start` are multiples of `V::LANES` and `TRIG_CHUNK` is one too, so `j <=
+        // TRIG_CHUNK - V::LANES` already; the `min` (a conditional move) tells the compiler, which
+        // then drops the bounds checks (they cost as much as the loads they guard).
+        let j = (i - self.start).min(TRIG_CHUNK - V::LANES);
+        (V::load(&self.sin.0[j..j + V::LANES]), V::load(&self.cos.0[j..j + V::LANES]))
     }
 }
 
@@ -196,13 +199,18 @@ fn stream<V: Vector, K: SpringFn<M>, const M: usize>(
         let (s_next, c_next) = angles.group::<V>(p + V::LANES);
         let (s2, c2) = (s1.next_lane(s_next), c1.next_lane(c_next));
         let [a, r1, r2, k, l0] = match (&slices, &uniform) {
-            (Some(s), _) if rest == V::LANES => [
-                V::splat(s.a),
-                V::load(&s.rotor_lengths[p..]),
-                V::load(&s.rotor_lengths[p + 1..]),
-                V::load(&s.stiffness[p..]),
-                V::load(&s.rest_lengths[p..]),
-            ],
+            // SAFETY: a full group, `p + V::LANES <= m`, and the slices' lengths (`n`, `m`, `m`)
+            // were asserted above. Unchecked because the checks (two per load) were 10 % of the
+            // kernel's time (docs/benchmarks.md, fourth round).
+            (Some(s), _) if rest == V::LANES => unsafe {
+                [
+                    V::splat(s.a),
+                    V::load(s.rotor_lengths.get_unchecked(p..p + V::LANES)),
+                    V::load(s.rotor_lengths.get_unchecked(p + 1..p + 1 + V::LANES)),
+                    V::load(s.stiffness.get_unchecked(p..p + V::LANES)),
+                    V::load(s.rest_lengths.get_unchecked(p..p + V::LANES)),
+                ]
+            },
             (Some(s), _) => [
                 V::splat(s.a),
                 V::load_partial(&s.rotor_lengths[p..p + rest]),
@@ -246,7 +254,7 @@ fn gather<V: Vector>(springs: &impl Springs, p: usize, count: usize) -> [V; 5] {
 #[inline(always)]
 fn put<V: Vector>(v: V, out: &mut [f64], p: usize, count: usize) {
     if count == V::LANES {
-        v.store(&mut out[p..]);
+        v.store(&mut out[p..p + V::LANES]);
     } else {
         v.store_partial(&mut out[p..p + count]);
     }

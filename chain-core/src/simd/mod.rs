@@ -328,10 +328,11 @@ pub(crate) fn sin_cos_loop<V: Vector>(theta: &[f64], sin: &mut [f64], cos: &mut 
     let n = theta.len();
     let (sin, cos) = (&mut sin[..n], &mut cos[..n]);
     let mut i = 0;
+    // Ranges of exactly `V::LANES` under the loop's condition: the compiler drops their checks.
     while i + V::LANES <= n {
-        let (s, c) = V::load(&theta[i..]).sin_cos();
-        s.store(&mut sin[i..]);
-        c.store(&mut cos[i..]);
+        let (s, c) = V::load(&theta[i..i + V::LANES]).sin_cos();
+        s.store(&mut sin[i..i + V::LANES]);
+        c.store(&mut cos[i..i + V::LANES]);
         i += V::LANES;
     }
     if i < n {
