@@ -291,7 +291,7 @@ struct FusedBodies {
     energy_gradient_stiffness: Option<TokenStream>,
     /// `#[inline]` on the inherent methods: the looped ones are thin wrappers that return arrays
     /// by value, and inlined into the caller they build those arrays in its frame instead of
-    /// copying them there (about 30 ns of 290 for 60 rotors' energy, gradient and stiffness).
+    /// copying them there (the by-value return measured about 30 ns of 290 for 60 rotors).
     inline: bool,
 }
 
