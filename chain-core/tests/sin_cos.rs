@@ -71,6 +71,16 @@ fn the_reference_is_right_where_the_answer_is_known() {
     assert_eq!(ulp::ulps(-5e-324, 5e-324), 2);
 }
 
+/// 24 ordinary angles in [-3, 5.5] with `values` (at most 12) put at every other position from
+/// `shift`: so across shifts 0..8 each value sits in every lane of a vector.
+fn among_ordinary_angles(values: &[f64], shift: usize) -> Vec<f64> {
+    let mut theta: Vec<f64> = (0..24).map(|i| 0.37 * i as f64 - 3.0).collect();
+    for (j, &x) in values.iter().enumerate() {
+        theta[(shift + 2 * j) % 24] = x;
+    }
+    theta
+}
+
 #[test]
 fn special_and_large_angles_give_exactly_the_scalar_result() {
     let l = VECTOR_SIN_COS_LIMIT;
@@ -88,12 +98,8 @@ fn special_and_large_angles_give_exactly_the_scalar_result() {
         -1e300,
         f64::MAX,
     ];
-    // Mixed with ordinary angles, in every position of a vector.
     for shift in 0..8 {
-        let mut theta: Vec<f64> = (0..24).map(|i| 0.37 * i as f64 - 3.0).collect();
-        for (j, &x) in special.iter().enumerate() {
-            theta[(shift + 2 * j) % 24] = x;
-        }
+        let theta = among_ordinary_angles(&special, shift);
         for level in levels() {
             let (sin, cos) = at_level(level, &theta);
             for (i, &x) in theta.iter().enumerate() {
@@ -115,10 +121,7 @@ fn special_and_large_angles_give_exactly_the_scalar_result() {
 fn signed_zeros_and_tiny_angles_keep_their_sign_among_ordinary_angles() {
     let tiny = [-0.0, 0.0, -5e-324, 5e-324, -1e-300, 1e-300, -f64::MIN_POSITIVE, 1e-20, -1e-20];
     for shift in 0..8 {
-        let mut theta: Vec<f64> = (0..24).map(|i| 0.37 * i as f64 - 3.0).collect();
-        for (j, &x) in tiny.iter().enumerate() {
-            theta[(shift + 2 * j) % 24] = x;
-        }
+        let theta = among_ordinary_angles(&tiny, shift);
         for level in levels() {
             let (sin, cos) = at_level(level, &theta);
             for (i, &x) in theta.iter().enumerate() {

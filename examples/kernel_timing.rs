@@ -4,17 +4,22 @@
 //! at AVX2 and AVX-512 when the machine has them, beside the scalar floor of `benches/`.
 //!
 //! ```sh
-//! cargo run --release -p chain-core --example kernel_timing
+//! cargo run --release --example kernel_timing
 //! ```
 //!
 //! Not a benchmark of record (those are `cargo bench --bench simd`): a quick check that a number
 //! seen in the benchmark binary is the code's and not its placement.
 
-use chain_core::dynamics::integrate::{State, VerletOptions, verlet::Stepper};
-use chain_core::simd::{self, Level};
-use chain_core::{ChainModel, RuntimeChain, math};
+#[path = "../benches/support/mod.rs"]
+mod support;
+
+use rotor_chain::dynamics::integrate::{State, VerletOptions, verlet::Stepper};
+use rotor_chain::math;
+use rotor_chain::prelude::*;
+use rotor_chain::simd::{self, Level};
 use std::hint::black_box;
 use std::time::Instant;
+use support::{N, configuration, transcendental_floor};
 
 /// The smallest of 15 medians, in ns per call.
 fn time(mut f: impl FnMut()) -> f64 {
@@ -35,25 +40,13 @@ fn time(mut f: impl FnMut()) -> f64 {
     best
 }
 
-/// 60 scalar `sin_cos` and 59 `sqrt`: the floor of `benches/support/mod.rs`.
-fn floor(theta: &[f64]) -> f64 {
-    let (mut s1, mut c1) = math::sin_cos(theta[0]);
-    let mut total = s1 + c1;
-    for &next in &theta[1..] {
-        let (s2, c2) = math::sin_cos(next);
-        total += s2 + c2 + f64::sqrt(2.0 + s1 * c2 - c1 * s2);
-        (s1, c1) = (s2, c2);
-    }
-    total
-}
-
 fn main() {
-    let n = 60;
-    let theta: Vec<f64> =
-        (0..n).map(|i| 0.58 * (0.3 * i as f64).cos() + 0.01 * (1.7 * i as f64 + 0.2).sin()).collect();
+    let n = N;
+    let angles = configuration();
+    let theta = angles.to_vec();
     let chain = RuntimeChain::builder(n, 0.8, 1.0e4, 0.58).build().expect("valid parameters");
     let fl = time(|| {
-        black_box(floor(black_box(&theta)));
+        black_box(transcendental_floor(black_box(&angles)));
     });
     println!("scalar floor: {fl:.1} ns");
     println!("| level | sin_cos of 60 | spring lengths | E + g | E + g + K | Verlet step |");
