@@ -289,10 +289,6 @@ fn fused_outputs(
 struct FusedBodies {
     energy_and_gradient: Option<TokenStream>,
     energy_gradient_stiffness: Option<TokenStream>,
-    /// `#[inline]` on the inherent methods: the looped ones are thin wrappers that return arrays
-    /// by value, and inlined into the caller they build those arrays in its frame instead of
-    /// copying them there (the by-value return measured about 30 ns of 290 for 60 rotors).
-    inline: bool,
 }
 
 /// Whether the fused methods fit [`STACK_BUDGET`]: energy and gradient as an array, energy,
@@ -307,7 +303,6 @@ fn unrolled_fused_bodies(n: usize, g: &Graph, out: &ChainOutputs) -> FusedBodies
     let shape =
         |stiffness| Shape::Fused { energy_partial: &out.energy_partial, gradient: &out.gradient, stiffness };
     FusedBodies {
-        inline: false,
         energy_and_gradient: eg.then(|| unrolled_body(g, out, shape(None), Float::F64)),
         energy_gradient_stiffness: egk
             .then(|| unrolled_body(g, out, shape(Some((&out.hessian_diag, &out.hessian_off))), Float::F64)),
@@ -363,22 +358,22 @@ fn looped_fused_bodies(model: &Model) -> (FusedBodies, TokenStream) {
     let t = quote!(#p::ChainModel);
     let (fits_eg, fits_egk) = fused_fit(n);
     let bodies = FusedBodies {
-        inline: true,
+        // One local, the result itself, filled in place (as `looped_bodies` does): separate
+        // locals gathered into a tuple at the end were copied into it.
         energy_and_gradient: fits_eg.then(|| {
             quote!({
-                let mut grad = [0.0f64; #n];
-                let energy = #t::energy_and_gradient_into(self, theta, &mut grad);
-                (energy, grad)
+                let mut result = (0.0f64, [0.0f64; #n]);
+                result.0 = #t::energy_and_gradient_into(self, theta, &mut result.1);
+                result
             })
         }),
         energy_gradient_stiffness: fits_egk.then(|| {
             quote!({
-                let mut grad = [0.0f64; #n];
-                let mut stiffness = #p::Tridiagonal::new([0.0f64; #n], [0.0f64; #m]);
-                let energy = #t::energy_gradient_stiffness_into(
-                    self, theta, &mut grad, &mut stiffness.diag, &mut stiffness.off,
+                let mut result = (0.0f64, [0.0f64; #n], #p::Tridiagonal::new([0.0f64; #n], [0.0f64; #m]));
+                result.0 = #t::energy_gradient_stiffness_into(
+                    self, theta, &mut result.1, &mut result.2.diag, &mut result.2.off,
                 );
-                (energy, grad, stiffness)
+                result
             })
         }),
     };
@@ -388,13 +383,11 @@ fn looped_fused_bodies(model: &Model) -> (FusedBodies, TokenStream) {
 /// The inherent fused methods' items.
 fn fused_methods(n: usize, m: usize, bodies: FusedBodies, doc_strategy: &str) -> TokenStream {
     let p = private();
-    let inline = bodies.inline.then(|| quote!(#[inline]));
     let eg = bodies.energy_and_gradient.map(|body| {
         quote! {
             /// The energy and its gradient in one pass, each angle's `sin_cos` and each spring's
             /// length computed once: `(V, dV/dtheta)`.
             #[doc = #doc_strategy]
-            #inline
             pub fn energy_and_gradient(&self, theta: &[f64; #n]) -> (f64, [f64; #n]) #body
         }
     });
@@ -403,7 +396,6 @@ fn fused_methods(n: usize, m: usize, bodies: FusedBodies, doc_strategy: &str) ->
             /// The energy, its gradient and the tridiagonal tangent stiffness in one pass:
             /// `(V, dV/dtheta, d2V/dtheta2)` (paper Eq. `eq:prestress8`).
             #[doc = #doc_strategy]
-            #inline
             pub fn energy_gradient_stiffness(&self, theta: &[f64; #n]) -> (f64, [f64; #n], #p::Tridiagonal<#n, #m>) #body
         }
     });
