@@ -159,6 +159,7 @@ impl<'a> Angles<'a> {
         // `i` and `start` are multiples of `V::LANES` and `TRIG_CHUNK` is one too, so `j <=
         // TRIG_CHUNK - V::LANES` already; the `min` (a conditional move) tells the compiler, which
         // then drops the bounds checks (they cost as much as the loads they guard).
+        debug_assert!(i - self.start <= TRIG_CHUNK - V::LANES, "groups start at multiples of the lane count");
         let j = (i - self.start).min(TRIG_CHUNK - V::LANES);
         (V::load(&self.sin.0[j..j + V::LANES]), V::load(&self.cos.0[j..j + V::LANES]))
     }

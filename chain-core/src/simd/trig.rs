@@ -65,15 +65,17 @@ pub(crate) trait Trig: Vector {
     /// Whether any lane is NaN, infinite or beyond [`LIMIT`].
     fn any_outside(x: Self) -> bool;
     /// Whether any lane of `x` needs [`careful`]: NaN, infinite or beyond [`LIMIT`], or a
-    /// short-reduction remainder `hi` with `|hi| < TINY` near a non-zero multiple of `pi/2`
-    /// (`hi != x`). Near 0 (`k = 0`, so `hi == x` and the error term is exactly 0) the short
-    /// reduction is exact, so zero padding lanes and small angles stay on the fast path.
+    /// short-path remainder `hi` with `|hi| < TINY` near a non-zero multiple of `pi/2`
+    /// (`hi != x`). Near 0 (`k = 0`, so `hi == x`) the remainder is exact, so zero padding lanes
+    /// and small angles stay on the short path.
     fn unusual(x: Self, hi: Self) -> bool;
     /// [`careful`] compiled once for the level (a cold call, not inlined into every loop).
     fn careful(x: Self) -> (Self, Self);
 }
 
-/// Below this `|hi|` the short reduction's error term is not provably exact (module doc).
+/// Below this `|hi|` (and `k != 0`) the short path's remainder, one double without `k P3`, is no
+/// longer within a small fraction of an ulp of the true one: such lanes take [`careful`] (module
+/// doc).
 pub(crate) const TINY: f64 = 1.0 / 268_435_456.0; // 2^-28
 
 /// `1.5 * 2^52`: adding it rounds a number below `2^51` to an integer in the low mantissa bits.

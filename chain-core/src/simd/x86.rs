@@ -346,13 +346,18 @@ impl Trig for F64x4 {
 }
 
 impl F64x8 {
+    /// Lanes `i < len` set (`len <= 8`).
+    #[inline(always)]
+    fn lane_mask(len: usize) -> __mmask8 {
+        ((1u32 << len) - 1) as u8
+    }
     #[inline(always)]
     unsafe fn masked_load(p: *const f64, len: usize) -> __m512d {
-        unsafe { _mm512_maskz_loadu_pd(((1u32 << len) - 1) as u8, p) }
+        unsafe { _mm512_maskz_loadu_pd(F64x8::lane_mask(len), p) }
     }
     #[inline(always)]
     unsafe fn masked_store(self, p: *mut f64, len: usize) {
-        unsafe { _mm512_mask_storeu_pd(p, ((1u32 << len) - 1) as u8, self.0) }
+        unsafe { _mm512_mask_storeu_pd(p, F64x8::lane_mask(len), self.0) }
     }
     /// `[self_1, ..., self_7, next_0]`.
     #[inline(always)]
@@ -376,7 +381,7 @@ impl F64x8 {
     }
     #[inline(always)]
     fn masked(self, count: usize) -> F64x8 {
-        F64x8(unsafe { _mm512_maskz_mov_pd(((1u32 << count) - 1) as u8, self.0) })
+        F64x8(unsafe { _mm512_maskz_mov_pd(F64x8::lane_mask(count), self.0) })
     }
     #[inline(always)]
     fn xor_bits(self, bits: i64) -> F64x8 {
