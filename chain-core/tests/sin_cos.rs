@@ -148,6 +148,35 @@ fn an_angle_gets_the_same_result_in_every_position() {
     }
 }
 
+/// The careful path of a vector with one unusual lane (NaN, infinite, huge, or within 2^-28 of a
+/// nonzero multiple of pi/2) leaves the other lanes as the short path has them: an ordinary
+/// angle's result does not depend on its neighbours (batches laid back to back rely on it).
+#[test]
+fn an_unusual_angle_leaves_its_neighbours_as_they_are_alone() {
+    let near_half_pi = f64::from_bits(core::f64::consts::FRAC_PI_2.to_bits() + 1);
+    for unusual in [f64::NAN, f64::INFINITY, -1.0e300, 3.0e7, near_half_pi, -3.0 * near_half_pi] {
+        for shift in 0..8 {
+            let theta = among_ordinary_angles(&[unusual], shift);
+            for level in levels() {
+                let (sin, cos) = at_level(level, &theta);
+                for (i, &x) in theta.iter().enumerate() {
+                    let (s, c) = at_level(level, &[x]);
+                    assert!(
+                        sin[i].to_bits() == s[0].to_bits() || (sin[i].is_nan() && s[0].is_nan()),
+                        "{}: sin({x:e}) beside {unusual:e}",
+                        level.name()
+                    );
+                    assert!(
+                        cos[i].to_bits() == c[0].to_bits() || (cos[i].is_nan() && c[0].is_nan()),
+                        "{}: cos({x:e}) beside {unusual:e}",
+                        level.name()
+                    );
+                }
+            }
+        }
+    }
+}
+
 #[test]
 fn forcing_an_unsupported_level_is_refused_and_the_scalar_level_is_the_math_function() {
     for level in Level::ALL {

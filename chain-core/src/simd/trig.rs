@@ -102,14 +102,28 @@ const C6: f64 = f64::from_bits(0xBDA8_FAE9_BE88_38D4);
 /// Sine and cosine of every lane of `x`.
 #[inline(always)]
 pub(crate) fn sin_cos<V: Trig>(x: V) -> (V, V) {
+    let (t, hi) = reduce(x);
+    if V::unusual(x, hi) {
+        return V::careful(x);
+    }
+    polynomials(t, hi)
+}
+
+/// The short path's reduction: `t = x 2/pi + 1.5 * 2^52` (the quadrant in its low bits) and the
+/// remainder `hi` in one double.
+#[inline(always)]
+fn reduce<V: Trig>(x: V) -> (V, V) {
     let sp = V::splat;
     let t = x.mul_add(sp(FRAC_2_PI), sp(ROUND));
     let k = t - sp(ROUND);
     let r1 = (-k).mul_add(sp(P1), x);
-    let hi = (-k).mul_add(sp(P2), r1);
-    if V::unusual(x, hi) {
-        return V::careful(x);
-    }
+    (t, (-k).mul_add(sp(P2), r1))
+}
+
+/// The short path's sine and cosine of the remainder `hi`, put in quadrant `t`.
+#[inline(always)]
+fn polynomials<V: Trig>(t: V, hi: V) -> (V, V) {
+    let sp = V::splat;
     let z = hi * hi;
     let ps =
         z.mul_add(z.mul_add(z.mul_add(z.mul_add(z.mul_add(sp(S6), sp(S5)), sp(S4)), sp(S3)), sp(S2)), sp(S1));
@@ -125,11 +139,40 @@ pub(crate) fn sin_cos<V: Trig>(x: V) -> (V, V) {
 }
 
 /// Every lane of `x` exactly, however near a multiple of `pi/2`: the double-double reduction,
-/// and the scalar `sin_cos` for lanes beyond [`LIMIT`], NaN and the infinities.
+/// and the scalar `sin_cos` for lanes beyond [`LIMIT`], NaN and the infinities. The lanes that
+/// did not need it keep the short path's values, so an angle's sine and cosine never depend on
+/// the angles beside it in a vector (a batch of configurations laid back to back gets what each
+/// configuration gets alone).
 #[inline(always)]
 pub(crate) fn careful<V: Trig>(x: V) -> (V, V) {
     let (s, c) = reduced(x);
-    if V::any_outside(x) { scalar_lanes(x, s, c) } else { (s, c) }
+    let careful = if V::any_outside(x) { scalar_lanes(x, s, c) } else { (s, c) };
+    let (t, hi) = reduce(x);
+    usual_lanes(x, hi, careful, polynomials(t, hi))
+}
+
+/// Whether one lane needs [`careful`]: the lane test of [`Trig::unusual`].
+fn is_unusual(x: f64, hi: f64) -> bool {
+    // NaN is outside: `contains` is false for it, as `Trig::unusual`'s unordered compare is true.
+    !(-LIMIT..=LIMIT).contains(&x) || (hi.abs() < TINY && hi != x)
+}
+
+/// `careful` in the lanes that need it ([`is_unusual`]), `short` in the others (cold: a vector
+/// gets here only with an unusual lane).
+#[cold]
+#[inline(never)]
+fn usual_lanes<V: Trig>(x: V, hi: V, careful: (V, V), short: (V, V)) -> (V, V) {
+    let mut lanes = [[0.0; 8]; 6];
+    for (l, v) in lanes.iter_mut().zip([x, hi, careful.0, careful.1, short.0, short.1]) {
+        v.store(l);
+    }
+    let [xs, his, mut ss, mut cs, short_s, short_c] = lanes;
+    for j in 0..V::LANES {
+        if !is_unusual(xs[j], his[j]) {
+            (ss[j], cs[j]) = (short_s[j], short_c[j]);
+        }
+    }
+    (V::load(&ss), V::load(&cs))
 }
 
 /// The double-double reduction and fdlibm's kernels, for lanes inside the limit (assuming every
