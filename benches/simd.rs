@@ -353,3 +353,12 @@ fn batch_one_by_one_1024(bencher: Bencher) {
         }
     });
 }
+
+/// The same 1024 gradients on one core as one long chain (`ChainModel::batch_gradient_into`:
+/// the configurations back to back, the springs joining them dropped), detected level.
+#[divan::bench]
+fn batch_back_to_back_1024(bencher: Bencher) {
+    let (c, thetas) = (chain(N), batch_angles());
+    let mut g = vec![0.0; BATCH * N];
+    bencher.bench_local(|| black_box(&c).batch_gradient_into(black_box(&thetas), &mut g));
+}

@@ -82,6 +82,42 @@ pub trait ChainModel {
         self.energy(theta)
     }
 
+    /// The gradients of many configurations laid back to back (`thetas` holds `count * n`
+    /// angles, configuration after configuration), into `out` laid out the same way: each as
+    /// [`ChainModel::gradient_into`] gives it. The default evaluates them one by one;
+    /// [`crate::RuntimeChain`] streams them through its vector loop as one long chain, which
+    /// saves the loop's start and end per configuration (`crate::batch`, docs/benchmarks.md).
+    ///
+    /// # Panics
+    /// If `thetas` is not a whole number of configurations or `out` is not as long.
+    fn batch_gradient_into(&self, thetas: &[f64], out: &mut [f64]) {
+        let n = self.rotor_count();
+        assert!(n > 0 && thetas.len().is_multiple_of(n), "whole configurations");
+        assert_eq!(out.len(), thetas.len(), "one gradient entry per angle");
+        for (t, g) in thetas.chunks(n).zip(out.chunks_mut(n)) {
+            self.gradient_into(t, g);
+        }
+    }
+
+    /// The energies (one per configuration, into `energies`) and gradients of many
+    /// configurations laid back to back, as [`ChainModel::batch_gradient_into`]. The default
+    /// evaluates them one by one; [`crate::RuntimeChain`] as one long chain, whose energies then
+    /// agree with [`ChainModel::energy_and_gradient_into`]'s to rounding (their terms are summed
+    /// in another order) and whose gradients are the same.
+    ///
+    /// # Panics
+    /// As [`ChainModel::batch_gradient_into`], or if `energies` does not have one entry per
+    /// configuration.
+    fn batch_energy_and_gradient_into(&self, thetas: &[f64], energies: &mut [f64], out: &mut [f64]) {
+        let n = self.rotor_count();
+        assert!(n > 0 && thetas.len().is_multiple_of(n), "whole configurations");
+        assert_eq!(out.len(), thetas.len(), "one gradient entry per angle");
+        assert_eq!(energies.len(), thetas.len() / n, "one energy per configuration");
+        for ((t, g), e) in thetas.chunks(n).zip(out.chunks_mut(n)).zip(energies) {
+            *e = self.energy_and_gradient_into(t, g);
+        }
+    }
+
     /// The material part `sum_p g^_p a_p a_p^T` of the tangent stiffness (paper Appendix D), with
     /// `a_p = dl_p/dtheta` (the paper's `a_p` is per tip displacement `r theta`: ours is `r` times it).
     fn material_stiffness_into(&self, theta: &[f64], diag: &mut [f64], off: &mut [f64]);

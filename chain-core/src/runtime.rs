@@ -107,6 +107,65 @@ impl RuntimeChain {
         }
     }
 
+    /// The parameters of `count` copies of the chain back to back (for [`kernel::BackToBack`]):
+    /// rotor lengths repeated, and the chain's springs followed by a joining spring (stiffness 0,
+    /// its outputs dropped by the drivers) after every copy but the last.
+    fn tiled(&self, count: usize) -> [Vec<f64>; 3] {
+        let joined = |values: &[f64], join: f64| {
+            let mut tiled = Vec::with_capacity(count * (values.len() + 1));
+            for c in 0..count {
+                tiled.extend_from_slice(values);
+                if c + 1 < count {
+                    tiled.push(join);
+                }
+            }
+            tiled
+        };
+        let l0 = self.rest_lengths.first().copied().unwrap_or(1.0);
+        [self.rotor_lengths.repeat(count), joined(&self.stiffness, 0.0), joined(&self.rest_lengths, l0)]
+    }
+
+    /// The gradients (and, with `energies`, the energies) of whole configurations laid back to
+    /// back, driven as one long chain ([`kernel::BackToBack`]) in blocks of about
+    /// [`BATCH_ROTORS`] rotors, so that the tiled parameters stay in the L1 cache.
+    fn batch(&self, thetas: &[f64], out: &mut [f64], mut energies: Option<&mut [f64]>) {
+        let n = self.rotor_count();
+        assert!(thetas.len().is_multiple_of(n), "whole configurations");
+        assert_eq!(out.len(), thetas.len(), "one gradient entry per angle");
+        if let Some(e) = &energies {
+            assert_eq!(e.len(), thetas.len() / n, "one energy per configuration");
+        }
+        let per_block = (BATCH_ROTORS / n).clamp(1, (thetas.len() / n).max(1));
+        let [rotor_lengths, stiffness, rest_lengths] = self.tiled(per_block);
+        for (b, (t, g)) in thetas.chunks(per_block * n).zip(out.chunks_mut(per_block * n)).enumerate() {
+            let m = t.len() - 1;
+            let springs = kernel::BackToBack {
+                springs: kernel::SpringSlices {
+                    a: self.a,
+                    rotor_lengths: &rotor_lengths[..t.len()],
+                    stiffness: &stiffness[..m],
+                    rest_lengths: &rest_lengths[..m],
+                },
+                rotors: n,
+            };
+            match (energies.as_deref_mut(), self.law) {
+                (Some(e), law) => {
+                    let e = &mut e[b * per_block..b * per_block + t.len() / n];
+                    match law {
+                        Law::Harmonic => kernel::energies_and_gradients::<kernel::harmonic::EnergyGradient>(
+                            t, springs, e, g,
+                        ),
+                        Law::Quartic => kernel::energies_and_gradients::<kernel::quartic::EnergyGradient>(
+                            t, springs, e, g,
+                        ),
+                    };
+                }
+                (None, Law::Harmonic) => kernel::assemble_pairs::<kernel::harmonic::Gradient>(t, springs, g),
+                (None, Law::Quartic) => kernel::assemble_pairs::<kernel::quartic::Gradient>(t, springs, g),
+            }
+        }
+    }
+
     fn check_len(&self, theta: &[f64]) {
         assert_eq!(theta.len(), self.rotor_lengths.len(), "theta must have one angle per rotor");
     }
@@ -123,6 +182,11 @@ macro_rules! with_law {
         }
     }};
 }
+
+/// Rotors per block of a batch ([`RuntimeChain::batch`]): long enough that the loop's start and
+/// end are a small part of it, short enough that its tiled parameters (24 bytes per rotor) stay
+/// in the L1 cache.
+const BATCH_ROTORS: usize = 1024;
 
 impl ChainModel for RuntimeChain {
     fn rotor_count(&self) -> usize {
@@ -161,6 +225,14 @@ impl ChainModel for RuntimeChain {
 
     fn energy_and_gradient_into(&self, theta: &[f64], out: &mut [f64]) -> f64 {
         with_law!(self, theta, energy_and_gradient, EnergyGradient, out)
+    }
+
+    fn batch_gradient_into(&self, thetas: &[f64], out: &mut [f64]) {
+        self.batch(thetas, out, None);
+    }
+
+    fn batch_energy_and_gradient_into(&self, thetas: &[f64], energies: &mut [f64], out: &mut [f64]) {
+        self.batch(thetas, out, Some(energies));
     }
 
     fn energy_gradient_stiffness_into(

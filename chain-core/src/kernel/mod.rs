@@ -59,6 +59,11 @@ pub trait Springs {
     fn uniform(&self) -> Option<([f64; 5], &[usize])> {
         None
     }
+    /// Rotors per chain when the angles hold several chains of the same kind back to back (see
+    /// [`BackToBack`]); `None` for one chain.
+    fn chain_rotors(&self) -> Option<usize> {
+        None
+    }
 }
 
 impl<F: Fn(usize) -> [f64; 5]> Springs for F {
@@ -117,6 +122,39 @@ impl<F: Fn(usize) -> [f64; 5]> Springs for UniformSprings<'_, F> {
     }
 }
 
+/// Several chains of `rotors` rotors each, their angles back to back in one slice (a batch of
+/// configurations), driven as one long chain so that the vector loop runs without a break at
+/// the ends of each configuration. `springs` describes the long chain: its spring `p` with
+/// `p % rotors == rotors - 1` joins two configurations and belongs to neither; the drivers drop
+/// its outputs (its lanes are zeroed whatever they hold, NaN included), so every configuration
+/// gets exactly the sums it gets alone. Per-spring outputs read `0` at those springs.
+#[derive(Clone, Copy, Debug)]
+pub struct BackToBack<S> {
+    /// The parameters of the long chain (those of the joining springs are read but not used).
+    pub springs: S,
+    /// Rotors per configuration (at least 1).
+    pub rotors: usize,
+}
+
+impl<S: Springs> Springs for BackToBack<S> {
+    #[inline(always)]
+    fn params(&self, p: usize) -> [f64; 5] {
+        self.springs.params(p)
+    }
+    #[inline(always)]
+    fn slices(&self) -> Option<SpringSlices<'_>> {
+        self.springs.slices()
+    }
+    #[inline(always)]
+    fn uniform(&self) -> Option<([f64; 5], &[usize])> {
+        self.springs.uniform()
+    }
+    #[inline(always)]
+    fn chain_rotors(&self) -> Option<usize> {
+        Some(self.rotors)
+    }
+}
+
 /// Angles per refill of [`Angles`] (a multiple of every lane count).
 const TRIG_CHUNK: usize = 64;
 
@@ -166,8 +204,10 @@ impl<'a> Angles<'a> {
 }
 
 /// Evaluates `K` on every spring of the chain with angles `theta`, `V::LANES` consecutive
-/// springs at a time, and hands each group's outputs to `visit(first_spring, count, outputs)`
-/// (`count < V::LANES` only for the last group; its other lanes are padding to be ignored).
+/// springs at a time, and hands each group's outputs to `visit(first_spring, count, joins,
+/// outputs)` (`count < V::LANES` only for the last group; its other lanes are padding to be
+/// ignored). `joins` has bit `j` set if spring `first_spring + j` joins two chains laid back to
+/// back ([`BackToBack`]); those lanes of every output are already zeroed.
 ///
 /// One pass, no buffers: the right rotor's sines and cosines of a group are the left ones
 /// shifted by a lane ([`Vector::next_lane`]), so every angle's `sin_cos` is computed once and
@@ -176,7 +216,7 @@ impl<'a> Angles<'a> {
 fn stream<V: Vector, K: SpringFn<M>, const M: usize>(
     theta: &[f64],
     springs: &impl Springs,
-    mut visit: impl FnMut(usize, usize, [V; M]),
+    mut visit: impl FnMut(usize, usize, u8, [V; M]),
 ) {
     let n = theta.len();
     if n < 2 {
@@ -191,6 +231,10 @@ fn stream<V: Vector, K: SpringFn<M>, const M: usize>(
         );
     }
     let uniform = springs.uniform();
+    let rotors = springs.chain_rotors();
+    assert!(rotors.is_none_or(|r| r >= 1 && n.is_multiple_of(r)), "whole chains of at least one rotor");
+    // The next spring that joins two chains (none for one chain).
+    let mut join = rotors.map_or(usize::MAX, |r| r - 1);
     let mut exception = 0;
     let mut angles = Angles::new(theta);
     let (mut s1, mut c1) = angles.group::<V>(0);
@@ -231,7 +275,19 @@ fn stream<V: Vector, K: SpringFn<M>, const M: usize>(
             }
             (None, None) => gather::<V>(springs, p, rest),
         };
-        visit(p, rest, K::eval([s1, c1, s2, c2, a, r1, r2, k, l0]));
+        let mut y = K::eval([s1, c1, s2, c2, a, r1, r2, k, l0]);
+        let mut joins = 0u8;
+        if let Some(r) = rotors {
+            // Springs that exist: the last chain's join would lie past the last spring.
+            while join < p + rest {
+                joins |= 1 << (join - p);
+                join += r;
+            }
+            if joins != 0 {
+                y = y.map(|v| v.keep_lanes(!joins));
+            }
+        }
+        visit(p, rest, joins, y);
         (s1, c1) = (s_next, c_next);
         p += V::LANES;
     }
@@ -335,6 +391,8 @@ const NONE: usize = usize::MAX;
 /// whichever are asked for, at the kernel output positions `E`, `G` (left, right), `B` (11, 12,
 /// 22), `S`, `T` (`NONE`: not produced). Constants, so each driver compiles to only its own work.
 struct Outputs<'a, const E: usize, const G: usize, const B: usize, const S: usize, const T: usize> {
+    /// One energy per chain laid back to back, if not empty (the total is returned either way).
+    energies: &'a mut [f64],
     gradient: &'a mut [f64],
     diag: &'a mut [f64],
     off: &'a mut [f64],
@@ -346,7 +404,14 @@ impl<const E: usize, const G: usize, const B: usize, const S: usize, const T: us
     Outputs<'_, E, G, B, S, T>
 {
     fn new() -> Self {
-        Self { gradient: &mut [], diag: &mut [], off: &mut [], first: &mut [], second: &mut [] }
+        Self {
+            energies: &mut [],
+            gradient: &mut [],
+            diag: &mut [],
+            off: &mut [],
+            first: &mut [],
+            second: &mut [],
+        }
     }
 }
 
@@ -356,12 +421,31 @@ impl<const M: usize, const E: usize, const G: usize, const B: usize, const S: us
     type Output = f64;
     #[inline(always)]
     fn run<V: Vector, K: SpringFn<M>>(self, theta: &[f64], springs: &impl Springs) -> f64 {
-        let Outputs { gradient, diag, off, first: per_spring, second } = self;
+        let Outputs { energies, gradient, diag, off, first: per_spring, second } = self;
         let mut acc = V::splat(0.0);
+        let (mut total, mut chain) = (0.0, 0);
         let (mut g_sums, mut d_sums) = (RotorSums::<V>::new(), RotorSums::<V>::new());
-        stream::<V, K, M>(theta, springs, |p, count, y| {
+        stream::<V, K, M>(theta, springs, |p, count, joins, y| {
             if E != NONE {
-                acc = acc + first(y[E], count);
+                let e = first(y[E], count);
+                if joins == 0 || energies.is_empty() {
+                    acc = acc + e;
+                } else {
+                    // Each joining spring ends a chain: the lanes before it finish that chain's
+                    // sum, the lanes after it start the next one's.
+                    let (mut from, mut rest) = (0u8, joins);
+                    while rest != 0 {
+                        let j = rest.trailing_zeros();
+                        let upto = simd::first_lanes(j as usize);
+                        energies[chain] = (acc + e.keep_lanes(upto & !from)).sum();
+                        total += energies[chain];
+                        chain += 1;
+                        acc = V::splat(0.0);
+                        from = upto | 1 << j;
+                        rest &= rest - 1;
+                    }
+                    acc = e.keep_lanes(!from);
+                }
             }
             if G != NONE {
                 g_sums.add(gradient, p, count, y[G], y[G + 1]);
@@ -383,7 +467,12 @@ impl<const M: usize, const E: usize, const G: usize, const B: usize, const S: us
         if B != NONE {
             d_sums.finish(diag);
         }
-        acc.sum()
+        if energies.is_empty() {
+            return acc.sum();
+        }
+        // The last chain (no spring joins it to a next one).
+        energies[chain] = acc.sum();
+        total + energies[chain]
     }
 }
 
@@ -437,6 +526,24 @@ pub fn per_spring_pairs<K: SpringFn<2>>(
 pub fn energy_and_gradient<K: SpringFn<3>>(theta: &[f64], springs: impl Springs, out: &mut [f64]) -> f64 {
     assert_eq!(out.len(), theta.len(), "one entry per rotor");
     let outputs = Outputs::<0, 1, NONE, NONE, NONE> { gradient: out, ..Outputs::new() };
+    run::<K, 3, _>(theta, springs, outputs)
+}
+
+/// Energies and gradients of several chains laid back to back ([`BackToBack`]) in one pass (`K`
+/// returns `[E, left, right]`): one energy per chain into `energies`, the gradients into `out`;
+/// the total energy returned. Each chain's energy is summed in another order than
+/// [`energy_and_gradient`] sums it alone (its springs sit in other lanes), so the two agree to
+/// rounding, not bit for bit; the gradients are bit for bit the same.
+pub fn energies_and_gradients<K: SpringFn<3>>(
+    theta: &[f64],
+    springs: impl Springs,
+    energies: &mut [f64],
+    out: &mut [f64],
+) -> f64 {
+    assert_eq!(out.len(), theta.len(), "one entry per rotor");
+    let chains = springs.chain_rotors().map_or(1, |r| theta.len() / r.max(1));
+    assert_eq!(energies.len(), chains, "one energy per chain");
+    let outputs = Outputs::<0, 1, NONE, NONE, NONE> { energies, gradient: out, ..Outputs::new() };
     run::<K, 3, _>(theta, springs, outputs)
 }
 

@@ -238,8 +238,14 @@ pub(crate) trait Vector: Lane {
     fn next_lane(self, next: Self) -> Self;
     /// `[previous_{LANES-1}, self_0, ..., self_{LANES-2}]`: the left neighbour of every lane.
     fn previous_lane(self, previous: Self) -> Self;
+    /// The lanes whose bit is set in `lanes` (bit `i` for lane `i`), `+0` in the others (NaN
+    /// included: a dropped lane is gone, whatever it held).
+    fn keep_lanes(self, lanes: u8) -> Self;
     /// The first `count` lanes, zeros in the others.
-    fn keep_first(self, count: usize) -> Self;
+    #[inline(always)]
+    fn keep_first(self, count: usize) -> Self {
+        self.keep_lanes(first_lanes(count))
+    }
     /// Lane `i`.
     fn lane(self, i: usize) -> f64;
 }
@@ -285,13 +291,19 @@ impl Vector for f64 {
         previous
     }
     #[inline(always)]
-    fn keep_first(self, count: usize) -> f64 {
-        if count > 0 { self } else { 0.0 }
+    fn keep_lanes(self, lanes: u8) -> f64 {
+        if lanes & 1 == 1 { self } else { 0.0 }
     }
     #[inline(always)]
     fn lane(self, _i: usize) -> f64 {
         self
     }
+}
+
+/// The bits of lanes `0 .. count` (all eight from `count >= 8` on).
+#[inline(always)]
+pub(crate) fn first_lanes(count: usize) -> u8 {
+    ((1u32 << count.min(8)) - 1) as u8
 }
 
 /// Lane-generic work handed to [`dispatch`]: `run::<V>` is instantiated once per level, inside a

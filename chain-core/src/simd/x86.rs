@@ -218,8 +218,8 @@ macro_rules! vector_ops {
                 $t::shift_back(self, previous)
             }
             #[inline(always)]
-            fn keep_first(self, count: usize) -> $t {
-                $t::masked(self, count.min($n))
+            fn keep_lanes(self, lanes: u8) -> $t {
+                $t::masked(self, lanes)
             }
             #[inline(always)]
             fn lane(self, i: usize) -> f64 {
@@ -281,9 +281,14 @@ impl F64x4 {
             F64x4(_mm256_shuffle_pd::<0b0101>(middle, self.0))
         }
     }
+    /// The lanes whose bit is set in `lanes`, `+0` in the others.
     #[inline(always)]
-    fn masked(self, count: usize) -> F64x4 {
-        F64x4(unsafe { _mm256_and_pd(self.0, _mm256_castsi256_pd(F64x4::lane_mask(count))) })
+    fn masked(self, lanes: u8) -> F64x4 {
+        unsafe {
+            let bits = _mm256_setr_epi64x(1, 2, 4, 8);
+            let set = _mm256_cmpeq_epi64(_mm256_and_si256(_mm256_set1_epi64x(i64::from(lanes)), bits), bits);
+            F64x4(_mm256_and_pd(self.0, _mm256_castsi256_pd(set)))
+        }
     }
 }
 
@@ -349,7 +354,7 @@ impl F64x8 {
     /// Lanes `i < len` set (`len <= 8`).
     #[inline(always)]
     fn lane_mask(len: usize) -> __mmask8 {
-        ((1u32 << len) - 1) as u8
+        super::first_lanes(len)
     }
     #[inline(always)]
     unsafe fn masked_load(p: *const f64, len: usize) -> __m512d {
@@ -379,9 +384,10 @@ impl F64x8 {
             )))
         }
     }
+    /// The lanes whose bit is set in `lanes`, `+0` in the others.
     #[inline(always)]
-    fn masked(self, count: usize) -> F64x8 {
-        F64x8(unsafe { _mm512_maskz_mov_pd(F64x8::lane_mask(count), self.0) })
+    fn masked(self, lanes: u8) -> F64x8 {
+        F64x8(unsafe { _mm512_maskz_mov_pd(lanes, self.0) })
     }
     #[inline(always)]
     fn xor_bits(self, bits: i64) -> F64x8 {
