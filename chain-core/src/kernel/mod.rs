@@ -127,7 +127,8 @@ impl<F: Fn(usize) -> [f64; 5]> Springs for UniformSprings<'_, F> {
 /// the ends of each configuration. `springs` describes the long chain: its spring `p` with
 /// `p % rotors == rotors - 1` joins two configurations and belongs to neither; the drivers drop
 /// its outputs (its lanes are zeroed whatever they hold, NaN included), so every configuration
-/// gets exactly the sums it gets alone. Per-spring outputs read `0` at those springs.
+/// gets exactly the sums it gets alone (a zero's sign aside: `0 + -0` is `+0`). Per-spring
+/// outputs read `0` at those springs.
 #[derive(Clone, Copy, Debug)]
 pub struct BackToBack<S> {
     /// The parameters of the long chain (those of the joining springs are read but not used).
