@@ -64,11 +64,11 @@ pub(crate) trait Trig: Vector {
     fn or_sign(h: Self, s: Self) -> Self;
     /// Whether any lane is NaN, infinite or beyond [`LIMIT`].
     fn any_outside(x: Self) -> bool;
-    /// Whether any lane of `x` needs [`careful`]: NaN, infinite or beyond [`LIMIT`], or a
-    /// short-path remainder `hi` with `|hi| < TINY` near a non-zero multiple of `pi/2`
-    /// (`hi != x`). Near 0 (`k = 0`, so `hi == x`) the remainder is exact, so zero padding lanes
-    /// and small angles stay on the short path.
-    fn unusual(x: Self, hi: Self) -> bool;
+    /// The lanes of `x` that need [`careful`] (bit `i` for lane `i`): NaN, infinite or beyond
+    /// [`LIMIT`], or a short-path remainder `hi` with `|hi| < TINY` near a non-zero multiple of
+    /// `pi/2` (`hi != x`). Near 0 (`k = 0`, so `hi == x`) the remainder is exact, so zero padding
+    /// lanes and small angles stay on the short path.
+    fn unusual(x: Self, hi: Self) -> u8;
     /// [`careful`] compiled once for the level (a cold call, not inlined into every loop).
     fn careful(x: Self) -> (Self, Self);
 }
@@ -103,7 +103,7 @@ const C6: f64 = f64::from_bits(0xBDA8_FAE9_BE88_38D4);
 #[inline(always)]
 pub(crate) fn sin_cos<V: Trig>(x: V) -> (V, V) {
     let (t, hi) = reduce(x);
-    if V::unusual(x, hi) {
+    if V::unusual(x, hi) != 0 {
         return V::careful(x);
     }
     polynomials(t, hi)
@@ -148,29 +148,21 @@ pub(crate) fn careful<V: Trig>(x: V) -> (V, V) {
     let (s, c) = reduced(x);
     let careful = if V::any_outside(x) { scalar_lanes(x, s, c) } else { (s, c) };
     let (t, hi) = reduce(x);
-    usual_lanes(x, hi, careful, polynomials(t, hi))
+    usual_lanes(V::unusual(x, hi), careful, polynomials(t, hi))
 }
 
-/// Whether one lane needs [`careful`]: the lane test of [`Trig::unusual`].
-fn is_unusual(x: f64, hi: f64) -> bool {
-    // NaN is outside: `contains` is false for it, as `Trig::unusual`'s unordered compare is true.
-    !(-LIMIT..=LIMIT).contains(&x) || (hi.abs() < TINY && hi != x)
-}
-
-/// `careful` in the lanes that need it ([`is_unusual`]), `short` in the others (cold: a vector
-/// gets here only with an unusual lane).
+/// `careful` in the lanes set in `unusual`, `short` in the others (cold: a vector gets here only
+/// with an unusual lane).
 #[cold]
 #[inline(never)]
-fn usual_lanes<V: Trig>(x: V, hi: V, careful: (V, V), short: (V, V)) -> (V, V) {
-    let mut lanes = [[0.0; 8]; 6];
-    for (l, v) in lanes.iter_mut().zip([x, hi, careful.0, careful.1, short.0, short.1]) {
+fn usual_lanes<V: Trig>(unusual: u8, careful: (V, V), short: (V, V)) -> (V, V) {
+    let mut lanes = [[0.0; 8]; 4];
+    for (l, v) in lanes.iter_mut().zip([careful.0, careful.1, short.0, short.1]) {
         v.store(l);
     }
-    let [xs, his, mut ss, mut cs, short_s, short_c] = lanes;
-    for j in 0..V::LANES {
-        if !is_unusual(xs[j], his[j]) {
-            (ss[j], cs[j]) = (short_s[j], short_c[j]);
-        }
+    let [mut ss, mut cs, short_s, short_c] = lanes;
+    for j in (0..V::LANES).filter(|j| unusual & (1 << j) == 0) {
+        (ss[j], cs[j]) = (short_s[j], short_c[j]);
     }
     (V::load(&ss), V::load(&cs))
 }

@@ -333,7 +333,7 @@ impl Trig for F64x4 {
         }
     }
     #[inline(always)]
-    fn unusual(x: F64x4, hi: F64x4) -> bool {
+    fn unusual(x: F64x4, hi: F64x4) -> u8 {
         unsafe {
             let sign = _mm256_set1_pd(-0.0);
             let outside =
@@ -341,7 +341,7 @@ impl Trig for F64x4 {
             let tiny = _mm256_cmp_pd::<_CMP_LT_OQ>(_mm256_andnot_pd(sign, hi.0), _mm256_set1_pd(trig::TINY));
             // `hi == x` exactly when `k = 0`: no reduction, nothing to recover (trig::sin_cos).
             let reduced = _mm256_cmp_pd::<_CMP_NEQ_UQ>(hi.0, x.0);
-            _mm256_movemask_pd(_mm256_or_pd(outside, _mm256_and_pd(tiny, reduced))) != 0
+            _mm256_movemask_pd(_mm256_or_pd(outside, _mm256_and_pd(tiny, reduced))) as u8
         }
     }
     #[inline(always)]
@@ -446,13 +446,13 @@ impl Trig for F64x8 {
         }
     }
     #[inline(always)]
-    fn unusual(x: F64x8, hi: F64x8) -> bool {
+    fn unusual(x: F64x8, hi: F64x8) -> u8 {
         unsafe {
             let outside = _mm512_cmp_pd_mask::<_CMP_NLE_UQ>(_mm512_abs_pd(x.0), _mm512_set1_pd(trig::LIMIT));
             let tiny = _mm512_cmp_pd_mask::<_CMP_LT_OQ>(_mm512_abs_pd(hi.0), _mm512_set1_pd(trig::TINY));
             // `hi == x` exactly when `k = 0`: no reduction, nothing to recover (trig::sin_cos).
             let reduced = _mm512_cmp_pd_mask::<_CMP_NEQ_UQ>(hi.0, x.0);
-            (outside | (tiny & reduced)) != 0
+            outside | (tiny & reduced)
         }
     }
     #[inline(always)]
