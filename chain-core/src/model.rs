@@ -92,8 +92,7 @@ pub trait ChainModel {
     /// If `thetas` is not a whole number of configurations or `out` is not as long.
     fn batch_gradient_into(&self, thetas: &[f64], out: &mut [f64]) {
         let n = self.rotor_count();
-        assert!(n > 0 && thetas.len().is_multiple_of(n), "whole configurations");
-        assert_eq!(out.len(), thetas.len(), "one gradient entry per angle");
+        batch_count(n, thetas, out, None);
         for (t, g) in thetas.chunks(n).zip(out.chunks_mut(n)) {
             self.gradient_into(t, g);
         }
@@ -110,9 +109,7 @@ pub trait ChainModel {
     /// configuration.
     fn batch_energy_and_gradient_into(&self, thetas: &[f64], energies: &mut [f64], out: &mut [f64]) {
         let n = self.rotor_count();
-        assert!(n > 0 && thetas.len().is_multiple_of(n), "whole configurations");
-        assert_eq!(out.len(), thetas.len(), "one gradient entry per angle");
-        assert_eq!(energies.len(), thetas.len() / n, "one energy per configuration");
+        batch_count(n, thetas, out, Some(energies));
         for ((t, g), e) in thetas.chunks(n).zip(out.chunks_mut(n)).zip(energies) {
             *e = self.energy_and_gradient_into(t, g);
         }
@@ -170,4 +167,17 @@ pub trait ChainModel {
             Err(BranchError::NoSuchSpring { spring: p, springs: self.spring_count() })
         }
     }
+}
+
+/// The number of configurations of `n` rotors in a batch, checking the slices' lengths as the
+/// batch methods of [`ChainModel`] document (panics: a programming error; `crate::batch` returns
+/// typed errors first).
+pub(crate) fn batch_count(n: usize, thetas: &[f64], out: &[f64], energies: Option<&[f64]>) -> usize {
+    assert!(n > 0 && thetas.len().is_multiple_of(n), "whole configurations");
+    assert_eq!(out.len(), thetas.len(), "one gradient entry per angle");
+    let count = thetas.len() / n;
+    if let Some(e) = energies {
+        assert_eq!(e.len(), count, "one energy per configuration");
+    }
+    count
 }

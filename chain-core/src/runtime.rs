@@ -128,16 +128,13 @@ impl RuntimeChain {
     /// The gradients (and, with `energies`, the energies) of whole configurations laid back to
     /// back, driven as one long chain ([`kernel::BackToBack`]) in blocks of about
     /// [`BATCH_ROTORS`] rotors, so that the tiled parameters stay in the L1 cache.
-    fn batch(&self, thetas: &[f64], out: &mut [f64], mut energies: Option<&mut [f64]>) {
+    fn batch(&self, thetas: &[f64], out: &mut [f64], energies: Option<&mut [f64]>) {
         let n = self.rotor_count();
-        assert!(thetas.len().is_multiple_of(n), "whole configurations");
-        assert_eq!(out.len(), thetas.len(), "one gradient entry per angle");
-        if let Some(e) = &energies {
-            assert_eq!(e.len(), thetas.len() / n, "one energy per configuration");
-        }
-        let per_block = (BATCH_ROTORS / n).clamp(1, (thetas.len() / n).max(1));
+        let count = crate::model::batch_count(n, thetas, out, energies.as_deref());
+        let per_block = (BATCH_ROTORS / n).clamp(1, count.max(1));
         let [rotor_lengths, stiffness, rest_lengths] = self.tiled(per_block);
-        for (b, (t, g)) in thetas.chunks(per_block * n).zip(out.chunks_mut(per_block * n)).enumerate() {
+        let mut energies = energies.map(|e| e.chunks_mut(per_block));
+        for (t, g) in thetas.chunks(per_block * n).zip(out.chunks_mut(per_block * n)) {
             let m = t.len() - 1;
             let springs = kernel::BackToBack {
                 springs: kernel::SpringSlices {
@@ -148,20 +145,16 @@ impl RuntimeChain {
                 },
                 rotors: n,
             };
-            match (energies.as_deref_mut(), self.law) {
-                (Some(e), law) => {
-                    let e = &mut e[b * per_block..b * per_block + t.len() / n];
-                    match law {
-                        Law::Harmonic => kernel::energies_and_gradients::<kernel::harmonic::EnergyGradient>(
-                            t, springs, e, g,
-                        ),
-                        Law::Quartic => kernel::energies_and_gradients::<kernel::quartic::EnergyGradient>(
-                            t, springs, e, g,
-                        ),
-                    };
+            use kernel::{harmonic, quartic};
+            match (energies.as_mut().and_then(Iterator::next), self.law) {
+                (Some(e), Law::Harmonic) => {
+                    kernel::energies_and_gradients::<harmonic::EnergyGradient>(t, springs, e, g);
                 }
-                (None, Law::Harmonic) => kernel::assemble_pairs::<kernel::harmonic::Gradient>(t, springs, g),
-                (None, Law::Quartic) => kernel::assemble_pairs::<kernel::quartic::Gradient>(t, springs, g),
+                (Some(e), Law::Quartic) => {
+                    kernel::energies_and_gradients::<quartic::EnergyGradient>(t, springs, e, g);
+                }
+                (None, Law::Harmonic) => kernel::assemble_pairs::<harmonic::Gradient>(t, springs, g),
+                (None, Law::Quartic) => kernel::assemble_pairs::<quartic::Gradient>(t, springs, g),
             }
         }
     }
