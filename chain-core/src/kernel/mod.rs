@@ -59,6 +59,9 @@ pub trait Springs {
     fn uniform(&self) -> Option<([f64; 5], &[usize])> {
         None
     }
+    /// Whether [`Springs::chain_rotors`] can be `Some`: a constant, so that the drivers of one
+    /// chain compile without the joins' bookkeeping.
+    const BACK_TO_BACK: bool = false;
     /// Rotors per chain when the angles hold several chains of the same kind back to back (see
     /// [`BackToBack`]); `None` for one chain.
     fn chain_rotors(&self) -> Option<usize> {
@@ -138,6 +141,7 @@ pub struct BackToBack<S> {
 }
 
 impl<S: Springs> Springs for BackToBack<S> {
+    const BACK_TO_BACK: bool = true;
     #[inline(always)]
     fn params(&self, p: usize) -> [f64; 5] {
         self.springs.params(p)
@@ -214,9 +218,9 @@ impl<'a> Angles<'a> {
 /// shifted by a lane ([`Vector::next_lane`]), so every angle's `sin_cos` is computed once and
 /// everything stays in registers.
 #[inline(always)]
-fn stream<V: Vector, K: SpringFn<M>, const M: usize>(
+fn stream<V: Vector, K: SpringFn<M>, S: Springs, const M: usize>(
     theta: &[f64],
-    springs: &impl Springs,
+    springs: &S,
     mut visit: impl FnMut(usize, usize, u8, [V; M]),
 ) {
     let n = theta.len();
@@ -232,7 +236,7 @@ fn stream<V: Vector, K: SpringFn<M>, const M: usize>(
         );
     }
     let uniform = springs.uniform();
-    let rotors = springs.chain_rotors();
+    let rotors = if S::BACK_TO_BACK { springs.chain_rotors() } else { None };
     assert!(rotors.is_none_or(|r| r >= 1 && n.is_multiple_of(r)), "whole chains of at least one rotor");
     // The next spring that joins two chains (none for one chain).
     let mut join = rotors.map_or(usize::MAX, |r| r - 1);
@@ -426,7 +430,7 @@ impl<const M: usize, const E: usize, const G: usize, const B: usize, const S: us
         let mut acc = V::splat(0.0);
         let (mut total, mut chain) = (0.0, 0);
         let (mut g_sums, mut d_sums) = (RotorSums::<V>::new(), RotorSums::<V>::new());
-        stream::<V, K, M>(theta, springs, |p, count, joins, y| {
+        stream::<V, K, _, M>(theta, springs, |p, count, joins, y| {
             if E != NONE {
                 let e = first(y[E], count);
                 if joins == 0 || energies.is_empty() {
