@@ -7,6 +7,11 @@
 //! cargo run --release --example kernel_timing
 //! ```
 //!
+//! A second table gives the throughput the batch rests on: energy + gradient per rotor of a
+//! 6 400-rotor chain, and 1 024 gradients of 60 rotors laid back to back
+//! (`ChainModel::batch_gradient_into`, one core, per configuration), and through
+//! `batch::gradients` (every core, at the detected level).
+//!
 //! Not a benchmark of record (those are `cargo bench --bench simd`): a quick check that a number
 //! seen in the benchmark binary is the code's and not its placement.
 
@@ -93,4 +98,67 @@ fn main() {
             println!("| {} | {} |", level.name(), cells.join(" | "));
         }
     }
+
+    long_chains_and_batches();
+}
+
+/// Energy + gradient of a long chain per rotor, and the 1 024 x 60 batch per configuration.
+fn long_chains_and_batches() {
+    const LONG: usize = 6_400;
+    const BATCH: usize = 1_024;
+    let long = RuntimeChain::builder(LONG, 0.8, 1.0e4, 0.58).build().expect("valid parameters");
+    let theta_long: Vec<f64> =
+        (0..LONG).map(|i| 0.58 * (0.3 * i as f64).cos() + 0.01 * (1.7 * i as f64).sin()).collect();
+    let chain = RuntimeChain::builder(N, 0.8, 1.0e4, 0.58).build().expect("valid parameters");
+    let thetas: Vec<f64> = (0..BATCH * N)
+        .map(|i| 0.58 * (0.3 * (i % N) as f64).cos() + 0.05 * (0.013 * i as f64).sin())
+        .collect();
+    println!();
+    println!("| level | E + g per rotor, n = 6 400 | 1 024 x 60 gradients back to back, one core |");
+    println!("|---|---:|---:|");
+    for level in [Level::Avx2, Level::Avx512] {
+        let row = simd::with_level(level, || {
+            let mut g = vec![0.0; LONG];
+            let eg = time_once(|| {
+                black_box(black_box(&long).energy_and_gradient_into(black_box(&theta_long), &mut g));
+            }) / LONG as f64;
+            let mut gb = vec![0.0; BATCH * N];
+            let one = time_once(|| {
+                black_box(&chain).batch_gradient_into(black_box(&thetas), &mut gb);
+                black_box(&gb);
+            }) / BATCH as f64;
+            [eg, one]
+        });
+        if let Some([eg, one]) = row {
+            println!("| {} | {eg:.2} ns | {one:.1} ns |", level.name());
+        }
+    }
+    // The pool's threads run at the detected level (`with_level` forces only this thread's).
+    let mut gb = vec![0.0; BATCH * N];
+    let all = time_once(|| {
+        rotor_chain::batch::gradients(black_box(&chain), black_box(&thetas), &mut gb).expect("a batch");
+        black_box(&gb);
+    }) / BATCH as f64;
+    println!(
+        "\n`batch::gradients`, 1 024 x 60, every core, detected level ({}): {all:.1} ns per configuration",
+        simd::detected().name()
+    );
+}
+
+/// The smallest of 15 medians of 21 single calls, in ns per call (for calls of tens of
+/// microseconds).
+fn time_once(mut f: impl FnMut()) -> f64 {
+    let mut best = f64::INFINITY;
+    for _ in 0..15 {
+        let mut samples: Vec<f64> = (0..21)
+            .map(|_| {
+                let t = Instant::now();
+                f();
+                t.elapsed().as_nanos() as f64
+            })
+            .collect();
+        samples.sort_by(f64::total_cmp);
+        best = best.min(samples[10]);
+    }
+    best
 }
