@@ -230,6 +230,14 @@ pub(crate) trait Vector: Lane {
     fn sum(self) -> f64;
     /// Sine and cosine of every lane.
     fn sin_cos(self) -> (Self, Self);
+    /// Whether [`sin_cos_loop`] takes two values at a time through [`Vector::sin_cos_pair`]
+    /// (where that is faster: AVX2).
+    const PAIR_TRIG: bool = false;
+    /// Sine and cosine of two values (the same bits as two calls of [`Vector::sin_cos`]).
+    #[inline(always)]
+    fn sin_cos_pair(self, other: Self) -> ((Self, Self), (Self, Self)) {
+        (self.sin_cos(), other.sin_cos())
+    }
     /// `sin[i], cos[i] = sin_cos(theta[i])` over a slice, `LANES` angles at a time, compiled once
     /// per level (not inlined into every driver).
     fn sin_cos_slice(theta: &[f64], sin: &mut [f64], cos: &mut [f64]);
@@ -333,13 +341,23 @@ pub(crate) fn sin_cos_lanes<V: Vector>(theta: &[f64], sin: &mut [f64], cos: &mut
     V::sin_cos_slice(theta, sin, cos);
 }
 
-/// The loop of [`Vector::sin_cos_slice`]: `V::LANES` angles at a time. A short last group is
-/// padded with zeros, so an angle gets the same result wherever it sits.
+/// The loop of [`Vector::sin_cos_slice`]: `V::LANES` angles at a time (two groups at once where
+/// [`Vector::PAIR_TRIG`]). A short last group is padded with zeros, so an angle gets the same
+/// result wherever it sits.
 #[inline(always)]
 pub(crate) fn sin_cos_loop<V: Vector>(theta: &[f64], sin: &mut [f64], cos: &mut [f64]) {
     let n = theta.len();
     let (sin, cos) = (&mut sin[..n], &mut cos[..n]);
     let mut i = 0;
+    while V::PAIR_TRIG && i + 2 * V::LANES <= n {
+        let (x0, x1) = (V::load(&theta[i..i + V::LANES]), V::load(&theta[i + V::LANES..i + 2 * V::LANES]));
+        let ((s0, c0), (s1, c1)) = x0.sin_cos_pair(x1);
+        s0.store(&mut sin[i..i + V::LANES]);
+        c0.store(&mut cos[i..i + V::LANES]);
+        s1.store(&mut sin[i + V::LANES..i + 2 * V::LANES]);
+        c1.store(&mut cos[i + V::LANES..i + 2 * V::LANES]);
+        i += 2 * V::LANES;
+    }
     // Ranges of exactly `V::LANES` under the loop's condition: the compiler drops their checks.
     while i + V::LANES <= n {
         let (s, c) = V::load(&theta[i..i + V::LANES]).sin_cos();

@@ -106,7 +106,24 @@ pub(crate) fn sin_cos<V: Trig>(x: V) -> (V, V) {
     if V::unusual(x, hi) != 0 {
         return V::careful(x);
     }
-    polynomials(t, hi)
+    let [short] = polynomials([t], [hi]);
+    short
+}
+
+/// [`sin_cos`] of two vectors, their polynomials interleaved: two independent chains of fused
+/// multiply-adds per step instead of one. The same operations, so the same bits. AVX2 takes its
+/// angles two vectors at a time this way ([`Vector::PAIR_TRIG`](super::Vector::PAIR_TRIG)):
+/// with four lanes a vector's chain leaves the core idle waiting on its latency (60 angles
+/// 87 -> 77 ns, docs/benchmarks.md, sixth round); at eight lanes it does not, and pairs gain
+/// nothing there.
+#[inline(always)]
+pub(crate) fn sin_cos_pair<V: Trig>(x0: V, x1: V) -> ((V, V), (V, V)) {
+    let ((t0, h0), (t1, h1)) = (reduce(x0), reduce(x1));
+    if V::unusual(x0, h0) | V::unusual(x1, h1) != 0 {
+        return (sin_cos(x0), sin_cos(x1));
+    }
+    let [first, second] = polynomials([t0, t1], [h0, h1]);
+    (first, second)
 }
 
 /// The short path's reduction: `t = x 2/pi + 1.5 * 2^52` (the quadrant in its low bits) and the
@@ -120,22 +137,37 @@ fn reduce<V: Trig>(x: V) -> (V, V) {
     (t, (-k).mul_add(sp(P2), r1))
 }
 
-/// The short path's sine and cosine of the remainder `hi`, put in quadrant `t`.
+/// The short path's sine and cosine of the remainders `hi`, put in quadrants `t`: `K` vectors,
+/// their Horner steps interleaved. Plain loops over `K`, no closures: a closure is a function of
+/// its own, compiled without the caller's target features unless inlined.
 #[inline(always)]
-fn polynomials<V: Trig>(t: V, hi: V) -> (V, V) {
+fn polynomials<V: Trig, const K: usize>(t: [V; K], hi: [V; K]) -> [(V, V); K] {
     let sp = V::splat;
-    let z = hi * hi;
-    let ps =
-        z.mul_add(z.mul_add(z.mul_add(z.mul_add(z.mul_add(sp(S6), sp(S5)), sp(S4)), sp(S3)), sp(S2)), sp(S1));
-    // `hi + hi z S(z)` has the sign of `hi` (|hi| <= pi/4), except that `-0 + 0` is `+0`: the
-    // sign bit of `hi` put back keeps `sin(-0) = -0` (one bitwise operation).
-    let sin = V::or_sign(hi, (hi * z).mul_add(ps, hi));
-    let pc =
-        z.mul_add(z.mul_add(z.mul_add(z.mul_add(z.mul_add(sp(C6), sp(C5)), sp(C4)), sp(C3)), sp(C2)), sp(C1));
-    // cos(hi) = 1 + (z^2 C(z) - z/2): the bracket (|.| <= 0.31) rounds to 2^-55, a quarter of
-    // an ulp of the result (>= 0.70).
-    let cos = sp(1.0) + (z * z).mul_add(pc, sp(-0.5) * z);
-    V::quadrant(t, sin, cos)
+    let mut z = hi;
+    let (mut ps, mut pc) = (hi, hi);
+    for i in 0..K {
+        z[i] = hi[i] * hi[i];
+        ps[i] = z[i].mul_add(sp(S6), sp(S5));
+        pc[i] = z[i].mul_add(sp(C6), sp(C5));
+    }
+    for (s, c) in [(S4, C4), (S3, C3), (S2, C2), (S1, C1)] {
+        for i in 0..K {
+            ps[i] = z[i].mul_add(ps[i], sp(s));
+            pc[i] = z[i].mul_add(pc[i], sp(c));
+        }
+    }
+    let mut out = [(hi[0], hi[0]); K];
+    for i in 0..K {
+        let (hi, z) = (hi[i], z[i]);
+        // `hi + hi z S(z)` has the sign of `hi` (|hi| <= pi/4), except that `-0 + 0` is `+0`:
+        // the sign bit of `hi` put back keeps `sin(-0) = -0` (one bitwise operation).
+        let sin = V::or_sign(hi, (hi * z).mul_add(ps[i], hi));
+        // cos(hi) = 1 + (z^2 C(z) - z/2): the bracket (|.| <= 0.31) rounds to 2^-55, a quarter
+        // of an ulp of the result (>= 0.70).
+        let cos = sp(1.0) + (z * z).mul_add(pc[i], sp(-0.5) * z);
+        out[i] = V::quadrant(t[i], sin, cos);
+    }
+    out
 }
 
 /// Every lane of `x` exactly, however near a multiple of `pi/2`: the double-double reduction,
@@ -148,7 +180,8 @@ pub(crate) fn careful<V: Trig>(x: V) -> (V, V) {
     let (s, c) = reduced(x);
     let careful = if V::any_outside(x) { scalar_lanes(x, s, c) } else { (s, c) };
     let (t, hi) = reduce(x);
-    usual_lanes(V::unusual(x, hi), careful, polynomials(t, hi))
+    let [short] = polynomials([t], [hi]);
+    usual_lanes(V::unusual(x, hi), careful, short)
 }
 
 /// `careful` in the lanes set in `unusual`, `short` in the others (cold: a vector gets here only

@@ -204,6 +204,12 @@ macro_rules! vector_ops {
             fn sin_cos(self) -> ($t, $t) {
                 trig::sin_cos(self)
             }
+            // Pairs help at four lanes only (`trig::sin_cos_pair`).
+            const PAIR_TRIG: bool = $n == 4;
+            #[inline(always)]
+            fn sin_cos_pair(self, other: $t) -> (($t, $t), ($t, $t)) {
+                trig::sin_cos_pair(self, other)
+            }
             #[inline(always)]
             fn sin_cos_slice(theta: &[f64], sin: &mut [f64], cos: &mut [f64]) {
                 // SAFETY: values of this type exist only at its level (module doc).
