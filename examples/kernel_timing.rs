@@ -26,21 +26,32 @@ use std::hint::black_box;
 use std::time::Instant;
 use support::{N, configuration, transcendental_floor};
 
-/// The smallest of 15 medians, in ns per call.
-fn time(mut f: impl FnMut()) -> f64 {
+/// The smallest of 15 medians of 201 samples of 200 calls, in ns per call.
+fn time(f: impl FnMut()) -> f64 {
+    smallest_median(201, 200, f)
+}
+
+/// The smallest of 15 medians of 21 single calls, in ns per call (for calls of tens of
+/// microseconds).
+fn time_once(f: impl FnMut()) -> f64 {
+    smallest_median(21, 1, f)
+}
+
+/// The smallest of 15 medians of `samples` samples of `calls` calls each, in ns per call.
+fn smallest_median(samples: usize, calls: u32, mut f: impl FnMut()) -> f64 {
     let mut best = f64::INFINITY;
     for _ in 0..15 {
-        let mut samples: Vec<f64> = (0..201)
+        let mut times: Vec<f64> = (0..samples)
             .map(|_| {
                 let t = Instant::now();
-                for _ in 0..200 {
+                for _ in 0..calls {
                     f();
                 }
-                t.elapsed().as_nanos() as f64 / 200.0
+                t.elapsed().as_nanos() as f64 / f64::from(calls)
             })
             .collect();
-        samples.sort_by(f64::total_cmp);
-        best = best.min(samples[100]);
+        times.sort_by(f64::total_cmp);
+        best = best.min(times[samples / 2]);
     }
     best
 }
@@ -143,22 +154,4 @@ fn long_chains_and_batches() {
         "\n`batch::gradients`, 1 024 x 60, every core, detected level ({}): {all:.1} ns per configuration",
         simd::detected().name()
     );
-}
-
-/// The smallest of 15 medians of 21 single calls, in ns per call (for calls of tens of
-/// microseconds).
-fn time_once(mut f: impl FnMut()) -> f64 {
-    let mut best = f64::INFINITY;
-    for _ in 0..15 {
-        let mut samples: Vec<f64> = (0..21)
-            .map(|_| {
-                let t = Instant::now();
-                f();
-                t.elapsed().as_nanos() as f64
-            })
-            .collect();
-        samples.sort_by(f64::total_cmp);
-        best = best.min(samples[10]);
-    }
-    best
 }
