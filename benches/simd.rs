@@ -23,7 +23,7 @@ use divan::{Bencher, black_box};
 use rotor_chain::prelude::*;
 use rotor_chain::simd::{self, Level};
 use rotor_chain::{RuntimeChain, math};
-use support::{N, configuration, transcendental_floor};
+use support::{BATCH, N, angles, batch_angles, configuration, transcendental_floor};
 
 const LEVELS: [&str; 3] = ["scalar", "avx2", "avx512"];
 
@@ -38,11 +38,6 @@ fn at(name: &str, bench: impl FnOnce()) {
 
 fn chain(n: usize) -> RuntimeChain {
     RuntimeChain::builder(n, 0.8, 1.0e4, 0.58).build().unwrap()
-}
-
-/// The configuration of `support::configuration` continued to `n` rotors.
-fn angles(n: usize) -> Vec<f64> {
-    (0..n).map(|i| 0.58 * (0.3 * i as f64).cos() + 0.01 * (1.7 * i as f64 + 0.2).sin()).collect()
 }
 
 fn main() {
@@ -324,13 +319,6 @@ fn verlet_step_macro_unrolled(bencher: Bencher) {
         time += dt;
         stepper.step(time).unwrap();
     });
-}
-
-/// 1024 configurations of 60 rotors.
-const BATCH: usize = 1024;
-
-fn batch_angles() -> Vec<f64> {
-    (0..BATCH * N).map(|i| 0.58 * (0.3 * (i % N) as f64).cos() + 0.05 * (0.013 * i as f64).sin()).collect()
 }
 
 /// `batch::gradients` of 1024 configurations on rayon's pool (all cores, detected level): time /

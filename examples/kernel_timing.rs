@@ -24,7 +24,7 @@ use rotor_chain::prelude::*;
 use rotor_chain::simd::{self, Level};
 use std::hint::black_box;
 use std::time::Instant;
-use support::{N, configuration, transcendental_floor};
+use support::{BATCH, N, angles, batch_angles, configuration, transcendental_floor};
 
 /// The smallest of 15 medians of 201 samples of 200 calls, in ns per call.
 fn time(f: impl FnMut()) -> f64 {
@@ -116,14 +116,10 @@ fn main() {
 /// Energy + gradient of a long chain per rotor, and the 1 024 x 60 batch per configuration.
 fn long_chains_and_batches() {
     const LONG: usize = 6_400;
-    const BATCH: usize = 1_024;
     let long = RuntimeChain::builder(LONG, 0.8, 1.0e4, 0.58).build().expect("valid parameters");
-    let theta_long: Vec<f64> =
-        (0..LONG).map(|i| 0.58 * (0.3 * i as f64).cos() + 0.01 * (1.7 * i as f64).sin()).collect();
+    let theta_long = angles(LONG);
     let chain = RuntimeChain::builder(N, 0.8, 1.0e4, 0.58).build().expect("valid parameters");
-    let thetas: Vec<f64> = (0..BATCH * N)
-        .map(|i| 0.58 * (0.3 * (i % N) as f64).cos() + 0.05 * (0.013 * i as f64).sin())
-        .collect();
+    let thetas = batch_angles();
     println!();
     println!("| level | E + g per rotor, n = 6 400 | 1 024 x 60 gradients back to back, one core |");
     println!("|---|---:|---:|");

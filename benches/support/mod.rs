@@ -17,6 +17,22 @@ pub fn configuration() -> [f64; N] {
     })
 }
 
+/// The configuration of [`configuration`] continued to `n` rotors.
+pub fn angles(n: usize) -> Vec<f64> {
+    (0..n).map(|i| THETA_BAR * (0.3 * i as f64).cos() + 0.01 * (1.7 * i as f64 + 0.2).sin()).collect()
+}
+
+/// Configurations in a batch benchmark.
+pub const BATCH: usize = 1024;
+
+/// `BATCH` configurations of `N` rotors back to back, each a different perturbation of the same
+/// shape.
+pub fn batch_angles() -> Vec<f64> {
+    (0..BATCH * N)
+        .map(|i| THETA_BAR * (0.3 * (i % N) as f64).cos() + 0.05 * (0.013 * i as f64).sin())
+        .collect()
+}
+
 /// `N` `sin_cos` and `N - 1` `sqrt` of data-dependent arguments (each sqrt takes the trig of two
 /// neighbouring angles, as a spring length does), summed so none can be dropped.
 #[inline(never)]
