@@ -65,8 +65,9 @@ pub struct Follower {
     ghosts: Vec<Followed>,
     /// Recently vanished walls, kept to pair annihilations.
     vanished: Vec<Followed>,
-    /// Buffers [`Follower::update`] reuses from output to output (it runs every few steps of a
-    /// scattering run, where fresh vectors each time were ~10 % of a phase diagram's time).
+    /// Buffers [`Follower::update`] reuses from output to output: it runs every few steps of a
+    /// scattering run, and fresh vectors each time cost ~6 % of a phase diagram's wall time
+    /// (docs/benchmarks.md, sixth round).
     scratch: Scratch,
     last_rotor: f64,
     end_zone: f64,
