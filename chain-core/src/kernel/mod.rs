@@ -10,8 +10,9 @@
 //! `x = [s1, c1, s2, c2, a, r1, r2, k, l0]` (sine and cosine of the two rotor angles, lattice
 //! spacing, the two rotor lengths, the spring's stiffness and rest length) over any [`Lane`]
 //! type and returns `M` outputs. The drivers below:
-//! 1. take the `sin_cos` of `LANES` angles at a time, each angle once, in vector lanes; the
-//!    right rotor's values of a group of springs are the left ones shifted by a lane;
+//! 1. take the `sin_cos` of a chunk of angles, each angle once, in vector lanes, into aligned
+//!    buffers; a group of springs loads its left rotors' values from there, and its right
+//!    rotors' values one position further on;
 //! 2. evaluate the kernel on `LANES` consecutive springs at once (parameters are splat, or
 //!    loaded from contiguous slices), summing the energy in lanes;
 //! 3. form the rotor sums (`out[p] += left_p`, `out[p + 1] += right_p`) in registers, with the
@@ -160,22 +161,30 @@ impl<S: Springs> Springs for BackToBack<S> {
     }
 }
 
-/// Angles per refill of [`Angles`] (a multiple of every lane count).
+/// Springs per chunk of [`stream`], and angles per refill of [`Angles`] (a multiple of every
+/// lane count).
 const TRIG_CHUNK: usize = 64;
 
-/// A buffer of `TRIG_CHUNK` values aligned for the widest vector.
+/// The most lanes of any level: how far a chunk's angles reach past its springs.
+const MAX_LANES: usize = 8;
+
+/// A chunk's sines or cosines, aligned for the widest vector.
 #[derive(Clone, Copy)]
 #[repr(C, align(64))]
-struct Aligned([f64; TRIG_CHUNK]);
+struct Aligned([f64; TRIG_CHUNK + MAX_LANES]);
 
-/// The sines and cosines of a chain's angles, `V::LANES` at a time, each angle's computed once:
-/// `TRIG_CHUNK` angles back to back into aligned buffers, then handed out by groups. Computing
-/// them apart from the kernel keeps the polynomial's constants in registers (AVX2 has 16), and
-/// the scalar level's `sincos` (an opaque call that clobbers every vector register) out of the
-/// kernel loop (10-20 %, docs/benchmarks.md finding 5).
+/// The sines and cosines of one chunk of a chain's angles, each angle's computed once. A chunk of
+/// springs `start .. start + TRIG_CHUNK` needs angles `start .. start + TRIG_CHUNK + 1`: the
+/// buffers hold `start .. start + TRIG_CHUNK + V::LANES`, whose last `V::LANES` values the next
+/// chunk takes over as its first ones. A group's right rotors are then an unaligned load one
+/// value further on (cheaper than shifting lanes: AVX2 needs two shuffles per shift, and
+/// shuffles share a port with the multiplications).
+///
+/// Computing the sines and cosines apart from the kernel keeps the polynomial's constants in
+/// registers (AVX2 has 16), and the scalar level's `sincos` (an opaque call that clobbers every
+/// vector register) out of the kernel loop (10-20 %, docs/benchmarks.md finding 5).
 struct Angles<'a> {
     theta: &'a [f64],
-    start: usize,
     sin: Aligned,
     cos: Aligned,
 }
@@ -183,45 +192,76 @@ struct Angles<'a> {
 impl<'a> Angles<'a> {
     #[inline(always)]
     fn new(theta: &'a [f64]) -> Self {
-        Self { theta, start: usize::MAX, sin: Aligned([0.0; TRIG_CHUNK]), cos: Aligned([0.0; TRIG_CHUNK]) }
+        Self {
+            theta,
+            sin: Aligned([0.0; TRIG_CHUNK + MAX_LANES]),
+            cos: Aligned([0.0; TRIG_CHUNK + MAX_LANES]),
+        }
     }
 
-    /// `sin_cos` of angles `i .. i + V::LANES` (`i` a multiple of `V::LANES`); lanes past the
-    /// chain hold `(0, 1)`.
+    /// Fills the buffers for the chunk from angle `start` (a multiple of `TRIG_CHUNK`, reached in
+    /// order from 0); values past the chain are `(0, 1)`.
     #[inline(always)]
-    fn group<V: Vector>(&mut self, i: usize) -> (V, V) {
+    fn fill<V: Vector>(&mut self, start: usize) {
+        let l = V::LANES;
         let n = self.theta.len();
-        if i >= n {
-            return (V::splat(0.0), V::splat(1.0));
+        let carried = if start == 0 {
+            0
+        } else {
+            self.sin.0.copy_within(TRIG_CHUNK..TRIG_CHUNK + l, 0);
+            self.cos.0.copy_within(TRIG_CHUNK..TRIG_CHUNK + l, 0);
+            l
+        };
+        let end = (start + TRIG_CHUNK + l).min(n);
+        let computed = end.saturating_sub(start + carried);
+        if computed > 0 {
+            let (sin, cos) = (&mut self.sin.0[carried..], &mut self.cos.0[carried..]);
+            simd::sin_cos_lanes::<V>(&self.theta[start + carried..end], sin, cos);
         }
-        if !(self.start..self.start.saturating_add(TRIG_CHUNK)).contains(&i) {
-            self.start = i;
-            let end = (i + TRIG_CHUNK).min(n);
-            simd::sin_cos_lanes::<V>(&self.theta[i..end], &mut self.sin.0, &mut self.cos.0);
+        // The last chunk: pad past the chain (values carried over were padded the chunk before).
+        let valid = carried + computed;
+        if valid < TRIG_CHUNK + l {
+            self.sin.0[valid..].fill(0.0);
+            self.cos.0[valid..].fill(1.0);
         }
-        // `i` and `start` are multiples of `V::LANES` and `TRIG_CHUNK` is one too, so `j <=
-        // TRIG_CHUNK - V::LANES` already; the `min` (a conditional move) tells the compiler, which
-        // then drops the bounds checks (they cost as much as the loads they guard).
-        debug_assert!(i - self.start <= TRIG_CHUNK - V::LANES, "groups start at multiples of the lane count");
-        let j = (i - self.start).min(TRIG_CHUNK - V::LANES);
-        (V::load(&self.sin.0[j..j + V::LANES]), V::load(&self.cos.0[j..j + V::LANES]))
+    }
+
+    /// `(s1, c1, s2, c2)`: sines and cosines of the left rotors `j .. j + V::LANES` of a group
+    /// (`j` a multiple of `V::LANES` below `TRIG_CHUNK`, counted from the chunk's start) and of
+    /// its right rotors, one further on.
+    #[inline(always)]
+    fn group<V: Vector>(&self, j: usize) -> [V; 4] {
+        debug_assert!(j <= TRIG_CHUNK - V::LANES && j.is_multiple_of(V::LANES), "a group of the chunk");
+        // The `min` (a conditional move) tells the compiler what the caller guarantees, so it
+        // drops the bounds checks (they cost as much as the loads they guard).
+        let j = j.min(TRIG_CHUNK - V::LANES);
+        let l = V::LANES;
+        let (sin, cos) = (&self.sin.0, &self.cos.0);
+        [
+            V::load(&sin[j..j + l]),
+            V::load(&cos[j..j + l]),
+            V::load(&sin[j + 1..j + 1 + l]),
+            V::load(&cos[j + 1..j + 1 + l]),
+        ]
     }
 }
 
 /// Evaluates `K` on every spring of the chain with angles `theta`, `V::LANES` consecutive
-/// springs at a time, and hands each group's outputs to `visit(first_spring, count, joins,
+/// springs at a time, and hands each group's outputs to `sink.take(first_spring, count, joins,
 /// outputs)` (`count < V::LANES` only for the last group; its other lanes are padding to be
 /// ignored). `joins` has bit `j` set if spring `first_spring + j` joins two chains laid back to
 /// back ([`BackToBack`]); those lanes of every output are already zeroed.
 ///
-/// One pass, no buffers: the right rotor's sines and cosines of a group are the left ones
-/// shifted by a lane ([`Vector::next_lane`]), so every angle's `sin_cos` is computed once and
-/// everything stays in registers.
+/// One pass over chunks of `TRIG_CHUNK` springs: each chunk's sines and cosines first
+/// ([`Angles`]), then its groups, the full ones in a loop without checks of its own (per-group
+/// bookkeeping filled the core's window with instructions that wait on nothing, and fewer
+/// groups' divisions overlapped: 204 -> 178 ns for energy + gradient of 60 rotors at AVX2,
+/// docs/benchmarks.md, seventh round).
 #[inline(always)]
 fn stream<V: Vector, K: SpringFn<M>, S: Springs, const M: usize>(
     theta: &[f64],
     springs: &S,
-    mut visit: impl FnMut(usize, usize, u8, [V; M]),
+    sink: &mut impl GroupSink<V, M>,
 ) {
     let n = theta.len();
     if n < 2 {
@@ -235,23 +275,63 @@ fn stream<V: Vector, K: SpringFn<M>, S: Springs, const M: usize>(
             "one parameter per rotor or spring"
         );
     }
-    let uniform = springs.uniform();
     let rotors = if S::BACK_TO_BACK { springs.chain_rotors() } else { None };
     assert!(rotors.is_none_or(|r| r >= 1 && n.is_multiple_of(r)), "whole chains of at least one rotor");
-    // The next spring that joins two chains (none for one chain).
-    let mut join = rotors.map_or(usize::MAX, |r| r - 1);
-    let mut exception = 0;
+    let mut state = GroupState {
+        slices,
+        uniform: springs.uniform(),
+        rotors,
+        // The next spring that joins two chains (none for one chain).
+        join: rotors.map_or(usize::MAX, |r| r - 1),
+        exception: 0,
+    };
     let mut angles = Angles::new(theta);
-    let (mut s1, mut c1) = angles.group::<V>(0);
-    let mut p = 0;
-    while p < m {
-        let rest = (m - p).min(V::LANES);
-        let (s_next, c_next) = angles.group::<V>(p + V::LANES);
-        let (s2, c2) = (s1.next_lane(s_next), c1.next_lane(c_next));
-        let [a, r1, r2, k, l0] = match (&slices, &uniform) {
+    let mut start = 0;
+    while start < m {
+        angles.fill::<V>(start);
+        let chunk = (m - start).min(TRIG_CHUNK);
+        let mut j = 0;
+        while j + V::LANES <= chunk {
+            let (y, joins) = state.group::<V, K, S, M>(springs, &angles, start, j, V::LANES);
+            sink.take(start + j, V::LANES, joins, y);
+            j += V::LANES;
+        }
+        if j < chunk {
+            let (y, joins) = state.group::<V, K, S, M>(springs, &angles, start, j, chunk - j);
+            sink.take(start + j, chunk - j, joins, y);
+        }
+        start += TRIG_CHUNK;
+    }
+}
+
+/// What [`stream`] carries from group to group: the chain's parameters and where the next
+/// exception and join are.
+struct GroupState<'a> {
+    slices: Option<SpringSlices<'a>>,
+    uniform: Option<([f64; 5], &'a [usize])>,
+    rotors: Option<usize>,
+    join: usize,
+    exception: usize,
+}
+
+impl GroupState<'_> {
+    /// The outputs of the group of springs `p .. p + rest` (`p = start + j`, `rest <=
+    /// V::LANES`), and its joins.
+    #[inline(always)]
+    fn group<V: Vector, K: SpringFn<M>, S: Springs, const M: usize>(
+        &mut self,
+        springs: &S,
+        angles: &Angles<'_>,
+        start: usize,
+        j: usize,
+        rest: usize,
+    ) -> ([V; M], u8) {
+        let p = start + j;
+        let [s1, c1, s2, c2] = angles.group::<V>(j);
+        let [a, r1, r2, k, l0] = match (&self.slices, &self.uniform) {
             // SAFETY: a full group, `p + V::LANES <= m`, and the slices' lengths (`n`, `m`, `m`)
-            // were asserted above. Unchecked because the checks (two per load) were 10 % of the
-            // kernel's time (docs/benchmarks.md, fourth round).
+            // were asserted in `stream`. Unchecked because the checks (two per load) were 10 %
+            // of the kernel's time (docs/benchmarks.md, fourth round).
             (Some(s), _) if rest == V::LANES => unsafe {
                 [
                     V::splat(s.a),
@@ -269,10 +349,10 @@ fn stream<V: Vector, K: SpringFn<M>, S: Springs, const M: usize>(
                 V::load_partial(&s.rest_lengths[p..p + rest]),
             ],
             (None, Some((params, exceptions))) => {
-                while exceptions.get(exception).is_some_and(|&e| e < p) {
-                    exception += 1;
+                while exceptions.get(self.exception).is_some_and(|&e| e < p) {
+                    self.exception += 1;
                 }
-                if exceptions.get(exception).is_some_and(|&e| e < p + rest) {
+                if exceptions.get(self.exception).is_some_and(|&e| e < p + rest) {
                     gather::<V>(springs, p, rest)
                 } else {
                     params.map(V::splat)
@@ -282,19 +362,17 @@ fn stream<V: Vector, K: SpringFn<M>, S: Springs, const M: usize>(
         };
         let mut y = K::eval([s1, c1, s2, c2, a, r1, r2, k, l0]);
         let mut joins = 0u8;
-        if let Some(r) = rotors {
+        if let Some(r) = self.rotors {
             // Springs that exist: the last chain's join would lie past the last spring.
-            while join < p + rest {
-                joins |= 1 << (join - p);
-                join += r;
+            while self.join < p + rest {
+                joins |= 1 << (self.join - p);
+                self.join += r;
             }
             if joins != 0 {
                 y = y.map(|v| v.keep_lanes(!joins));
             }
         }
-        visit(p, rest, joins, y);
-        (s1, c1) = (s_next, c_next);
-        p += V::LANES;
+        (y, joins)
     }
 }
 
@@ -426,58 +504,99 @@ impl<const M: usize, const E: usize, const G: usize, const B: usize, const S: us
     type Output = f64;
     #[inline(always)]
     fn run<V: Vector, K: SpringFn<M>>(self, theta: &[f64], springs: &impl Springs) -> f64 {
-        let Outputs { energies, gradient, diag, off, first: per_spring, second } = self;
-        let mut acc = V::splat(0.0);
-        let (mut total, mut chain) = (0.0, 0);
-        let (mut g_sums, mut d_sums) = (RotorSums::<V>::new(), RotorSums::<V>::new());
-        stream::<V, K, _, M>(theta, springs, |p, count, joins, y| {
-            if E != NONE {
-                let e = first(y[E], count);
-                if joins == 0 || energies.is_empty() {
-                    acc = acc + e;
-                } else {
-                    // Each joining spring ends a chain: the lanes before it finish that chain's
-                    // sum, the lanes after it start the next one's.
-                    let (mut from, mut rest) = (0u8, joins);
-                    while rest != 0 {
-                        let j = rest.trailing_zeros();
-                        let upto = simd::first_lanes(j as usize);
-                        energies[chain] = (acc + e.keep_lanes(upto & !from)).sum();
-                        total += energies[chain];
-                        chain += 1;
-                        acc = V::splat(0.0);
-                        from = upto | 1 << j;
-                        rest &= rest - 1;
-                    }
-                    acc = e.keep_lanes(!from);
-                }
-            }
-            if G != NONE {
-                g_sums.add(gradient, p, count, y[G], y[G + 1]);
-            }
-            if B != NONE {
-                d_sums.add(diag, p, count, y[B], y[B + 2]);
-                put(y[B + 1], off, p, count);
-            }
-            if S != NONE {
-                put(y[S], per_spring, p, count);
-            }
-            if T != NONE {
-                put(y[T], second, p, count);
-            }
-        });
+        let mut sink = Sink::<V, E, G, B, S, T> {
+            outputs: self,
+            acc: V::splat(0.0),
+            total: 0.0,
+            chain: 0,
+            g_sums: RotorSums::new(),
+            d_sums: RotorSums::new(),
+        };
+        stream::<V, K, _, M>(theta, springs, &mut sink);
+        let Sink { outputs, acc, total, chain, g_sums, d_sums } = sink;
         if G != NONE {
-            g_sums.finish(gradient);
+            g_sums.finish(outputs.gradient);
         }
         if B != NONE {
-            d_sums.finish(diag);
+            d_sums.finish(outputs.diag);
         }
-        if energies.is_empty() {
+        if outputs.energies.is_empty() {
             return acc.sum();
         }
         // The last chain (no spring joins it to a next one).
-        energies[chain] = acc.sum();
-        total + energies[chain]
+        outputs.energies[chain] = acc.sum();
+        total + outputs.energies[chain]
+    }
+}
+
+/// Where [`stream`] hands each group's outputs.
+trait GroupSink<V, const M: usize> {
+    /// The outputs `y` of springs `p .. p + count` (see [`stream`]).
+    fn take(&mut self, p: usize, count: usize, joins: u8, y: [V; M]);
+}
+
+/// [`Outputs`] while a driver runs: the energy summed so far (in lanes, and the chains finished
+/// before), and the rotor sums. A type rather than a closure so that its method can be
+/// `#[inline(always)]`: [`stream`] calls it at two places, and a closure as large as the one of
+/// energy + gradient + stiffness was then left out of line, its vector operations compiled as
+/// calls (four times slower).
+struct Sink<'a, V, const E: usize, const G: usize, const B: usize, const S: usize, const T: usize> {
+    outputs: Outputs<'a, E, G, B, S, T>,
+    acc: V,
+    total: f64,
+    chain: usize,
+    g_sums: RotorSums<V>,
+    d_sums: RotorSums<V>,
+}
+
+impl<
+    V: Vector,
+    const M: usize,
+    const E: usize,
+    const G: usize,
+    const B: usize,
+    const S: usize,
+    const T: usize,
+> GroupSink<V, M> for Sink<'_, V, E, G, B, S, T>
+{
+    #[inline(always)]
+    fn take(&mut self, p: usize, count: usize, joins: u8, y: [V; M]) {
+        let out = &mut self.outputs;
+        if E != NONE {
+            let e = first(y[E], count);
+            if joins == 0 || out.energies.is_empty() {
+                self.acc = self.acc + e;
+            } else {
+                // Each joining spring ends a chain: the lanes before it finish that chain's sum,
+                // the lanes after it start the next one's.
+                let (mut from, mut rest) = (0u8, joins);
+                while rest != 0 {
+                    let j = rest.trailing_zeros();
+                    let upto = simd::first_lanes(j as usize);
+                    let energy = (self.acc + e.keep_lanes(upto & !from)).sum();
+                    out.energies[self.chain] = energy;
+                    self.total += energy;
+                    self.chain += 1;
+                    self.acc = V::splat(0.0);
+                    from = upto | 1 << j;
+                    rest &= rest - 1;
+                }
+                self.acc = e.keep_lanes(!from);
+            }
+        }
+        if G != NONE {
+            self.g_sums.add(out.gradient, p, count, y[G], y[G + 1]);
+        }
+        if B != NONE {
+            self.d_sums.add(out.diag, p, count, y[B], y[B + 2]);
+            put(y[B + 1], out.off, p, count);
+        }
+        if S != NONE {
+            put(y[S], out.first, p, count);
+        }
+        if T != NONE {
+            put(y[T], out.second, p, count);
+        }
     }
 }
 

@@ -241,9 +241,6 @@ pub(crate) trait Vector: Lane {
     /// `sin[i], cos[i] = sin_cos(theta[i])` over a slice, `LANES` angles at a time, compiled once
     /// per level (not inlined into every driver).
     fn sin_cos_slice(theta: &[f64], sin: &mut [f64], cos: &mut [f64]);
-    /// `[self_1, ..., self_{LANES-1}, next_0]`: the values one position further along a
-    /// sequence stored `LANES` at a time (the right neighbour of every lane).
-    fn next_lane(self, next: Self) -> Self;
     /// `[previous_{LANES-1}, self_0, ..., self_{LANES-2}]`: the left neighbour of every lane.
     fn previous_lane(self, previous: Self) -> Self;
     /// The lanes whose bit is set in `lanes` (bit `i` for lane `i`), `+0` in the others (NaN
@@ -289,10 +286,6 @@ impl Vector for f64 {
     #[inline(always)]
     fn sin_cos_slice(theta: &[f64], sin: &mut [f64], cos: &mut [f64]) {
         sin_cos_loop::<f64>(theta, sin, cos);
-    }
-    #[inline(always)]
-    fn next_lane(self, next: f64) -> f64 {
-        next
     }
     #[inline(always)]
     fn previous_lane(self, previous: f64) -> f64 {

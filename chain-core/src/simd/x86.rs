@@ -216,10 +216,6 @@ macro_rules! vector_ops {
                 unsafe { $slice(theta, sin, cos) }
             }
             #[inline(always)]
-            fn next_lane(self, next: $t) -> $t {
-                $t::shift_in(self, next)
-            }
-            #[inline(always)]
             fn previous_lane(self, previous: $t) -> $t {
                 $t::shift_back(self, previous)
             }
@@ -270,14 +266,6 @@ impl F64x4 {
     #[inline(always)]
     fn xor_bits(self, bits: i64) -> F64x4 {
         F64x4(unsafe { _mm256_xor_pd(self.0, _mm256_castsi256_pd(_mm256_set1_epi64x(bits))) })
-    }
-    /// `[self_1, self_2, self_3, next_0]`.
-    #[inline(always)]
-    fn shift_in(self, next: F64x4) -> F64x4 {
-        unsafe {
-            let middle = _mm256_permute2f128_pd::<0x21>(self.0, next.0); // [s2, s3, n0, n1]
-            F64x4(_mm256_shuffle_pd::<0b0101>(self.0, middle))
-        }
     }
     /// `[previous_3, self_0, self_1, self_2]`.
     #[inline(always)]
@@ -369,16 +357,6 @@ impl F64x8 {
     #[inline(always)]
     unsafe fn masked_store(self, p: *mut f64, len: usize) {
         unsafe { _mm512_mask_storeu_pd(p, F64x8::lane_mask(len), self.0) }
-    }
-    /// `[self_1, ..., self_7, next_0]`.
-    #[inline(always)]
-    fn shift_in(self, next: F64x8) -> F64x8 {
-        unsafe {
-            F64x8(_mm512_castsi512_pd(_mm512_alignr_epi64::<1>(
-                _mm512_castpd_si512(next.0),
-                _mm512_castpd_si512(self.0),
-            )))
-        }
     }
     /// `[previous_7, self_0, ..., self_6]`.
     #[inline(always)]
