@@ -255,7 +255,7 @@ impl<'a> Angles<'a> {
 /// One pass over chunks of `TRIG_CHUNK` springs: each chunk's sines and cosines first
 /// ([`Angles`]), then its groups, the full ones in a loop without checks of its own (per-group
 /// bookkeeping filled the core's window with instructions that wait on nothing, and fewer
-/// groups' divisions overlapped: 204 -> 178 ns for energy + gradient of 60 rotors at AVX2,
+/// groups' divisions overlapped: 204 -> 186 ns for energy + gradient of 60 rotors at AVX2,
 /// docs/benchmarks.md, seventh round).
 #[inline(always)]
 fn stream<V: Vector, K: SpringFn<M>, S: Springs, const M: usize>(
