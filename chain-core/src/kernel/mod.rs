@@ -26,6 +26,8 @@
 //! `Fn(usize) -> [f64; 5]` (the macro's looped code), or [`SpringSlices`] (the runtime chain),
 //! whose contiguous parameters load into lanes without a gather.
 
+use core::mem::MaybeUninit;
+
 use crate::simd::{self, Vector, WithLanes};
 
 pub use crate::simd::Lane;
@@ -168,10 +170,13 @@ const TRIG_CHUNK: usize = 64;
 /// The most lanes of any level: how far a chunk's angles reach past its springs.
 const MAX_LANES: usize = 8;
 
-/// A chunk's sines or cosines, aligned for the widest vector.
+/// A chunk's sines or cosines, aligned for the widest vector. Not initialized when made:
+/// [`Angles::fill`] writes every value a chunk reads before handing it out (zeroing the two
+/// buffers, 1.1 KB, cost 4-8 % of energy + gradient of 60 rotors, docs/benchmarks.md, eighth
+/// round).
 #[derive(Clone, Copy)]
 #[repr(C, align(64))]
-struct Aligned([f64; TRIG_CHUNK + MAX_LANES]);
+struct Aligned([MaybeUninit<f64>; TRIG_CHUNK + MAX_LANES]);
 
 /// The sines and cosines of one chunk of a chain's angles, each angle's computed once. A chunk of
 /// springs `start .. start + TRIG_CHUNK` needs angles `start .. start + TRIG_CHUNK + 1`: the
@@ -189,20 +194,25 @@ struct Angles<'a> {
     cos: Aligned,
 }
 
+/// One filled chunk of [`Angles`]: its first `TRIG_CHUNK + V::LANES` sines and cosines, every
+/// one written.
+struct Chunk<'b> {
+    sin: &'b [f64],
+    cos: &'b [f64],
+}
+
 impl<'a> Angles<'a> {
     #[inline(always)]
     fn new(theta: &'a [f64]) -> Self {
-        Self {
-            theta,
-            sin: Aligned([0.0; TRIG_CHUNK + MAX_LANES]),
-            cos: Aligned([0.0; TRIG_CHUNK + MAX_LANES]),
-        }
+        let empty = Aligned([MaybeUninit::uninit(); TRIG_CHUNK + MAX_LANES]);
+        Self { theta, sin: empty, cos: empty }
     }
 
     /// Fills the buffers for the chunk from angle `start` (a multiple of `TRIG_CHUNK`, reached in
-    /// order from 0); values past the chain are `(0, 1)`.
+    /// order from 0, so that the values carried over were written by the call before); values
+    /// past the chain are `(0, 1)`.
     #[inline(always)]
-    fn fill<V: Vector>(&mut self, start: usize) {
+    fn fill<V: Vector>(&mut self, start: usize) -> Chunk<'_> {
         let l = V::LANES;
         let n = self.theta.len();
         let carried = if start == 0 {
@@ -221,11 +231,25 @@ impl<'a> Angles<'a> {
         // The last chunk: pad past the chain (values carried over were padded the chunk before).
         let valid = carried + computed;
         if valid < TRIG_CHUNK + l {
-            self.sin.0[valid..].fill(0.0);
-            self.cos.0[valid..].fill(1.0);
+            self.sin.0[valid..TRIG_CHUNK + l].fill(MaybeUninit::new(0.0));
+            self.cos.0[valid..TRIG_CHUNK + l].fill(MaybeUninit::new(1.0));
+        }
+        let len = TRIG_CHUNK + l;
+        debug_assert!(l <= MAX_LANES, "a level within the buffers");
+        // SAFETY: values `0 .. len` are written: `0 .. carried` by the call for the chunk before
+        // (as its values `TRIG_CHUNK .. TRIG_CHUNK + l`, which that call wrote), `carried ..
+        // valid` by `sin_cos_lanes` (one value per angle) and `valid .. len` by the padding.
+        // `MaybeUninit<f64>` has the layout of `f64`, and `len <= TRIG_CHUNK + MAX_LANES`.
+        unsafe {
+            Chunk {
+                sin: core::slice::from_raw_parts(self.sin.0.as_ptr().cast::<f64>(), len),
+                cos: core::slice::from_raw_parts(self.cos.0.as_ptr().cast::<f64>(), len),
+            }
         }
     }
+}
 
+impl Chunk<'_> {
     /// `(s1, c1, s2, c2)`: sines and cosines of the left rotors `j .. j + V::LANES` of a group
     /// (`j` a multiple of `V::LANES` below `TRIG_CHUNK`, counted from the chunk's start) and of
     /// its right rotors, one further on.
@@ -236,7 +260,7 @@ impl<'a> Angles<'a> {
         // drops the bounds checks (they cost as much as the loads they guard).
         let j = j.min(TRIG_CHUNK - V::LANES);
         let l = V::LANES;
-        let (sin, cos) = (&self.sin.0, &self.cos.0);
+        let (sin, cos) = (&self.sin[..TRIG_CHUNK + l], &self.cos[..TRIG_CHUNK + l]);
         [
             V::load(&sin[j..j + l]),
             V::load(&cos[j..j + l]),
@@ -288,7 +312,8 @@ fn stream<V: Vector, K: SpringFn<M>, S: Springs, const M: usize>(
     let mut angles = Angles::new(theta);
     let mut start = 0;
     while start < m {
-        angles.fill::<V>(start);
+        let chunk_angles = angles.fill::<V>(start);
+        let angles = &chunk_angles;
         let chunk = (m - start).min(TRIG_CHUNK);
         let mut j = 0;
         while j + V::LANES <= chunk {
@@ -321,7 +346,7 @@ impl GroupState<'_> {
     fn group<V: Vector, K: SpringFn<M>, S: Springs, const M: usize>(
         &mut self,
         springs: &S,
-        angles: &Angles<'_>,
+        angles: &Chunk<'_>,
         start: usize,
         j: usize,
         rest: usize,

@@ -23,6 +23,7 @@
 //! - the dispatch that instantiates a caller's lane-generic code inside a function compiled for
 //!   the level's target features, so everything it inlines uses them.
 
+use core::mem::MaybeUninit;
 use core::ops::{Add, Div, Mul, Neg, Sub};
 
 use crate::math;
@@ -220,12 +221,22 @@ pub(crate) trait Vector: Lane {
     /// The first `LANES` entries of `s`.
     fn load(s: &[f64]) -> Self;
     /// Writes the lanes to the first `LANES` entries of `s`.
-    fn store(self, s: &mut [f64]);
+    #[inline(always)]
+    fn store(self, s: &mut [f64]) {
+        self.store_uninit(as_uninit(s));
+    }
+    /// Writes the lanes to the first `LANES` entries of `s`, which need not be initialized.
+    fn store_uninit(self, s: &mut [MaybeUninit<f64>]);
     /// The entries of `s` (fewer than `LANES`) in the first lanes, zeros in the others; memory
     /// past `s` is not touched (masked loads).
     fn load_partial(s: &[f64]) -> Self;
     /// Writes the first `min(s.len(), LANES)` lanes to `s` (masked stores).
-    fn store_partial(self, s: &mut [f64]);
+    #[inline(always)]
+    fn store_partial(self, s: &mut [f64]) {
+        self.store_partial_uninit(as_uninit(s));
+    }
+    /// [`Vector::store_partial`] to entries that need not be initialized.
+    fn store_partial_uninit(self, s: &mut [MaybeUninit<f64>]);
     /// The sum of the lanes.
     fn sum(self) -> f64;
     /// Sine and cosine of every lane.
@@ -239,8 +250,10 @@ pub(crate) trait Vector: Lane {
         (self.sin_cos(), other.sin_cos())
     }
     /// `sin[i], cos[i] = sin_cos(theta[i])` over a slice, `LANES` angles at a time, compiled once
-    /// per level (not inlined into every driver).
-    fn sin_cos_slice(theta: &[f64], sin: &mut [f64], cos: &mut [f64]);
+    /// per level (not inlined into every driver). The outputs need not be initialized: the
+    /// kernel drivers' buffers are not (zeroing them cost 4-8 % of energy + gradient of 60
+    /// rotors, docs/benchmarks.md, eighth round).
+    fn sin_cos_slice(theta: &[f64], sin: &mut [MaybeUninit<f64>], cos: &mut [MaybeUninit<f64>]);
     /// `[previous_{LANES-1}, self_0, ..., self_{LANES-2}]`: the left neighbour of every lane.
     fn previous_lane(self, previous: Self) -> Self;
     /// The lanes whose bit is set in `lanes` (bit `i` for lane `i`), `+0` in the others (NaN
@@ -262,17 +275,17 @@ impl Vector for f64 {
         s[0]
     }
     #[inline(always)]
-    fn store(self, s: &mut [f64]) {
-        s[0] = self;
+    fn store_uninit(self, s: &mut [MaybeUninit<f64>]) {
+        s[0].write(self);
     }
     #[inline(always)]
     fn load_partial(s: &[f64]) -> f64 {
         s.first().copied().unwrap_or(0.0)
     }
     #[inline(always)]
-    fn store_partial(self, s: &mut [f64]) {
+    fn store_partial_uninit(self, s: &mut [MaybeUninit<f64>]) {
         if let Some(x) = s.first_mut() {
-            *x = self;
+            x.write(self);
         }
     }
     #[inline(always)]
@@ -284,7 +297,7 @@ impl Vector for f64 {
         math::sin_cos(self)
     }
     #[inline(always)]
-    fn sin_cos_slice(theta: &[f64], sin: &mut [f64], cos: &mut [f64]) {
+    fn sin_cos_slice(theta: &[f64], sin: &mut [MaybeUninit<f64>], cos: &mut [MaybeUninit<f64>]) {
         sin_cos_loop::<f64>(theta, sin, cos);
     }
     #[inline(always)]
@@ -328,40 +341,56 @@ pub(crate) fn dispatch<W: WithLanes>(work: W) -> W::Output {
 }
 
 /// `sin[i], cos[i] = sin_cos(theta[i])` for `i < theta.len()` at `V`'s level (see
-/// [`Vector::sin_cos_slice`]).
+/// [`Vector::sin_cos_slice`]); `sin` and `cos` need not be initialized.
 #[inline(always)]
-pub(crate) fn sin_cos_lanes<V: Vector>(theta: &[f64], sin: &mut [f64], cos: &mut [f64]) {
+pub(crate) fn sin_cos_lanes<V: Vector>(
+    theta: &[f64],
+    sin: &mut [MaybeUninit<f64>],
+    cos: &mut [MaybeUninit<f64>],
+) {
     V::sin_cos_slice(theta, sin, cos);
+}
+
+/// `s` as entries that need not be initialized, for the writers above.
+#[inline(always)]
+pub(crate) fn as_uninit(s: &mut [f64]) -> &mut [MaybeUninit<f64>] {
+    // SAFETY: `MaybeUninit<f64>` has the layout of `f64`. The callers (this module's stores)
+    // write only initialized values through the result, so `s` stays initialized.
+    unsafe { &mut *(core::ptr::from_mut(s) as *mut [MaybeUninit<f64>]) }
 }
 
 /// The loop of [`Vector::sin_cos_slice`]: `V::LANES` angles at a time (two groups at once where
 /// [`Vector::PAIR_TRIG`]). A short last group is padded with zeros, so an angle gets the same
 /// result wherever it sits.
 #[inline(always)]
-pub(crate) fn sin_cos_loop<V: Vector>(theta: &[f64], sin: &mut [f64], cos: &mut [f64]) {
+pub(crate) fn sin_cos_loop<V: Vector>(
+    theta: &[f64],
+    sin: &mut [MaybeUninit<f64>],
+    cos: &mut [MaybeUninit<f64>],
+) {
     let n = theta.len();
     let (sin, cos) = (&mut sin[..n], &mut cos[..n]);
     let mut i = 0;
     while V::PAIR_TRIG && i + 2 * V::LANES <= n {
         let (x0, x1) = (V::load(&theta[i..i + V::LANES]), V::load(&theta[i + V::LANES..i + 2 * V::LANES]));
         let ((s0, c0), (s1, c1)) = x0.sin_cos_pair(x1);
-        s0.store(&mut sin[i..i + V::LANES]);
-        c0.store(&mut cos[i..i + V::LANES]);
-        s1.store(&mut sin[i + V::LANES..i + 2 * V::LANES]);
-        c1.store(&mut cos[i + V::LANES..i + 2 * V::LANES]);
+        s0.store_uninit(&mut sin[i..i + V::LANES]);
+        c0.store_uninit(&mut cos[i..i + V::LANES]);
+        s1.store_uninit(&mut sin[i + V::LANES..i + 2 * V::LANES]);
+        c1.store_uninit(&mut cos[i + V::LANES..i + 2 * V::LANES]);
         i += 2 * V::LANES;
     }
     // Ranges of exactly `V::LANES` under the loop's condition: the compiler drops their checks.
     while i + V::LANES <= n {
         let (s, c) = V::load(&theta[i..i + V::LANES]).sin_cos();
-        s.store(&mut sin[i..i + V::LANES]);
-        c.store(&mut cos[i..i + V::LANES]);
+        s.store_uninit(&mut sin[i..i + V::LANES]);
+        c.store_uninit(&mut cos[i..i + V::LANES]);
         i += V::LANES;
     }
     if i < n {
         let (s, c) = V::load_partial(&theta[i..]).sin_cos();
-        s.store_partial(&mut sin[i..]);
-        c.store_partial(&mut cos[i..]);
+        s.store_partial_uninit(&mut sin[i..]);
+        c.store_partial_uninit(&mut cos[i..]);
     }
 }
 
@@ -372,7 +401,7 @@ pub fn sin_cos_into(theta: &[f64], sin: &mut [f64], cos: &mut [f64]) {
         type Output = ();
         #[inline(always)]
         fn run<V: Vector>(self) {
-            sin_cos_lanes::<V>(self.0, self.1, self.2);
+            sin_cos_lanes::<V>(self.0, as_uninit(self.1), as_uninit(self.2));
         }
     }
     assert!(sin.len() >= theta.len() && cos.len() >= theta.len(), "one sine and one cosine per angle");

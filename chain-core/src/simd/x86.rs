@@ -8,6 +8,7 @@
 //! intrinsic calls below sound.
 
 use core::arch::x86_64::*;
+use core::mem::MaybeUninit;
 use core::ops::{Add, Div, Mul, Neg, Sub};
 
 use super::trig::{self, Trig};
@@ -37,7 +38,7 @@ pub(super) unsafe fn run_avx512<W: WithLanes>(work: W) -> W::Output {
 /// The CPU must support AVX2 and FMA.
 #[target_feature(enable = "avx2,fma")]
 #[inline(never)]
-pub(super) unsafe fn sin_cos_avx2(theta: &[f64], sin: &mut [f64], cos: &mut [f64]) {
+pub(super) unsafe fn sin_cos_avx2(theta: &[f64], sin: &mut [MaybeUninit<f64>], cos: &mut [MaybeUninit<f64>]) {
     super::sin_cos_loop::<F64x4>(theta, sin, cos);
 }
 
@@ -47,7 +48,11 @@ pub(super) unsafe fn sin_cos_avx2(theta: &[f64], sin: &mut [f64], cos: &mut [f64
 /// The CPU must support AVX-512F, AVX2 and FMA.
 #[target_feature(enable = "avx512f,avx2,fma")]
 #[inline(never)]
-pub(super) unsafe fn sin_cos_avx512(theta: &[f64], sin: &mut [f64], cos: &mut [f64]) {
+pub(super) unsafe fn sin_cos_avx512(
+    theta: &[f64],
+    sin: &mut [MaybeUninit<f64>],
+    cos: &mut [MaybeUninit<f64>],
+) {
     super::sin_cos_loop::<F64x8>(theta, sin, cos);
 }
 
@@ -176,10 +181,11 @@ macro_rules! vector_ops {
                 $t(unsafe { $load(s.as_ptr()) })
             }
             #[inline(always)]
-            fn store(self, s: &mut [f64]) {
-                let s: &mut [f64; $n] = (&mut s[..$n]).try_into().unwrap();
-                // SAFETY: `s` has $n writable values; see the module documentation.
-                unsafe { $store(s.as_mut_ptr(), self.0) }
+            fn store_uninit(self, s: &mut [MaybeUninit<f64>]) {
+                let s: &mut [MaybeUninit<f64>; $n] = (&mut s[..$n]).try_into().unwrap();
+                // SAFETY: `s` has $n writable values (of `f64`'s layout); see the module
+                // documentation.
+                unsafe { $store(s.as_mut_ptr().cast::<f64>(), self.0) }
             }
             #[inline(always)]
             fn load_partial(s: &[f64]) -> $t {
@@ -189,10 +195,10 @@ macro_rules! vector_ops {
                 $t(unsafe { $t::masked_load(s.as_ptr(), len) })
             }
             #[inline(always)]
-            fn store_partial(self, s: &mut [f64]) {
+            fn store_partial_uninit(self, s: &mut [MaybeUninit<f64>]) {
                 let len = s.len().min($n);
                 // SAFETY: as in `load_partial`, for writes.
-                unsafe { self.masked_store(s.as_mut_ptr(), len) }
+                unsafe { self.masked_store(s.as_mut_ptr().cast::<f64>(), len) }
             }
             #[inline(always)]
             fn sum(self) -> f64 {
@@ -211,7 +217,7 @@ macro_rules! vector_ops {
                 trig::sin_cos_pair(self, other)
             }
             #[inline(always)]
-            fn sin_cos_slice(theta: &[f64], sin: &mut [f64], cos: &mut [f64]) {
+            fn sin_cos_slice(theta: &[f64], sin: &mut [MaybeUninit<f64>], cos: &mut [MaybeUninit<f64>]) {
                 // SAFETY: values of this type exist only at its level (module doc).
                 unsafe { $slice(theta, sin, cos) }
             }
