@@ -312,17 +312,16 @@ fn stream<V: Vector, K: SpringFn<M>, S: Springs, const M: usize>(
     let mut angles = Angles::new(theta);
     let mut start = 0;
     while start < m {
-        let chunk_angles = angles.fill::<V>(start);
-        let angles = &chunk_angles;
+        let trig = angles.fill::<V>(start);
         let chunk = (m - start).min(TRIG_CHUNK);
         let mut j = 0;
         while j + V::LANES <= chunk {
-            let (y, joins) = state.group::<V, K, S, M>(springs, &angles, start, j, V::LANES);
+            let (y, joins) = state.group::<V, K, S, M>(springs, &trig, start, j, V::LANES);
             sink.take(start + j, V::LANES, joins, y);
             j += V::LANES;
         }
         if j < chunk {
-            let (y, joins) = state.group::<V, K, S, M>(springs, &angles, start, j, chunk - j);
+            let (y, joins) = state.group::<V, K, S, M>(springs, &trig, start, j, chunk - j);
             sink.take(start + j, chunk - j, joins, y);
         }
         start += TRIG_CHUNK;
@@ -346,13 +345,13 @@ impl GroupState<'_> {
     fn group<V: Vector, K: SpringFn<M>, S: Springs, const M: usize>(
         &mut self,
         springs: &S,
-        angles: &Chunk<'_>,
+        trig: &Chunk<'_>,
         start: usize,
         j: usize,
         rest: usize,
     ) -> ([V; M], u8) {
         let p = start + j;
-        let [s1, c1, s2, c2] = angles.group::<V>(j);
+        let [s1, c1, s2, c2] = trig.group::<V>(j);
         let [a, r1, r2, k, l0] = match (&self.slices, &self.uniform) {
             // SAFETY: a full group, `p + V::LANES <= m`, and the slices' lengths (`n`, `m`, `m`)
             // were asserted in `stream`. Unchecked because the checks (two per load) were 10 %
