@@ -94,8 +94,6 @@ pub fn lower_with(
 
     let mut steps = Vec::with_capacity(order.len());
     let mut operand_of: HashMap<Id, Operand> = HashMap::new();
-    // For each square root whose reciprocal was lowered below: the temporary holding `1 / x`.
-    let mut reciprocal_of_square: HashMap<Id, usize> = HashMap::new();
     let operand = |id: Id, operand_of: &HashMap<Id, Operand>| -> Operand {
         if let Some(name) = leaves.get(&id) {
             return Operand::Leaf(name.clone());
@@ -107,36 +105,21 @@ pub fn lower_with(
     };
     for id in order {
         let op = |x: Id| operand(x, &operand_of);
-        // `1 / sqrt(x)` is computed as `sqrt(x) * (1 / x)`: the division then waits on `x` only
-        // and runs beside the square root, not after it. Both are divider instructions, so a
-        // chain whose springs each need a length and its reciprocal (every gradient) waits one
-        // divider latency less per spring (energy + gradient of 60 rotors 186 -> 177 ns at AVX2,
-        // docs/benchmarks.md, eighth round). The price: three roundings instead of two (a
-        // relative error below 3 u instead of 2 u, u = 2^-53; 2.35 u and 1.48 u measured), and
-        // `1 / x` is subnormal for `x >= 2^1022` (an `f64` spring longer than 1e153) and
-        // infinite below `2^-1022`.
-        if let Node::Div(one, root) = g.node(id)
-            && g.as_const(one) == Some(1.0)
-            && !leaves.contains_key(&root)
-            && let Node::Sqrt(x) = g.node(root)
-        {
-            let (root_operand, x) = (op(root), op(x));
-            reciprocal_of_square.insert(root, steps.len());
-            steps.push(Expr::Div(Operand::Const(1.0), x));
-            operand_of.insert(id, Operand::Temp(steps.len()));
-            steps.push(Expr::Mul(root_operand, Operand::Temp(steps.len() - 1)));
-            continue;
-        }
         // `(1 / sqrt(x)) / sqrt(x)` (the derivative of `1 / sqrt(x)`, in every Hessian of a law
-        // of the length) is the `1 / x` just computed: one division less per spring, and one
-        // rounding instead of four.
+        // of the length) is computed as `1 / x`: one rounding instead of three, and a division
+        // that waits on `x` only instead of on the square root and the division before it
+        // (energy + gradient + stiffness of 60 rotors 278 -> ~265 ns at AVX2, docs/benchmarks.md,
+        // eighth round).
         if let Node::Div(q, root) = g.node(id)
             && let Node::Div(one, inner) = g.node(q)
             && inner == root
             && g.as_const(one) == Some(1.0)
-            && let Some(&inverse) = reciprocal_of_square.get(&root)
+            && let Node::Sqrt(x) = g.node(root)
+            && !leaves.contains_key(&root)
         {
-            operand_of.insert(id, Operand::Temp(inverse));
+            let x = op(x);
+            operand_of.insert(id, Operand::Temp(steps.len()));
+            steps.push(Expr::Div(Operand::Const(1.0), x));
             continue;
         }
         let expr = match g.node(id) {
@@ -584,7 +567,7 @@ mod tests {
     }
 
     #[test]
-    fn a_reciprocal_square_root_divides_beside_the_root() {
+    fn the_derivative_of_a_reciprocal_square_root_is_one_division() {
         let mut g = Graph::new();
         let x = g.symbol("x");
         let y = g.symbol("y");
@@ -595,34 +578,30 @@ mod tests {
         let three = g.constant(3.0);
         let other = g.div(three, r);
         let derivative = g.div(q, r);
-        let p = lower(&g, &[r, q, other, derivative], &|id| match g.node(id) {
+        let unrelated = g.div(other, r);
+        let p = lower(&g, &[q, derivative, unrelated], &|id| match g.node(id) {
             Node::Symbol(k) => Some(g.symbol_name(k).to_owned()),
             _ => None,
         })
         .unwrap();
-        // The division reads `x + y`, not the root; a numerator other than 1 is left alone; and
-        // `(1 / sqrt(x)) / sqrt(x)` is the `1 / x` already there.
+        // `(1 / sqrt(x)) / sqrt(x)` divides `x + y` itself; a numerator other than 1 is left alone.
         assert_eq!(
             p.to_string(),
-            "let t0 = x + y;\nlet t1 = sqrt(t0);\nlet t2 = 1.0f64 / t0;\nlet t3 = t1 * t2;\n\
-             let t4 = 3.0f64 / t1;\n=> (t1, t3, t4, t2)"
+            "let t0 = x + y;\nlet t1 = sqrt(t0);\nlet t2 = 1.0f64 / t1;\nlet t3 = 3.0f64 / t1;\n\
+             let t4 = 1.0f64 / t0;\nlet t5 = t3 / t1;\n=> (t2, t4, t5)"
         );
-        // The bound the lowering's comment claims, over 60 binades: three roundings leave a
-        // relative error below 3 u (u = 2^-53), against 2 u for `1 / sqrt(x)`. The error of `y`
-        // is measured without either formula: `y sqrt(x) - 1 = (y^2 x - 1) / 2` to first order,
-        // and `y^2 x - 1` is computed exactly enough with fused multiply-adds.
+        // The claim of the lowering's comment, over 60 binades: `1 / x` is within u = 2^-53 of
+        // the exact value, three roundings are not. The error of `z` is measured without either
+        // formula: `z x - 1`, exact by a fused multiply-add.
         let u = f64::EPSILON / 2.0;
-        let relative = |y: f64, x: f64| {
-            let (y2, y2_err) = (y * y, y.mul_add(y, -(y * y)));
-            (0.5 * (y2.mul_add(x, -1.0) + y2_err * x)).abs() / u
-        };
+        let relative = |z: f64, x: f64| z.mul_add(x, -1.0).abs() / u;
         let (mut lowered, mut plain) = (0.0f64, 0.0f64);
         for i in 0..200_000u32 {
             let x = 2f64.powf(-30.0 + 60.0 * f64::from(i) / 200_000.0) * (1.0 + 1e-3 * f64::from(i % 7));
-            lowered = lowered.max(relative(x.sqrt() * (1.0 / x), x));
-            plain = plain.max(relative(1.0 / x.sqrt(), x));
+            lowered = lowered.max(relative(1.0 / x, x));
+            plain = plain.max(relative((1.0 / x.sqrt()) / x.sqrt(), x));
         }
-        assert!(lowered <= 3.0 && plain <= 2.0 && lowered > plain, "{lowered} u against {plain} u");
+        assert!(lowered <= 1.0 && plain > 1.5, "{lowered} u against {plain} u");
     }
 
     #[test]
