@@ -105,23 +105,6 @@ pub fn lower_with(
     };
     for id in order {
         let op = |x: Id| operand(x, &operand_of);
-        // `(1 / sqrt(x)) / sqrt(x)` (the derivative of `1 / sqrt(x)`, in every Hessian of a law
-        // of the length) is computed as `1 / x`: one rounding instead of three, and a division
-        // that waits on `x` only instead of on the square root and the division before it
-        // (energy + gradient + stiffness of 60 rotors 278 -> ~265 ns at AVX2, docs/benchmarks.md,
-        // eighth round).
-        if let Node::Div(q, root) = g.node(id)
-            && let Node::Div(one, inner) = g.node(q)
-            && inner == root
-            && g.as_const(one) == Some(1.0)
-            && let Node::Sqrt(x) = g.node(root)
-            && !leaves.contains_key(&root)
-        {
-            let x = op(x);
-            operand_of.insert(id, Operand::Temp(steps.len()));
-            steps.push(Expr::Div(Operand::Const(1.0), x));
-            continue;
-        }
         let expr = match g.node(id) {
             Node::Const(_) | Node::Symbol(_) => continue,
             Node::Add(a, b) => Expr::Add(op(a), op(b)),
@@ -564,44 +547,6 @@ mod tests {
         })
         .unwrap();
         assert_eq!(p.to_string(), "let t0 = x + y;\nlet t1 = sqrt(t0);\nlet t2 = t0 * t1;\n=> (t1, t2)");
-    }
-
-    #[test]
-    fn the_derivative_of_a_reciprocal_square_root_is_one_division() {
-        let mut g = Graph::new();
-        let x = g.symbol("x");
-        let y = g.symbol("y");
-        let s = g.add(x, y);
-        let r = g.sqrt(s);
-        let one = g.one();
-        let q = g.div(one, r);
-        let three = g.constant(3.0);
-        let other = g.div(three, r);
-        let derivative = g.div(q, r);
-        let unrelated = g.div(other, r);
-        let p = lower(&g, &[q, derivative, unrelated], &|id| match g.node(id) {
-            Node::Symbol(k) => Some(g.symbol_name(k).to_owned()),
-            _ => None,
-        })
-        .unwrap();
-        // `(1 / sqrt(x)) / sqrt(x)` divides `x + y` itself; a numerator other than 1 is left alone.
-        assert_eq!(
-            p.to_string(),
-            "let t0 = x + y;\nlet t1 = sqrt(t0);\nlet t2 = 1.0f64 / t1;\nlet t3 = 3.0f64 / t1;\n\
-             let t4 = 1.0f64 / t0;\nlet t5 = t3 / t1;\n=> (t2, t4, t5)"
-        );
-        // The claim of the lowering's comment, over 60 binades: `1 / x` is within u = 2^-53 of
-        // the exact value, three roundings are not. The error of `z` is measured without either
-        // formula: `z x - 1`, exact by a fused multiply-add.
-        let u = f64::EPSILON / 2.0;
-        let relative = |z: f64, x: f64| z.mul_add(x, -1.0).abs() / u;
-        let (mut lowered, mut plain) = (0.0f64, 0.0f64);
-        for i in 0..200_000u32 {
-            let x = 2f64.powf(-30.0 + 60.0 * f64::from(i) / 200_000.0) * (1.0 + 1e-3 * f64::from(i % 7));
-            lowered = lowered.max(relative(1.0 / x, x));
-            plain = plain.max(relative((1.0 / x.sqrt()) / x.sqrt(), x));
-        }
-        assert!(lowered <= 1.0 && plain > 1.5, "{lowered} u against {plain} u");
     }
 
     #[test]
