@@ -40,15 +40,8 @@ pub struct RuntimeChain {
 /// [`RuntimeChain::tiled`] for the most copies a block holds, made once when the chain is built
 /// (empty where a block holds one configuration). A block of fewer copies uses a prefix. Made per
 /// call, they cost each rayon task of `batch::gradients` three allocations and ~24 KB of writes.
-#[derive(Clone, Default)]
+#[derive(Clone, Default, PartialEq)]
 struct Tiles([Vec<f64>; 3]);
-
-/// Tiles are a function of the parameters compared beside them: they never decide equality.
-impl PartialEq for Tiles {
-    fn eq(&self, _: &Tiles) -> bool {
-        true
-    }
-}
 
 /// Kept out of a chain's `Debug` output (thousands of repeated values).
 impl core::fmt::Debug for Tiles {
@@ -154,9 +147,11 @@ impl RuntimeChain {
         let n = self.rotor_count();
         let count = crate::model::batch_count(n, thetas, out, energies.as_deref());
         let per_block = (BATCH_ROTORS / n).clamp(1, count.max(1));
-        let [rotor_lengths, stiffness, rest_lengths] = match &self.tiles.0 {
-            _ if per_block == 1 => [&self.rotor_lengths, &self.stiffness, &self.rest_lengths],
-            [r, k, l0] => [r, k, l0],
+        // `per_block > 1` only where the chain made its tiles (`BATCH_ROTORS / n > 1`).
+        let [rotor_lengths, stiffness, rest_lengths] = if per_block == 1 {
+            [&self.rotor_lengths, &self.stiffness, &self.rest_lengths]
+        } else {
+            self.tiles.0.each_ref()
         };
         let mut energies = energies.map(|e| e.chunks_mut(per_block));
         for (t, g) in thetas.chunks(per_block * n).zip(out.chunks_mut(per_block * n)) {

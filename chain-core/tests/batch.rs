@@ -129,14 +129,10 @@ fn an_empty_batch_is_a_valid_batch() {
     assert_eq!(batch::energies_and_gradients(&chain, &[], &mut [], &mut []), Ok(()));
 }
 
-/// The tiled parameters a chain keeps for its batches are not part of what it is: they do not
-/// decide equality and do not fill its `Debug` output.
+/// The tiled parameters a chain keeps for its batches do not fill its `Debug` output.
 #[test]
-fn a_chains_batch_tiles_neither_print_nor_decide_equality() {
+fn a_chains_batch_tiles_are_not_printed() {
     let a = chain(60, Law::Harmonic);
-    let b = RuntimeChain::builder(60, 0.8, 1.0e4, 0.57).build().unwrap();
-    assert_eq!(a, a.clone());
-    assert_ne!(a, b, "chains that differ in their springs' rest length");
     let printed = format!("{a:?}");
     // 60 rotor lengths of 0.8 printed once, not 17 times over.
     assert!(printed.matches("0.8").count() <= 61, "{} copies of 0.8", printed.matches("0.8").count());

@@ -353,7 +353,7 @@ pub(crate) fn sin_cos_lanes<V: Vector>(
 
 /// `s` as entries that need not be initialized, for the writers above.
 #[inline(always)]
-pub(crate) fn as_uninit(s: &mut [f64]) -> &mut [MaybeUninit<f64>] {
+fn as_uninit(s: &mut [f64]) -> &mut [MaybeUninit<f64>] {
     // SAFETY: `MaybeUninit<f64>` has the layout of `f64`. The callers (this module's stores)
     // write only initialized values through the result, so `s` stays initialized.
     unsafe { &mut *(core::ptr::from_mut(s) as *mut [MaybeUninit<f64>]) }
