@@ -10,7 +10,9 @@
 //! `law(l, l0, k)`; the harmonic law `k (l - l0)^2 / 2` is the default.
 //!
 //! From that one expression the engine derives, for spring `p` and its two rotors (paper
-//! Appendix D, Guest's tangent stiffness, written in the angles):
+//! Appendix D, Guest's tangent stiffness, written in the angles; the gradient and the Hessian block
+//! in the paper's form, `t^ d(l^2 / 2)/dtheta` and stress matrix plus material part, which take
+//! fewer operations than the chain rule's order, see [`SpringTerms::derive`]):
 //! - the gradient `dE/dtheta` and Hessian block `d2E/dtheta dtheta`;
 //! - tension `t = dlaw/dl`, axial stiffness `g = dt/dl`, tension coefficient `t^ = t / l`, and
 //!   modified axial stiffness `g^ = g - t^`;
@@ -50,14 +52,17 @@ impl SpringLaw {
         Self { energy, l, l0, k }
     }
 
-    /// The harmonic law `k (l - l0)^2 / 2` (paper Eq. `eq:discretelagrangian`).
+    /// The harmonic law `k (l - l0)^2 / 2` (paper Eq. `eq:discretelagrangian`), written as
+    /// `(k (l - l0)) (l - l0) / 2`: its first product is the tension `t = k (l - l0)`, which the
+    /// gradient needs anyway, so energy and gradient share it (the same two roundings as
+    /// `k ((l - l0)^2)`).
     pub fn harmonic(g: &mut Graph) -> Self {
         let (l, l0, k) = Self::symbols(g);
         let stretch = g.sub(l, l0);
-        let sq = g.powi(stretch, 2);
+        let tension = g.mul(k, stretch);
+        let twice = g.mul(tension, stretch);
         let half = g.constant(0.5);
-        let hk = g.mul(half, k);
-        let energy = g.mul(hk, sq);
+        let energy = g.mul(half, twice);
         Self { energy, l, l0, k }
     }
 
@@ -137,45 +142,48 @@ impl SpringTerms {
         let tension = g.substitute(tension_l, &at_length);
         let axial = g.substitute(axial_l, &at_length);
 
-        let g1 = diff(g, energy, theta1);
-        let g2 = diff(g, energy, theta2);
-        let h11 = diff(g, g1, theta1);
-        let h12 = diff(g, g1, theta2);
-        let h22 = diff(g, g2, theta2);
-
-        // Guest's split (paper Eq. `eq:prestress8`), in the angles.
+        // The force and the tangent stiffness as the paper writes them (Appendix D), with the
+        // tension coefficient `t^ = t / l`, the modified axial stiffness `g^ = g - t^` and
+        // `q = l^2`:
+        // - force, Eq. `eq:prestress1`: `dE/dtheta_i = t^ d(q/2)/dtheta_i`;
+        // - stiffness, Eqs. `eq:prestress6`-`eq:prestress8`: the stress matrix
+        //   `t^ d2(q/2)/dtheta_i dtheta_j` plus the material part `g^ dl_i dl_j`, written as
+        //   `(g^ / q) d(q/2)/dtheta_i d(q/2)/dtheta_j` (as `dl_i = d(q/2)/dtheta_i / l`).
+        // The same functions as the chain rule through `l = sqrt(q)` gives, in fewer operations:
+        // `t^` is one division shared by both gradients (each rounds three times, not four as
+        // `law'(l) (1 / l) d(q/2)/dtheta_i`), and the Hessian divides twice (`t^`, `g^ / q`), as
+        // often as its chain-rule form. The harmonic kernels: energy + gradient 29 -> 25
+        // operations, with the Hessian 73 -> 57 (quartic 35 -> 31 and 92 -> 69); timings in
+        // docs/benchmarks.md, ninth round. Every derivative in it (`law'`, `law''`, those of
+        // `q`) is the engine's.
         let t_hat = g.div(tension, length);
         let g_hat = g.sub(axial, t_hat);
-        let dl1 = diff(g, length, theta1);
-        let dl2 = diff(g, length, theta2);
-        let m11 = {
-            let sq = g.powi(dl1, 2);
-            g.mul(g_hat, sq)
-        };
-        let m12 = {
-            let pr = g.mul(dl1, dl2);
-            g.mul(g_hat, pr)
-        };
-        let m22 = {
-            let sq = g.powi(dl2, 2);
-            g.mul(g_hat, sq)
-        };
         let half = g.constant(0.5);
         let half_q = g.mul(half, q);
         let dq1 = diff(g, half_q, theta1);
         let dq2 = diff(g, half_q, theta2);
-        let s11 = {
-            let d = diff(g, dq1, theta1);
+        let g1 = g.mul(t_hat, dq1);
+        let g2 = g.mul(t_hat, dq2);
+
+        let stress = [(dq1, theta1), (dq1, theta2), (dq2, theta2)].map(|(dq, theta)| {
+            let d = diff(g, dq, theta);
             g.mul(t_hat, d)
-        };
-        let s12 = {
-            let d = diff(g, dq1, theta2);
-            g.mul(t_hat, d)
-        };
-        let s22 = {
-            let d = diff(g, dq2, theta2);
-            g.mul(t_hat, d)
-        };
+        });
+        let per_q = g.div(g_hat, q);
+        let hessian =
+            [(dq1, dq1, stress[0]), (dq1, dq2, stress[1]), (dq2, dq2, stress[2])].map(|(a, b, s)| {
+                let ab = g.mul(a, b);
+                let m = g.mul(per_q, ab);
+                g.add(m, s)
+            });
+
+        // Guest's material part in the paper's own terms, `g^ dl_i dl_j`.
+        let dl1 = diff(g, length, theta1);
+        let dl2 = diff(g, length, theta2);
+        let material = [(dl1, dl1), (dl1, dl2), (dl2, dl2)].map(|(a, b)| {
+            let ab = g.mul(a, b);
+            g.mul(g_hat, ab)
+        });
         let compatibility = [g.div(dl1, p.r1), g.div(dl2, p.r2)];
 
         Self {
@@ -184,9 +192,9 @@ impl SpringTerms {
             energy,
             tension,
             gradient: [g1, g2],
-            hessian: [h11, h12, h22],
-            material: [m11, m12, m22],
-            stress: [s11, s12, s22],
+            hessian,
+            material,
+            stress,
             compatibility,
         }
     }
@@ -234,16 +242,50 @@ mod tests {
         }
     }
 
+    /// A law unlike both built-in ones: `k (exp(l - l0) - 1 - (l - l0)) + l^3 / 3`.
+    fn exponential(g: &mut Graph) -> SpringLaw {
+        let (l, l0, k) = SpringLaw::symbols(g);
+        let stretch = g.sub(l, l0);
+        let e = g.exp(stretch);
+        let one = g.one();
+        let e1 = g.sub(e, one);
+        let e2 = g.sub(e1, stretch);
+        let soft = g.mul(k, e2);
+        let cube = g.powi(l, 3);
+        let third = g.constant(1.0 / 3.0);
+        let hard = g.mul(third, cube);
+        let energy = g.add(soft, hard);
+        SpringLaw::custom(g, energy)
+    }
+
+    /// The gradient and Hessian in the paper's form (`t^ d(q/2)`, stress plus material) are those
+    /// the chain rule gives straight from the energy; the material part in the paper's own terms
+    /// (`g^ dl dl`) adds to the stress matrix to the same Hessian.
     #[test]
-    fn material_plus_stress_is_the_hessian() {
-        for law in [SpringLaw::harmonic, SpringLaw::quartic] {
-            let (g, t, _) = setup(law);
-            for (x1, x2) in [(0.3, -0.2), (1.1, 0.9), (-0.7, 2.0)] {
-                for b in 0..3 {
+    fn the_papers_force_and_stiffness_are_the_energys_derivatives() {
+        for law in [SpringLaw::harmonic, SpringLaw::quartic, exponential] {
+            let (mut g, t, [t1, t2]) = setup(law);
+            let d1 = diff(&mut g, t.energy, t1);
+            let d2 = diff(&mut g, t.energy, t2);
+            let chain_rule = [d1, d2];
+            let d11 = diff(&mut g, d1, t1);
+            let d12 = diff(&mut g, d1, t2);
+            let d22 = diff(&mut g, d2, t2);
+            let second = [d11, d12, d22];
+            for (x1, x2) in [(0.3, -0.2), (1.1, 0.9), (-0.7, 2.0), (2.6, -1.4)] {
+                let close = |a: f64, b: f64| (a - b).abs() <= 1e-12 * (1.0 + a.abs().max(b.abs()));
+                for (i, &direct) in chain_rule.iter().enumerate() {
+                    let ours = g.eval(t.gradient[i], &at(x1, x2));
+                    let direct = g.eval(direct, &at(x1, x2));
+                    assert!(close(ours, direct), "gradient {i} at ({x1}, {x2}): {ours} vs {direct}");
+                }
+                for (b, &direct) in second.iter().enumerate() {
                     let h = g.eval(t.hessian[b], &at(x1, x2));
+                    let direct = g.eval(direct, &at(x1, x2));
                     let m = g.eval(t.material[b], &at(x1, x2));
                     let s = g.eval(t.stress[b], &at(x1, x2));
-                    assert!((h - (m + s)).abs() <= 1e-12 * (1.0 + h.abs()), "block {b}: {h} vs {m} + {s}");
+                    assert!(close(h, direct), "block {b} at ({x1}, {x2}): {h} vs {direct}");
+                    assert!(close(m + s, direct), "block {b} at ({x1}, {x2}): {m} + {s} vs {direct}");
                 }
             }
         }
