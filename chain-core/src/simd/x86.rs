@@ -351,18 +351,13 @@ impl Trig for F64x4 {
 }
 
 impl F64x8 {
-    /// Lanes `i < len` set (`len <= 8`).
-    #[inline(always)]
-    fn lane_mask(len: usize) -> __mmask8 {
-        super::first_lanes(len)
-    }
     #[inline(always)]
     unsafe fn masked_load(p: *const f64, len: usize) -> __m512d {
-        unsafe { _mm512_maskz_loadu_pd(F64x8::lane_mask(len), p) }
+        unsafe { _mm512_maskz_loadu_pd(super::first_lanes(len), p) }
     }
     #[inline(always)]
     unsafe fn masked_store(self, p: *mut f64, len: usize) {
-        unsafe { _mm512_mask_storeu_pd(p, F64x8::lane_mask(len), self.0) }
+        unsafe { _mm512_mask_storeu_pd(p, super::first_lanes(len), self.0) }
     }
     /// `[previous_7, self_0, ..., self_6]`.
     #[inline(always)]
