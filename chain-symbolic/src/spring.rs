@@ -291,22 +291,51 @@ mod tests {
         }
     }
 
+    /// Gradient and every Hessian entry against central differences of each law's energy, written
+    /// in `f64` from the tip distance (independent of the engine), for the built-in laws and a
+    /// custom one.
     #[test]
     fn gradient_and_hessian_match_finite_differences_of_the_tip_distance() {
-        let (g, t, _) = setup(SpringLaw::harmonic);
-        let energy = |x1: f64, x2: f64| 1.5 * (tip_distance(x1, x2) - 1.5).powi(2);
-        let h = 1e-5;
-        for (x1, x2) in [(0.3, -0.2), (1.1, 0.9)] {
-            let g1 = g.eval(t.gradient[0], &at(x1, x2));
-            let g2 = g.eval(t.gradient[1], &at(x1, x2));
-            let fd1 = (energy(x1 + h, x2) - energy(x1 - h, x2)) / (2.0 * h);
-            let fd2 = (energy(x1, x2 + h) - energy(x1, x2 - h)) / (2.0 * h);
-            assert!((g1 - fd1).abs() < 1e-8 && (g2 - fd2).abs() < 1e-8);
-            let h12 = g.eval(t.hessian[1], &at(x1, x2));
-            let fd12 = (energy(x1 + h, x2 + h) - energy(x1 + h, x2 - h) - energy(x1 - h, x2 + h)
-                + energy(x1 - h, x2 - h))
-                / (4.0 * h * h);
-            assert!((h12 - fd12).abs() < 1e-5, "{h12} vs {fd12}");
+        // k = 3, l0 = 1.5 as in `setup`.
+        type Law = (fn(&mut Graph) -> SpringLaw, fn(f64) -> f64);
+        let laws: [Law; 3] = [
+            (SpringLaw::harmonic, |l| 1.5 * (l - 1.5).powi(2)),
+            (SpringLaw::quartic, |l| 3.0 * (l * l - 2.25).powi(2) / (8.0 * 2.25)),
+            (exponential, |l| 3.0 * ((l - 1.5).exp() - 1.0 - (l - 1.5)) + l.powi(3) / 3.0),
+        ];
+        for (law, energy_of_length) in laws {
+            let (g, t, _) = setup(law);
+            let energy = |x1: f64, x2: f64| energy_of_length(tip_distance(x1, x2));
+            for (x1, x2) in [(0.3, -0.2), (1.1, 0.9), (-0.7, 2.0)] {
+                let h = 1e-5;
+                let fd = [
+                    (energy(x1 + h, x2) - energy(x1 - h, x2)) / (2.0 * h),
+                    (energy(x1, x2 + h) - energy(x1, x2 - h)) / (2.0 * h),
+                ];
+                for (i, fd) in fd.into_iter().enumerate() {
+                    let ours = g.eval(t.gradient[i], &at(x1, x2));
+                    assert!(
+                        (ours - fd).abs() < 1e-8 * (1.0 + fd.abs()),
+                        "gradient {i} at ({x1}, {x2}): {ours} vs {fd}"
+                    );
+                }
+                let h = 1e-4;
+                let e0 = energy(x1, x2);
+                let fd = [
+                    (energy(x1 + h, x2) - 2.0 * e0 + energy(x1 - h, x2)) / (h * h),
+                    (energy(x1 + h, x2 + h) - energy(x1 + h, x2 - h) - energy(x1 - h, x2 + h)
+                        + energy(x1 - h, x2 - h))
+                        / (4.0 * h * h),
+                    (energy(x1, x2 + h) - 2.0 * e0 + energy(x1, x2 - h)) / (h * h),
+                ];
+                for (b, fd) in fd.into_iter().enumerate() {
+                    let ours = g.eval(t.hessian[b], &at(x1, x2));
+                    assert!(
+                        (ours - fd).abs() < 1e-5 * (1.0 + fd.abs()),
+                        "block {b} at ({x1}, {x2}): {ours} vs {fd}"
+                    );
+                }
+            }
         }
     }
 }
