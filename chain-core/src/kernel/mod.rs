@@ -277,7 +277,7 @@ impl Chunk<'_> {
 /// back ([`BackToBack`]); those lanes of every output are already zeroed.
 ///
 /// One pass over chunks of `TRIG_CHUNK` springs: each chunk's sines and cosines first
-/// ([`Angles`]), then its groups, the full ones in a loop without checks of its own (per-group
+/// ([`Angles`]), then its groups, the full ones two at a time in a loop without checks of its own (per-group
 /// bookkeeping filled the core's window with instructions that wait on nothing, and fewer
 /// groups' divisions overlapped: 204 -> 186 ns for energy + gradient of 60 rotors at AVX2,
 /// docs/benchmarks.md, seventh round).
@@ -315,7 +315,18 @@ fn stream<V: Vector, K: SpringFn<M>, S: Springs, const M: usize>(
         let trig = angles.fill::<V>(start);
         let chunk = (m - start).min(TRIG_CHUNK);
         let mut j = 0;
-        while j + V::LANES <= chunk {
+        // Two groups per step, both evaluated before either is handed on: their kernels'
+        // instructions sit side by side, and the core overlaps their divisions and long chains
+        // better than one loop iteration apart (E + g + K of 60 rotors 272 -> 256 ns at AVX2,
+        // docs/benchmarks.md, tenth round).
+        while j + 2 * V::LANES <= chunk {
+            let (y0, joins0) = state.group::<V, K, S, M>(springs, &trig, start, j, V::LANES);
+            let (y1, joins1) = state.group::<V, K, S, M>(springs, &trig, start, j + V::LANES, V::LANES);
+            sink.take(start + j, V::LANES, joins0, y0);
+            sink.take(start + j + V::LANES, V::LANES, joins1, y1);
+            j += 2 * V::LANES;
+        }
+        if j + V::LANES <= chunk {
             let (y, joins) = state.group::<V, K, S, M>(springs, &trig, start, j, V::LANES);
             sink.take(start + j, V::LANES, joins, y);
             j += V::LANES;
