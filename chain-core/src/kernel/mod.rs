@@ -277,10 +277,16 @@ impl Chunk<'_> {
 /// back ([`BackToBack`]); those lanes of every output are already zeroed.
 ///
 /// One pass over chunks of `TRIG_CHUNK` springs: each chunk's sines and cosines first
-/// ([`Angles`]), then its groups, the full ones two at a time in a loop without checks of its own (per-group
-/// bookkeeping filled the core's window with instructions that wait on nothing, and fewer
-/// groups' divisions overlapped: 204 -> 186 ns for energy + gradient of 60 rotors at AVX2,
-/// docs/benchmarks.md, seventh round).
+/// ([`Angles`]), then its groups, the full ones two at a time in a loop without checks of its
+/// own (per-group bookkeeping filled the core's window with instructions that wait on nothing,
+/// and fewer groups' divisions overlapped: 204 -> 186 ns for energy + gradient of 60 rotors at
+/// AVX2, docs/benchmarks.md, seventh round).
+///
+/// The sines and cosines are not computed group by group inside the loop over springs: each
+/// group's chain of dependent operations then runs from the angle to the force, and fewer
+/// groups fit the core's window (energy + gradient of 60 rotors 144 -> 160 ns at AVX-512 with
+/// the next group's values shifted in by a lane; chunks of 16 or 32 springs were slower too,
+/// docs/benchmarks.md, tenth round).
 #[inline(always)]
 fn stream<V: Vector, K: SpringFn<M>, S: Springs, const M: usize>(
     theta: &[f64],
