@@ -332,7 +332,7 @@ fn stream<V: Vector, K: SpringFn<M>, S: Springs, const M: usize>(
             sink.take(start + j + V::LANES, V::LANES, joins1, y1);
             j += 2 * V::LANES;
         }
-        if j + V::LANES <= chunk {
+        while j + V::LANES <= chunk {
             let (y, joins) = state.group::<V, K, S, M>(springs, &trig, start, j, V::LANES);
             sink.take(start + j, V::LANES, joins, y);
             j += V::LANES;
