@@ -14,8 +14,7 @@ use crate::graph::{Graph, Id, Node};
 ///
 /// The rules reuse the node itself where the derivative contains it (`d exp(x) = exp(x)`,
 /// `d sqrt(x) = 1 / (2 sqrt(x))`, `d(a / b)/db = -(a / b) / b`), so no transcendental is evaluated
-/// twice in generated code; a quotient by a square root is differentiated in its denominator as
-/// `-a / x`, not `-(a / sqrt(x)) / sqrt(x)`.
+/// twice in generated code.
 pub fn local_partials(g: &mut Graph, id: Id) -> Vec<(Id, Id)> {
     match g.node(id) {
         Node::Const(_) | Node::Symbol(_) => vec![],
@@ -32,15 +31,7 @@ pub fn local_partials(g: &mut Graph, id: Id) -> Vec<(Id, Id)> {
         Node::Div(a, b) => {
             let one = g.one();
             let inv_b = g.div(one, b);
-            // d(a / b)/db = -(a / b) / b; over a square root `b = sqrt(x)`, `b^2` is `x` itself:
-            // `-a / x`, one rounding instead of three, and a division that waits on neither the
-            // root nor the quotient (every Hessian of a law of the spring length differentiates
-            // `1 / l` so: energy + gradient + stiffness of 60 rotors 298 -> 287 ns at AVX2,
-            // docs/benchmarks.md, eighth round).
-            let q = match g.node(b) {
-                Node::Sqrt(x) => g.div(a, x),
-                _ => g.div(id, b),
-            };
+            let q = g.div(id, b);
             let dq_db = g.neg(q);
             vec![(a, inv_b), (b, dq_db)]
         }
@@ -139,14 +130,13 @@ mod tests {
         let p3 = g.powi(x, 3);
         let pm2 = g.powi(x, -2);
         let q = g.div(sx, x);
-        let over_root = g.div(ex, rx);
         let prod = g.mul(cx, ex);
         let diffr = g.sub(lx, rx);
         let neg = g.neg(p3);
         let shifted = g.add(x, three);
         let nested = g.sqrt(shifted);
         let nested = g.mul(nested, q);
-        for e in [sx, cx, ex, lx, rx, p3, pm2, q, over_root, prod, diffr, neg, nested] {
+        for e in [sx, cx, ex, lx, rx, p3, pm2, q, prod, diffr, neg, nested] {
             let d = diff(&mut g, e, x);
             for x0 in [0.4, 1.3, 2.9] {
                 let exact = g.eval(d, &|_| x0);
@@ -168,37 +158,6 @@ mod tests {
         let e = g.mul(s, y);
         let d = diff(&mut g, e, x);
         assert_eq!(g.as_const(d), Some(0.0));
-    }
-
-    /// `a / sqrt(x)` differentiated in its denominator divides by `x`, not twice by the root
-    /// (the Hessian of every law of the length has `d(1 / l)`); the value is the quotient rule's.
-    #[test]
-    fn a_quotient_by_a_square_root_is_differentiated_through_its_radicand() {
-        let mut g = Graph::new();
-        let x = g.symbol("x");
-        let y = g.symbol("y");
-        let s = g.add(x, y);
-        let root = g.sqrt(s);
-        let a = g.exp(y);
-        let q = g.div(a, root);
-        let partials = local_partials(&mut g, q);
-        let (_, dq_db) = partials[1];
-        let reachable = g.reachable(&[dq_db], &|_| false);
-        assert!(
-            !reachable.iter().any(|&id| matches!(g.node(id), Node::Div(_, b) if b == root)),
-            "no division by the root"
-        );
-        assert!(reachable.contains(&s), "the radicand is the divisor");
-        for (xv, yv) in [(0.3, 0.9), (2.0, -0.5), (1e-3, 4.0)] {
-            let at = |name: &str| if name == "x" { xv } else { yv };
-            let (av, bv) = (f64::exp(yv), f64::sqrt(xv + yv));
-            let quotient_rule = -av / (bv * bv);
-            let got = g.eval(dq_db, &at);
-            assert!(
-                (got - quotient_rule).abs() <= 4.0 * f64::EPSILON * quotient_rule.abs(),
-                "{got} against {quotient_rule}"
-            );
-        }
     }
 
     #[test]
