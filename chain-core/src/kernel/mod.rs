@@ -578,8 +578,8 @@ trait GroupSink<V, const M: usize> {
 
 /// [`Outputs`] while a driver runs: the energy summed so far (in lanes, and the chains finished
 /// before), and the rotor sums. A type rather than a closure so that its method can be
-/// `#[inline(always)]`: [`stream`] calls it at two places, and a closure as large as the one of
-/// energy + gradient + stiffness was then left out of line, its vector operations compiled as
+/// `#[inline(always)]`: [`stream`] calls it at several places, and a closure as large as the one
+/// of energy + gradient + stiffness was then left out of line, its vector operations compiled as
 /// calls (four times slower).
 struct Sink<'a, V, const E: usize, const G: usize, const B: usize, const S: usize, const T: usize> {
     outputs: Outputs<'a, E, G, B, S, T>,
