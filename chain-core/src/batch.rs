@@ -3,23 +3,37 @@
 //! cores with rayon's pool.
 //!
 //! A batch is one flat slice, configuration after configuration (`count * n` angles for a chain
-//! of `n` rotors), and so are the gradients. The batch is split into a few tasks per core, and
-//! each task hands its configurations to the model's [`ChainModel::batch_gradient_into`] /
+//! of `n` rotors), and so are the gradients. The batch is cut into pieces of several
+//! configurations, which the calling thread and one helper per other thread of rayon's pool take
+//! one after another from a shared queue until none is left. The calling thread works rather than
+//! waiting for the pool, and a core that runs slower (another process on it) takes fewer pieces.
+//! Each piece goes to the model's [`ChainModel::batch_gradient_into`] /
 //! [`ChainModel::batch_energy_and_gradient_into`]: one by one for a macro chain, and for a
 //! [`crate::RuntimeChain`] as one long chain through its vector loop (the configurations back
 //! to back, the springs that would join them dropped: `kernel::BackToBack`), which saves the
 //! loop's start and end per configuration. The gradients are the same either way; the energies
 //! of a runtime chain's batch agree with its one-by-one energies to rounding (their terms are
-//! summed in another order). The forced level of `simd::with_level` is per thread, so it does
-//! not reach the pool's threads: a batch runs at the detected level.
+//! summed in another order). The helpers run at the calling thread's dispatch level (a level
+//! forced with `simd::with_level` included), so which thread takes a piece never changes a bit.
 
-use rayon::prelude::*;
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::{Mutex, PoisonError};
+use std::time::{Duration, Instant};
 
 use crate::model::ChainModel;
 
-/// Configurations per rayon task, at least: enough work to hide a task's overhead (a few
-/// microseconds) behind evaluations of 0.1-1 us each.
-const MIN_PER_TASK: usize = 16;
+/// Configurations per piece, at least: enough work (a few microseconds at 0.1-1 us per
+/// evaluation) to hide taking a piece from the queue, a lock whose cache line moves between cores.
+const MIN_PER_PIECE: usize = 16;
+
+/// Pieces per thread, at most: enough that the threads finish within a piece of each other.
+const PIECES_PER_THREAD: usize = 8;
+
+/// How long the calling thread spins, at most, for a helper still on a piece once the queue is
+/// empty: long past a piece of a sweep-sized batch (~7 us for 64 configurations of 60 rotors),
+/// short enough that a piece that runs longer (a long chain, a helper preempted) costs a
+/// millisecond of one core before the caller sleeps after all.
+const SPIN_LIMIT: Duration = Duration::from_millis(1);
 
 /// A batch whose slices do not fit the chain or each other.
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
@@ -44,7 +58,7 @@ pub enum BatchError {
     },
 }
 
-/// The number of configurations of a batch, and how many a task takes.
+/// The number of configurations of a batch, and how many a piece holds.
 fn split(n: usize, thetas: &[f64], gradients: &[f64]) -> Result<(usize, usize), BatchError> {
     if n == 0 || !thetas.len().is_multiple_of(n) {
         return Err(BatchError::PartialConfiguration { len: thetas.len(), rotors: n });
@@ -57,8 +71,56 @@ fn split(n: usize, thetas: &[f64], gradients: &[f64]) -> Result<(usize, usize), 
         });
     }
     let count = thetas.len() / n;
-    let tasks = 4 * rayon::current_num_threads();
-    Ok((count, count.div_ceil(tasks).max(MIN_PER_TASK)))
+    let pieces = PIECES_PER_THREAD * rayon::current_num_threads();
+    Ok((count, count.div_ceil(pieces).max(MIN_PER_PIECE)))
+}
+
+/// Runs `work` on every item of `pieces`: the calling thread takes them from a shared queue, and
+/// so does one helper per other thread of the current rayon pool, spawned with
+/// `rayon::in_place_scope` (which runs its body on the calling thread, unlike `rayon::scope`,
+/// whose caller outside the pool sleeps until the pool is done). Returns when every piece is done.
+///
+/// When the queue is empty the calling thread spins while a helper is still on its last piece
+/// (for [`SPIN_LIMIT`] at most), so that the scope finds every helper done rather than putting
+/// the caller to sleep: waking a sleeping thread cost ~10-50 us on this project's machines (a
+/// virtual machine), as long as the whole of a 1 024 x 60 batch on two cores. Measured against
+/// rayon's `par_chunks` and against the queue without the spin: docs/benchmarks.md, eleventh
+/// round.
+fn share<P: Send>(pieces: impl ExactSizeIterator<Item = P> + Send, work: impl Fn(P) + Sync) {
+    let helpers = rayon::current_num_threads().min(pieces.len()).saturating_sub(1);
+    let queue = Mutex::new(pieces);
+    // A panic in `work` on another thread poisons nothing that matters: the queue's iterator is
+    // only ever advanced, and the scope re-raises that panic once every thread has stopped.
+    let drain = || {
+        loop {
+            // Its own statement: the guard is dropped here, not held through `work` (a `while
+            // let` keeps its scrutinee's temporaries to the end of the body).
+            let next = queue.lock().unwrap_or_else(PoisonError::into_inner).next();
+            let Some(piece) = next else { break };
+            work(piece);
+        }
+    };
+    // Helpers that have started, and those that have finished (a helper that starts after the
+    // queue ran dry finishes at once).
+    let (started, finished) = (AtomicUsize::new(0), AtomicUsize::new(0));
+    let level = crate::simd::level();
+    rayon::in_place_scope(|scope| {
+        for _ in 0..helpers {
+            scope.spawn(|_| {
+                started.fetch_add(1, Ordering::AcqRel);
+                // The calling thread's level is one this machine runs, so `with_level` runs it.
+                _ = crate::simd::with_level(level, drain);
+                finished.fetch_add(1, Ordering::AcqRel);
+            });
+        }
+        drain();
+        let since = Instant::now();
+        while finished.load(Ordering::Acquire) < started.load(Ordering::Acquire)
+            && since.elapsed() < SPIN_LIMIT
+        {
+            core::hint::spin_loop();
+        }
+    });
 }
 
 /// The energies and gradients of every configuration in `thetas` (`count * n` angles,
@@ -75,17 +137,17 @@ pub fn energies_and_gradients<M: ChainModel + Sync + ?Sized>(
     gradients: &mut [f64],
 ) -> Result<(), BatchError> {
     let n = model.rotor_count();
-    let (count, per_task) = split(n, thetas, gradients)?;
+    let (count, per_piece) = split(n, thetas, gradients)?;
     if energies.len() != count {
         return Err(BatchError::OutputLength { what: "energies", len: energies.len(), expected: count });
     }
-    thetas
-        .par_chunks(n * per_task)
-        .zip(gradients.par_chunks_mut(n * per_task))
-        .zip(energies.par_chunks_mut(per_task))
-        .for_each(|((theta, gradient), energy)| {
-            model.batch_energy_and_gradient_into(theta, energy, gradient)
-        });
+    let pieces = thetas
+        .chunks(n * per_piece)
+        .zip(gradients.chunks_mut(n * per_piece))
+        .zip(energies.chunks_mut(per_piece));
+    share(pieces, |((theta, gradient), energy)| {
+        model.batch_energy_and_gradient_into(theta, energy, gradient)
+    });
     Ok(())
 }
 
@@ -99,11 +161,9 @@ pub fn gradients<M: ChainModel + Sync + ?Sized>(
     gradients: &mut [f64],
 ) -> Result<(), BatchError> {
     let n = model.rotor_count();
-    let (_, per_task) = split(n, thetas, gradients)?;
-    thetas
-        .par_chunks(n * per_task)
-        .zip(gradients.par_chunks_mut(n * per_task))
-        .for_each(|(theta, gradient)| model.batch_gradient_into(theta, gradient));
+    let (_, per_piece) = split(n, thetas, gradients)?;
+    let pieces = thetas.chunks(n * per_piece).zip(gradients.chunks_mut(n * per_piece));
+    share(pieces, |(theta, gradient)| model.batch_gradient_into(theta, gradient));
     Ok(())
 }
 

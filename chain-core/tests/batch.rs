@@ -137,3 +137,41 @@ fn a_chains_batch_tiles_are_not_printed() {
     // 60 rotor lengths of 0.8 printed once, not 17 times over.
     assert!(printed.matches("0.8").count() <= 61, "{} copies of 0.8", printed.matches("0.8").count());
 }
+
+/// `batch::gradients` hands pieces of a batch to the pool's threads as well as the calling one:
+/// each must run at the calling thread's level, forced or not, or a configuration's bits would
+/// depend on which thread took it. The levels' gradients differ in their last bits (vector and
+/// scalar `sin_cos`), which the second half checks so that the first can fail.
+#[test]
+fn the_pools_threads_run_a_batch_at_the_callers_level() {
+    let (n, count) = (60, 600);
+    let chain = chain(n, Law::Harmonic);
+    let thetas = configurations(n, count);
+    let mut by_level = Vec::new();
+    for level in Level::ALL.into_iter().filter(|l| l.is_supported()) {
+        simd::with_level(level, || {
+            let mut alone = vec![0.0; thetas.len()];
+            chain.batch_gradient_into(&thetas, &mut alone);
+            let (mut g, mut g2, mut e) = (vec![0.0; thetas.len()], vec![0.0; thetas.len()], vec![0.0; count]);
+            batch::gradients(&chain, &thetas, &mut g).expect("a whole batch");
+            batch::energies_and_gradients(&chain, &thetas, &mut e, &mut g2).expect("a whole batch");
+            let mut e_alone = vec![0.0; count];
+            chain.batch_energy_and_gradient_into(&thetas, &mut e_alone, &mut alone.clone());
+            assert!(g == alone, "{level:?}: a gradient on the pool differs from the calling thread's");
+            assert!(g2 == alone, "{level:?}: a fused gradient on the pool differs from the calling thread's");
+            // The energies' terms are summed per piece, in another order (module doc of `batch`).
+            for (c, (a, b)) in e.iter().zip(&e_alone).enumerate() {
+                assert!(
+                    (a - b).abs() <= n as f64 * f64::EPSILON * b.abs(),
+                    "{level:?}: energy {c}: {a} against {b}"
+                );
+            }
+            by_level.push((level, alone));
+        });
+    }
+    if let [(first, a), rest @ ..] = by_level.as_slice() {
+        for (level, b) in rest {
+            assert!(a != b, "{first:?} and {level:?} agree to the bit: the check above could not fail");
+        }
+    }
+}
