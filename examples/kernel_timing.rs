@@ -140,7 +140,7 @@ fn long_chains_and_batches() {
             println!("| {} | {eg:.2} ns | {one:.1} ns |", level.name());
         }
     }
-    // The pool's threads run at the detected level (`with_level` forces only this thread's).
+    // Outside `with_level`: this thread, and so the pool's helpers, run at the detected level.
     let mut gb = vec![0.0; BATCH * N];
     let all = time_once(|| {
         rotor_chain::batch::gradients(black_box(&chain), black_box(&thetas), &mut gb).expect("a batch");

@@ -23,7 +23,7 @@
 use std::collections::HashMap;
 
 use crate::diff::diff;
-use crate::graph::{Graph, Id};
+use crate::graph::{Graph, Id, Node};
 
 /// A spring law: the stored energy as an expression in the symbols `l` (length), `l0` (rest
 /// length) and `k` (stiffness).
@@ -137,7 +137,20 @@ impl SpringTerms {
         let law_l = g.substitute(law.energy, &fixed);
         let tension_l = diff(g, law_l, law.l);
         let axial_l = diff(g, tension_l, law.l);
-        let at_length = HashMap::from([(law.l, length)]);
+        // At the spring's length: `l = sqrt(q)`, and an even power `l^(2m)` of the law is `q^m`,
+        // which `q >= 0` allows (the graph itself keeps `sqrt(x)^2`, NaN for `x < 0`): one
+        // rounding less and no square of a square root. The quartic law is then a function of
+        // `q` alone in its energy and force.
+        let mut at_length = HashMap::from([(law.l, length)]);
+        for id in g.reachable(&[law_l, tension_l, axial_l], &|_| false) {
+            if let Node::Powi(x, n) = g.node(id)
+                && x == law.l
+                && n % 2 == 0
+            {
+                let power = g.powi(q, n / 2);
+                at_length.insert(id, power);
+            }
+        }
         let energy = g.substitute(law_l, &at_length);
         let tension = g.substitute(tension_l, &at_length);
         let axial = g.substitute(axial_l, &at_length);
@@ -153,10 +166,14 @@ impl SpringTerms {
         // `t^` is one division shared by both gradients (each rounds three times, not four as
         // `law'(l) (1 / l) d(q/2)/dtheta_i`), and the Hessian divides twice (`t^`, `g^ / q`), as
         // often as its chain-rule form. The harmonic kernels: energy + gradient 29 -> 25
-        // operations, with the Hessian 73 -> 57 (quartic 35 -> 31 and 92 -> 69); timings in
-        // docs/benchmarks.md, ninth round. Every derivative in it (`law'`, `law''`, those of
-        // `q`) is the engine's.
-        let t_hat = g.div(tension, length);
+        // operations, with the Hessian 73 -> 57 (quartic 35 -> 31 and 92 -> 69; 27 and 65 with
+        // `l^2 = q` and `t^` without its factor `l`, above and below, and then no square root
+        // in the quartic energy + gradient); timings in docs/benchmarks.md, ninth and eleventh
+        // rounds. Every derivative in it (`law'`, `law''`, those of `q`) is the engine's.
+        // Where the tension has the factor `l` (the quartic law's `k l (l^2 - l0^2) / (2 l0^2)`),
+        // `t^` is the rest of it: no division, and `t^` stays finite at `l = 0`, as the force
+        // `t^ d(q/2)/dtheta` does.
+        let t_hat = without_factor(g, tension, length).unwrap_or_else(|| g.div(tension, length));
         let g_hat = g.sub(axial, t_hat);
         let half = g.constant(0.5);
         let half_q = g.mul(half, q);
@@ -200,6 +217,36 @@ impl SpringTerms {
     }
 }
 
+/// `e / f` where `e` is a product (possibly negated, or a quotient) with the factor `f`: `e`
+/// with one factor `f` left out, `None` where none is found. The same function as `e / f` where
+/// `f` is finite and not zero, with a division's rounding less; where `f` is zero or infinite,
+/// `e / f` is NaN and the product without `f` is its limit.
+fn without_factor(g: &mut Graph, e: Id, f: Id) -> Option<Id> {
+    if e == f {
+        return Some(g.one());
+    }
+    match g.node(e) {
+        Node::Mul(a, b) => {
+            if let Some(rest) = without_factor(g, a, f) {
+                Some(g.mul(rest, b))
+            } else {
+                let rest = without_factor(g, b, f)?;
+                Some(g.mul(a, rest))
+            }
+        }
+        Node::Div(a, b) => {
+            let rest = without_factor(g, a, f)?;
+            Some(g.div(rest, b))
+        }
+        Node::Neg(a) => {
+            let rest = without_factor(g, a, f)?;
+            Some(g.neg(rest))
+        }
+        Node::Powi(x, n) if x == f && n >= 2 => Some(g.powi(x, n - 1)),
+        _ => None,
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -240,6 +287,32 @@ mod tests {
             let e = g.eval(t.energy, &at(x1, x2));
             assert!((e - 1.5 * (tip_distance(x1, x2) - 1.5).powi(2)).abs() < 1e-12);
         }
+    }
+
+    /// The quartic law is a polynomial in `q = l^2`: at the spring's length its energy and force
+    /// take no square root, and `t^ = t / l` no division (`setup`'s `k` and `l0` are numbers, so
+    /// the law's `k / (8 l0^2)` is one too). The harmonic law keeps both: its `t = k (l - l0)`
+    /// has no factor `l` to cancel.
+    #[test]
+    fn the_quartic_laws_energy_and_force_take_no_square_root_and_no_division_by_the_length() {
+        let count = |g: &Graph, t: &SpringTerms, what: fn(&Node) -> bool| {
+            let roots = [t.energy, t.gradient[0], t.gradient[1]];
+            g.reachable(&roots, &|_| false).into_iter().filter(|&id| what(&g.node(id))).count()
+        };
+        let (is_sqrt, is_div): (fn(&Node) -> bool, fn(&Node) -> bool) =
+            (|n| matches!(n, Node::Sqrt(_)), |n| matches!(n, Node::Div(..)));
+        let (g, t, _) = setup(SpringLaw::quartic);
+        assert_eq!(
+            (count(&g, &t, is_sqrt), count(&g, &t, is_div)),
+            (0, 0),
+            "quartic: square roots, divisions"
+        );
+        let (g, t, _) = setup(SpringLaw::harmonic);
+        assert_eq!(
+            (count(&g, &t, is_sqrt), count(&g, &t, is_div)),
+            (1, 1),
+            "harmonic: square roots, divisions"
+        );
     }
 
     /// A law unlike both built-in ones: `k (exp(l - l0) - 1 - (l - l0)) + l^3 / 3`.
