@@ -295,12 +295,13 @@ mod tests {
     /// has no factor `l` to cancel.
     #[test]
     fn the_quartic_laws_energy_and_force_take_no_square_root_and_no_division_by_the_length() {
-        let count = |g: &Graph, t: &SpringTerms, what: fn(&Node) -> bool| {
+        type Is = fn(&Node) -> bool;
+        let count = |g: &Graph, t: &SpringTerms, what: Is| {
             let roots = [t.energy, t.gradient[0], t.gradient[1]];
             g.reachable(&roots, &|_| false).into_iter().filter(|&id| what(&g.node(id))).count()
         };
-        let (is_sqrt, is_div): (fn(&Node) -> bool, fn(&Node) -> bool) =
-            (|n| matches!(n, Node::Sqrt(_)), |n| matches!(n, Node::Div(..)));
+        let is_sqrt: Is = |n| matches!(n, Node::Sqrt(_));
+        let is_div: Is = |n| matches!(n, Node::Div(..));
         let (g, t, _) = setup(SpringLaw::quartic);
         assert_eq!(
             (count(&g, &t, is_sqrt), count(&g, &t, is_div)),
