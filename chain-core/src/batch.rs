@@ -90,7 +90,8 @@ fn share<P: Send>(pieces: impl ExactSizeIterator<Item = P> + Send, work: impl Fn
     let helpers = rayon::current_num_threads().min(pieces.len()).saturating_sub(1);
     let queue = Mutex::new(pieces);
     // A panic in `work` on another thread poisons nothing that matters: the queue's iterator is
-    // only ever advanced, and the scope re-raises that panic once every thread has stopped.
+    // only ever advanced, and the scope re-raises that panic once every thread has stopped (the
+    // panicking helper never counts as finished, so the caller's spin ends at `SPIN_LIMIT`).
     let drain = || {
         loop {
             // Its own statement: the guard is dropped here, not held through `work` (a `while
