@@ -140,7 +140,9 @@ impl SpringTerms {
         // At the spring's length: `l = sqrt(q)`, and an even power `l^(2m)` of the law is `q^m`,
         // which `q >= 0` allows (the graph itself keeps `sqrt(x)^2`, NaN for `x < 0`): one
         // rounding less and no square of a square root. The quartic law is then a function of
-        // `q` alone in its energy and force.
+        // `q` alone in its energy and force. Like the paper's form of the force below, this is a
+        // choice of formula made here, where `q >= 0` is known; the graph's own rewrites stay
+        // exact (the same IEEE result for every input).
         let mut at_length = HashMap::from([(law.l, length)]);
         for id in g.reachable(&[law_l, tension_l, axial_l], &|_| false) {
             if let Node::Powi(x, n) = g.node(id)
