@@ -137,19 +137,18 @@ impl SpringTerms {
         let law_l = g.substitute(law.energy, &fixed);
         let tension_l = diff(g, law_l, law.l);
         let axial_l = diff(g, tension_l, law.l);
-        // At the spring's length: `l = sqrt(q)`, and an even power `l^(2m)` of the law is `q^m`,
-        // which `q >= 0` allows (the graph itself keeps `sqrt(x)^2`, NaN for `x < 0`): one
-        // rounding less and no square of a square root. The quartic law is then a function of
-        // `q` alone in its energy and force. Like the paper's form of the force below, this is a
-        // choice of formula made here, where `q >= 0` is known; the graph's own rewrites stay
-        // exact (the same IEEE result for every input).
+        // At the spring's length: `l = sqrt(q)`, and a power `l^n` (n >= 2) of the law is
+        // `q^(n/2)`, times `l` for odd `n`, which `q >= 0` allows (the graph itself keeps
+        // `sqrt(x)^2`, NaN for `x < 0`): fewer roundings and no power of a square root. The
+        // quartic law is then a function of `q` alone in its energy and force. Like the paper's
+        // form of the force below, this is a choice of formula made here, where `q >= 0` is
+        // known; the graph's own rewrites stay exact (the same IEEE result for every input).
         let mut at_length = HashMap::from([(law.l, length)]);
         for id in g.reachable(&[law_l, tension_l, axial_l], &|_| false) {
             if let Node::Powi(x, n) = g.node(id)
                 && x == law.l
-                && n % 2 == 0
             {
-                let power = g.powi(q, n / 2);
+                let power = length_power(g, n, length, q);
                 at_length.insert(id, power);
             }
         }
@@ -172,10 +171,10 @@ impl SpringTerms {
         // `l^2 = q` and `t^` without its factor `l`, above and below, and then no square root
         // in the quartic energy + gradient); timings in docs/benchmarks.md, ninth and eleventh
         // rounds. Every derivative in it (`law'`, `law''`, those of `q`) is the engine's.
-        // Where the tension has the factor `l` (the quartic law's `k l (l^2 - l0^2) / (2 l0^2)`),
-        // `t^` is the rest of it: no division, and `t^` stays finite at `l = 0`, as the force
+        // Where the tension has the factor `l` (the quartic law's `k l (l^2 - l0^2) / (2 l0^2)`,
+        // or `k l^2 = k q` of a law `k l^3 / 3`), `t^` is the rest of it: no division, and `t^` stays finite at `l = 0`, as the force
         // `t^ d(q/2)/dtheta` does.
-        let t_hat = without_factor(g, tension, length).unwrap_or_else(|| g.div(tension, length));
+        let t_hat = without_length(g, tension, length, q).unwrap_or_else(|| g.div(tension, length));
         let g_hat = g.sub(axial, t_hat);
         let half = g.constant(0.5);
         let half_q = g.mul(half, q);
@@ -219,32 +218,49 @@ impl SpringTerms {
     }
 }
 
-/// `e / f` where `e` is a product (possibly negated, or a quotient) with the factor `f`: `e`
-/// with one factor `f` left out, `None` where none is found. The same function as `e / f` where
-/// `f` is finite and not zero, with a division's rounding less; where `f` is zero or infinite,
-/// `e / f` is NaN and the product without `f` is its limit.
-fn without_factor(g: &mut Graph, e: Id, f: Id) -> Option<Id> {
-    if e == f {
+/// `l^n` at the spring's length `l = sqrt(q)`: `q^(n/2)` for even `n`, `q^((n-1)/2) l` for odd
+/// `n >= 3`, and `l^n` itself for `n = 1` and negative odd `n`.
+fn length_power(g: &mut Graph, n: i32, length: Id, q: Id) -> Id {
+    match n {
+        _ if n % 2 == 0 => g.powi(q, n / 2),
+        _ if n >= 3 => {
+            let even = g.powi(q, (n - 1) / 2);
+            g.mul(even, length)
+        }
+        _ => g.powi(length, n),
+    }
+}
+
+/// `e / l` where `e` is a product (possibly negated, or a quotient) with a factor `l = length`,
+/// written as `l` itself or within `q = l^2` or a power of `q` ([`length_power`]'s forms): `e`
+/// with one factor `l` left out, `None` where none is found. The same function as `e / l` where
+/// `l` is finite and not zero, with a division's rounding less; where `l` is zero or infinite,
+/// `e / l` is NaN and the product without `l` is its limit.
+fn without_length(g: &mut Graph, e: Id, length: Id, q: Id) -> Option<Id> {
+    if e == length {
         return Some(g.one());
+    }
+    if e == q {
+        return Some(length);
     }
     match g.node(e) {
         Node::Mul(a, b) => {
-            if let Some(rest) = without_factor(g, a, f) {
+            if let Some(rest) = without_length(g, a, length, q) {
                 Some(g.mul(rest, b))
             } else {
-                let rest = without_factor(g, b, f)?;
+                let rest = without_length(g, b, length, q)?;
                 Some(g.mul(a, rest))
             }
         }
         Node::Div(a, b) => {
-            let rest = without_factor(g, a, f)?;
+            let rest = without_length(g, a, length, q)?;
             Some(g.div(rest, b))
         }
         Node::Neg(a) => {
-            let rest = without_factor(g, a, f)?;
+            let rest = without_length(g, a, length, q)?;
             Some(g.neg(rest))
         }
-        Node::Powi(x, n) if x == f && n >= 2 => Some(g.powi(x, n - 1)),
+        Node::Powi(x, m) if x == q && m >= 2 => Some(length_power(g, 2 * m - 1, length, q)),
         _ => None,
     }
 }
@@ -294,9 +310,10 @@ mod tests {
     /// The quartic law is a polynomial in `q = l^2`: at the spring's length its energy and force
     /// take no square root, and `t^ = t / l` no division (`setup`'s `k` and `l0` are numbers, so
     /// the law's `k / (8 l0^2)` is one too). The harmonic law keeps both: its `t = k (l - l0)`
-    /// has no factor `l` to cancel.
+    /// has no factor `l` to cancel. A law whose tension has the factor `l` inside `l^2` (`k l^3 /
+    /// 3`) needs the square root for its energy, but no division either.
     #[test]
-    fn the_quartic_laws_energy_and_force_take_no_square_root_and_no_division_by_the_length() {
+    fn a_tension_with_the_factor_l_is_not_divided_by_the_length() {
         type Is = fn(&Node) -> bool;
         let count = |g: &Graph, t: &SpringTerms, what: Is| {
             let roots = [t.energy, t.gradient[0], t.gradient[1]];
@@ -316,6 +333,19 @@ mod tests {
             (1, 1),
             "harmonic: square roots, divisions"
         );
+        // A factor `l` inside `q`: the tension `k l^2` of `k l^3 / 3` is `k q`, and `t^ = k l`.
+        let (g, t, _) = setup(cubic);
+        assert_eq!((count(&g, &t, is_sqrt), count(&g, &t, is_div)), (1, 0), "cubic: square roots, divisions");
+    }
+
+    /// `k l^3 / 3`: its tension `k l^2` has the factor `l` only through `l^2 = q`.
+    fn cubic(g: &mut Graph) -> SpringLaw {
+        let (l, _, k) = SpringLaw::symbols(g);
+        let cube = g.powi(l, 3);
+        let third = g.constant(1.0 / 3.0);
+        let scaled = g.mul(third, k);
+        let energy = g.mul(scaled, cube);
+        SpringLaw::custom(g, energy)
     }
 
     /// A law unlike both built-in ones: `k (exp(l - l0) - 1 - (l - l0)) + l^3 / 3`.
@@ -339,7 +369,7 @@ mod tests {
     /// (`g^ dl dl`) adds to the stress matrix to the same Hessian.
     #[test]
     fn the_papers_force_and_stiffness_are_the_energys_derivatives() {
-        for law in [SpringLaw::harmonic, SpringLaw::quartic, exponential] {
+        for law in [SpringLaw::harmonic, SpringLaw::quartic, exponential, cubic] {
             let (mut g, t, [t1, t2]) = setup(law);
             let d1 = diff(&mut g, t.energy, t1);
             let d2 = diff(&mut g, t.energy, t2);
@@ -374,10 +404,11 @@ mod tests {
     fn gradient_and_hessian_match_finite_differences_of_the_tip_distance() {
         // k = 3, l0 = 1.5 as in `setup`.
         type Law = (fn(&mut Graph) -> SpringLaw, fn(f64) -> f64);
-        let laws: [Law; 3] = [
+        let laws: [Law; 4] = [
             (SpringLaw::harmonic, |l| 1.5 * (l - 1.5).powi(2)),
             (SpringLaw::quartic, |l| 3.0 * (l * l - 2.25).powi(2) / (8.0 * 2.25)),
             (exponential, |l| 3.0 * ((l - 1.5).exp() - 1.0 - (l - 1.5)) + l.powi(3) / 3.0),
+            (cubic, |l| 3.0 * l.powi(3) / 3.0),
         ];
         for (law, energy_of_length) in laws {
             let (g, t, _) = setup(law);
