@@ -39,7 +39,7 @@ pub struct RuntimeChain {
 /// The parameters of a block of configurations laid back to back, for [`RuntimeChain::batch`]:
 /// [`RuntimeChain::tiled`] for the most copies a block holds, made once when the chain is built
 /// (empty where a block holds one configuration). A block of fewer copies uses a prefix. Made per
-/// call, they cost each rayon task of `batch::gradients` three allocations and ~24 KB of writes.
+/// call, they cost each piece of `batch::gradients` three allocations and ~24 KB of writes.
 #[derive(Clone, Default, PartialEq)]
 struct Tiles([Vec<f64>; 3]);
 
