@@ -141,7 +141,9 @@ fn a_chains_batch_tiles_are_not_printed() {
 /// `batch::gradients` hands pieces of a batch to the pool's threads as well as the calling one:
 /// each must run at the calling thread's level, forced or not, or a configuration's bits would
 /// depend on which thread took it. The levels' gradients differ in their last bits (vector and
-/// scalar `sin_cos`), which the second half checks so that the first can fail.
+/// scalar `sin_cos`), which the second half checks so that the first can fail. It can fail only
+/// where rayon's pool has a second thread to take pieces and the machine runs a second level;
+/// on a one-core or scalar-only machine it checks less.
 #[test]
 fn the_pools_threads_run_a_batch_at_the_callers_level() {
     let (n, count) = (60, 600);
