@@ -16,9 +16,12 @@
 //! `k |l - l0| (|dx| + |dy| + l0)` because `l - l0` cancels. A kernel that lost digits to a
 //! poorly chosen formula (a cancellation the problem does not have) would exceed it.
 
+mod support;
+
 use chain_core::kernel::{SpringFn, harmonic, quartic};
 use dashu_float::FBig;
 use dashu_float::round::mode::HalfEven;
+use support::random::SplitMix;
 
 type Big = FBig<HalfEven, 2>;
 
@@ -187,27 +190,11 @@ impl Bound {
     }
 }
 
-/// splitmix64: reproducible uniform numbers in [0, 1).
-struct Uniform(u64);
-
-impl Uniform {
-    fn next(&mut self) -> f64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
-    }
-    fn range(&mut self, lo: f64, hi: f64) -> f64 {
-        lo + (hi - lo) * self.next()
-    }
-}
-
 /// Random springs: angles anywhere, rotor lengths 0.3 – 1.5, spacing 0.5 – 2, stiffness
 /// 0.1 – 1e4 (log-uniform); half of them within 1e-12 – 1e-2 of their rest length (where
 /// `l - l0` cancels), half with a rest length anywhere in 0.1 – 3.
 fn springs(count: usize, seed: u64) -> Vec<[f64; 9]> {
-    let mut u = Uniform(seed);
+    let mut u = SplitMix(seed);
     let mut out = Vec::with_capacity(count);
     while out.len() < count {
         let (t1, t2) = (u.range(-3.2, 3.2), u.range(-3.2, 3.2));

@@ -6,6 +6,8 @@ use std::cell::RefCell;
 use dashu_float::round::mode::HalfEven;
 use dashu_float::{ConstCache, Context, FBig};
 
+use super::random::SplitMix;
+
 std::thread_local! {
     /// pi at the working precisions, kept between calls (recomputing it dominated the time).
     static CACHE: RefCell<ConstCache> = RefCell::new(ConstCache::default());
@@ -50,18 +52,11 @@ pub enum Range {
 
 /// `count` reproducible angles of `range` (splitmix64 from `seed`).
 pub fn angles(range: Range, count: usize, seed: u64) -> Vec<f64> {
-    let mut state = seed;
-    let mut next = move || {
-        state = state.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = state;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    };
+    let mut random = SplitMix(seed);
     (0..count)
         .map(|_| {
-            let bits = next();
-            let u = (bits >> 11) as f64 / (1u64 << 53) as f64; // [0, 1)
+            let bits = random.bits();
+            let u = SplitMix::unit(bits); // [0, 1)
             match range {
                 Range::Uniform(h) => (2.0 * u - 1.0) * h,
                 Range::LogUniform(lo, hi) => {
