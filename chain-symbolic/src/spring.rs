@@ -172,8 +172,8 @@ impl SpringTerms {
         // in the quartic energy + gradient); timings in docs/benchmarks.md, ninth and eleventh
         // rounds. Every derivative in it (`law'`, `law''`, those of `q`) is the engine's.
         // Where the tension has the factor `l` (the quartic law's `k l (l^2 - l0^2) / (2 l0^2)`,
-        // or `k l^2 = k q` of a law `k l^3 / 3`), `t^` is the rest of it: no division, and `t^` stays finite at `l = 0`, as the force
-        // `t^ d(q/2)/dtheta` does.
+        // or `k l^2 = k q` of a law `k l^3 / 3`), `t^` is the rest of it: no division, and `t^`
+        // stays finite at `l = 0`, as the force `t^ d(q/2)/dtheta` does.
         let t_hat = without_length(g, tension, length, q).unwrap_or_else(|| g.div(tension, length));
         let g_hat = g.sub(axial, t_hat);
         let half = g.constant(0.5);
