@@ -33,8 +33,8 @@ fn within_two_ulp_of_the_correctly_rounded_values_at_every_level() {
     }
 }
 
-/// Angles next to multiples of pi/2 (where the remainder is tiny and the short reduction hands
-/// its vector to the careful one) and either side of the switch between them (`|hi| = 2^-28`).
+/// Angles next to multiples of pi/2, where the remainder is tiny, and either side of
+/// `|hi| = 2^-28`, below which the reduction's last term `k P3` starts to matter.
 #[test]
 fn within_two_ulp_next_to_multiples_of_half_pi() {
     let mut theta = Vec::new();
@@ -55,6 +55,62 @@ fn within_two_ulp_next_to_multiples_of_half_pi() {
         let (sin, cos) = at_level(level, &theta);
         let w = ulp::worst(&theta, &sin, &cos, &reference);
         assert!(w.ulps <= 2, "{}: {} ulp at {:e}", level.name(), w.ulps, w.angle);
+    }
+}
+
+/// `pi/2` in fixed point, `floor(pi 2^123) = floor(pi/2 2^124)`, from dashu-float's pi (not
+/// the library's constants).
+fn half_pi_fixed() -> u128 {
+    use dashu_float::ConstCache;
+    use dashu_float::round::mode::HalfEven;
+    let pi = ConstCache::default().pi::<2, HalfEven>(160).value();
+    let (significand, exponent) = (pi.repr().significand(), pi.repr().exponent());
+    let shift = usize::try_from(-(exponent + 123)).expect("160 bits reach below 2^-123");
+    u128::try_from(significand >> shift).expect("pi 2^123 < 2^125")
+}
+
+/// The doubles below the vector reduction's limit nearest to a nonzero multiple `k pi/2`, over
+/// every `k` up to `2^24 2/pi` (the three doubles around each `k pi/2`, their distance to it in
+/// 124-bit fixed point, exact modulo `2^128`): the `n` nearest, with their distances.
+fn nearest_to_multiples_of_half_pi(n: usize) -> Vec<(f64, f64)> {
+    let half_pi = half_pi_fixed();
+    let mut nearest: Vec<(u128, f64)> = Vec::with_capacity(n + 1);
+    let k_max = (VECTOR_SIN_COS_LIMIT * core::f64::consts::FRAC_2_PI) as u128;
+    for k in 1..=k_max {
+        let y = k as f64 * core::f64::consts::FRAC_PI_2;
+        let target = k.wrapping_mul(half_pi);
+        for x in [y.next_down(), y, y.next_up()] {
+            let bits = x.to_bits();
+            let mantissa = u128::from(bits & ((1 << 52) - 1) | 1 << 52);
+            // x = mantissa 2^(e - 1075) >= 1, so x 2^124 is an integer; its top bits wrap away,
+            // and the difference, below 2^100, is exact as a signed number.
+            let shift = (bits >> 52) as u32 + 124 - 1075;
+            let distance = ((mantissa << shift).wrapping_sub(target) as i128).unsigned_abs();
+            if nearest.len() < n || distance < nearest[n - 1].0 {
+                let at = nearest.partition_point(|&(d, _)| d <= distance);
+                nearest.insert(at, (distance, x));
+                nearest.truncate(n);
+            }
+        }
+    }
+    nearest.into_iter().map(|(d, x)| (x, d as f64 * 2f64.powi(-124))).collect()
+}
+
+/// The hardest angles for the reduction: the 32 doubles below the limit nearest to a nonzero
+/// multiple of pi/2. Their remainders are at least 2^-61 (`simd::trig` relies on that to keep
+/// the sign of `sin(-0)` and to leave out a separate path near multiples of pi/2), and their
+/// sines and cosines are within 1 ulp at every level.
+#[test]
+fn the_doubles_nearest_to_multiples_of_half_pi_are_within_one_ulp() {
+    let nearest = nearest_to_multiples_of_half_pi(32);
+    let (x0, r0) = nearest[0];
+    assert!(r0 > 2f64.powi(-61), "remainder {r0:e} at {x0:e}");
+    let theta: Vec<f64> = nearest.iter().flat_map(|&(x, _)| [x, -x]).collect();
+    let reference: Vec<_> = theta.iter().map(|&x| ulp::reference(x)).collect();
+    for level in levels() {
+        let (sin, cos) = at_level(level, &theta);
+        let w = ulp::worst(&theta, &sin, &cos, &reference);
+        assert!(w.ulps <= 1, "{}: {} ulp at {:e}", level.name(), w.ulps, w.angle);
     }
 }
 
@@ -114,8 +170,8 @@ fn special_and_large_angles_give_exactly_the_scalar_result() {
     }
 }
 
-/// Signed zeros and tiny angles among ordinary ones (so their vector takes the short path, not
-/// the careful one that NaN or huge lanes send it to): `sin(-0)` is `-0`, `sin(+0)` is `+0`, and
+/// Signed zeros and tiny angles among ordinary ones (so their vector takes the polynomials, not
+/// the scalar lanes that NaN or huge lanes send it to): `sin(-0)` is `-0`, `sin(+0)` is `+0`, and
 /// a tiny angle's sine is the angle itself, with its sign, as the scalar path gives.
 #[test]
 fn signed_zeros_and_tiny_angles_keep_their_sign_among_ordinary_angles() {
@@ -169,9 +225,10 @@ fn the_vector_levels_give_the_same_bits() {
     }
 }
 
-/// The careful path of a vector with one unusual lane (NaN, infinite, huge, or within 2^-28 of a
-/// nonzero multiple of pi/2) leaves the other lanes as the short path has them: an ordinary
-/// angle's result does not depend on its neighbours (batches laid back to back rely on it).
+/// A vector with one unusual lane (NaN, infinite or huge, which takes the scalar `sin_cos`; or
+/// next to a nonzero multiple of pi/2) leaves the other lanes as the polynomials have them: an
+/// ordinary angle's result does not depend on its neighbours (batches laid back to back rely on
+/// it).
 #[test]
 fn an_unusual_angle_leaves_its_neighbours_as_they_are_alone() {
     let near_half_pi = f64::from_bits(core::f64::consts::FRAC_PI_2.to_bits() + 1);

@@ -56,15 +56,15 @@ pub(super) unsafe fn sin_cos_avx512(
     super::sin_cos_loop::<F64x8>(theta, sin, cos);
 }
 
-/// The rare vectors of [`trig::careful`], out of the hot loop.
+/// The rare vectors of [`trig::with_scalar_lanes`], out of the hot loop.
 ///
 /// # Safety
 /// The CPU must support AVX2 and FMA.
 #[cold]
 #[target_feature(enable = "avx2,fma")]
 #[inline(never)]
-unsafe fn careful_avx2(x: F64x4) -> (F64x4, F64x4) {
-    trig::careful(x)
+unsafe fn with_scalar_lanes_avx2(x: F64x4) -> (F64x4, F64x4) {
+    trig::with_scalar_lanes(x)
 }
 
 /// # Safety
@@ -72,8 +72,8 @@ unsafe fn careful_avx2(x: F64x4) -> (F64x4, F64x4) {
 #[cold]
 #[target_feature(enable = "avx512f,avx2,fma")]
 #[inline(never)]
-unsafe fn careful_avx512(x: F64x8) -> (F64x8, F64x8) {
-    trig::careful(x)
+unsafe fn with_scalar_lanes_avx512(x: F64x8) -> (F64x8, F64x8) {
+    trig::with_scalar_lanes(x)
 }
 
 #[derive(Clone, Copy)]
@@ -318,13 +318,6 @@ impl Trig for F64x4 {
         unsafe { F64x4(_mm256_or_pd(s.0, _mm256_and_pd(h.0, _mm256_set1_pd(-0.0)))) }
     }
     #[inline(always)]
-    fn keep_zero(x: F64x4, s: F64x4) -> F64x4 {
-        unsafe {
-            let zero = _mm256_cmp_pd::<_CMP_EQ_OQ>(x.0, _mm256_setzero_pd());
-            F64x4(_mm256_blendv_pd(s.0, x.0, zero))
-        }
-    }
-    #[inline(always)]
     fn any_outside(x: F64x4) -> bool {
         unsafe {
             let abs = _mm256_andnot_pd(_mm256_set1_pd(-0.0), x.0);
@@ -333,20 +326,8 @@ impl Trig for F64x4 {
         }
     }
     #[inline(always)]
-    fn unusual(x: F64x4, hi: F64x4) -> u8 {
-        unsafe {
-            let sign = _mm256_set1_pd(-0.0);
-            let outside =
-                _mm256_cmp_pd::<_CMP_NLE_UQ>(_mm256_andnot_pd(sign, x.0), _mm256_set1_pd(trig::LIMIT));
-            let tiny = _mm256_cmp_pd::<_CMP_LT_OQ>(_mm256_andnot_pd(sign, hi.0), _mm256_set1_pd(trig::TINY));
-            // `hi == x` exactly when `k = 0`: no reduction, nothing to recover (trig::sin_cos).
-            let reduced = _mm256_cmp_pd::<_CMP_NEQ_UQ>(hi.0, x.0);
-            _mm256_movemask_pd(_mm256_or_pd(outside, _mm256_and_pd(tiny, reduced))) as u8
-        }
-    }
-    #[inline(always)]
-    fn careful(x: F64x4) -> (F64x4, F64x4) {
-        unsafe { careful_avx2(x) }
+    fn with_scalar_lanes(x: F64x4) -> (F64x4, F64x4) {
+        unsafe { with_scalar_lanes_avx2(x) }
     }
 }
 
@@ -416,13 +397,6 @@ impl Trig for F64x8 {
         }
     }
     #[inline(always)]
-    fn keep_zero(x: F64x8, s: F64x8) -> F64x8 {
-        unsafe {
-            let zero = _mm512_cmp_pd_mask::<_CMP_EQ_OQ>(x.0, _mm512_setzero_pd());
-            F64x8(_mm512_mask_blend_pd(zero, s.0, x.0))
-        }
-    }
-    #[inline(always)]
     fn any_outside(x: F64x8) -> bool {
         unsafe {
             let abs =
@@ -431,17 +405,7 @@ impl Trig for F64x8 {
         }
     }
     #[inline(always)]
-    fn unusual(x: F64x8, hi: F64x8) -> u8 {
-        unsafe {
-            let outside = _mm512_cmp_pd_mask::<_CMP_NLE_UQ>(_mm512_abs_pd(x.0), _mm512_set1_pd(trig::LIMIT));
-            let tiny = _mm512_cmp_pd_mask::<_CMP_LT_OQ>(_mm512_abs_pd(hi.0), _mm512_set1_pd(trig::TINY));
-            // `hi == x` exactly when `k = 0`: no reduction, nothing to recover (trig::sin_cos).
-            let reduced = _mm512_cmp_pd_mask::<_CMP_NEQ_UQ>(hi.0, x.0);
-            outside | (tiny & reduced)
-        }
-    }
-    #[inline(always)]
-    fn careful(x: F64x8) -> (F64x8, F64x8) {
-        unsafe { careful_avx512(x) }
+    fn with_scalar_lanes(x: F64x8) -> (F64x8, F64x8) {
+        unsafe { with_scalar_lanes_avx512(x) }
     }
 }
