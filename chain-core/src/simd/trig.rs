@@ -9,21 +9,25 @@
 //! the low mantissa bits), then `r = x - k pi/2` with `pi/2 = P1 + P2 + P3` (three doubles, 159
 //! bits), one fused multiply-add per term: `r1 = x - k P1` is exact (both terms are multiples of
 //! `min(ulp(x), 2^-52)` and the result is below 1), `r2 = r1 - k P2` rounds once, to half an ulp
-//! of `r2`, and `hi = r2 - k P3` once more, to half an ulp of `hi`. `k P3` is below `2^24 2^-110
-//! = 2^-86`, and the error left after it, about `|k| 2^-159`, is negligible. The remainder of a
-//! double below [`LIMIT`] is never smaller than `6.19e-19 = 2^-60.5` unless it is zero (at
-//! `x = 29 pi/2`, found by exact integer arithmetic over every `k` up to `2^24 2/pi`), so `r2`
-//! and `hi` are within one ulp of the true remainder in relative terms however near `x` is to a
-//! multiple of `pi/2`, and have its sign. Where `|hi| >= 2^-28` the last step changes nothing
-//! (`k P3` is below a 64th of an ulp of `hi`); it is there for the angles nearer a nonzero
+//! of `r2`, and `hi = r2 - k P3` once more, to half an ulp of `hi`. `k P3` is below `2^24
+//! 2^-106.1 = 2^-82.1`, and the error left after it, about `|k| 2^-160`, is negligible. The
+//! remainder of a double below [`LIMIT`] is never smaller than `6.19e-19 = 2^-60.5` unless it is
+//! zero (at `x = 29 pi/2`, found by exact integer arithmetic over every `k` up to `2^24 2/pi`,
+//! `tests/sin_cos.rs`), so `hi` is within one ulp of the true remainder in relative terms however
+//! near `x` is to a multiple of `pi/2`. Where `|hi| >= 2^-28` the last step changes nothing (`k
+//! P3` is below a quarter of an ulp of `hi`); it is there for the angles nearer a nonzero
 //! multiple of `pi/2`, whose sine or cosine is about `hi` itself.
+//!
+//! `P2` is rounded toward zero, so that `P3` is positive: for `x = -0` (`k = +0`) every step is
+//! then `-0 P + -0 = -0`, and the remainder keeps the sign of zero. (With `P2` rounded to nearest,
+//! `P3` is negative, `-0 P3 = +0`, and `+0 + -0` rounds to `+0`.)
 //!
 //! Past `LIMIT` (and for NaN and the infinities) a lane is recomputed by the scalar
 //! `crate::math::sin_cos` ([`with_scalar_lanes`]), so those angles give exactly what the scalar
 //! path gives.
 //!
 //! **Polynomials**, on `[-pi/4, pi/4]`:
-//! - `sin hi = hi + hi z S(z)` with `z = hi^2`, and the sign bit of `r2` or-ed back in, so that
+//! - `sin hi = hi + hi z S(z)` with `z = hi^2`, and the sign bit of `hi` or-ed back in, so that
 //!   `sin(-0) = -0` (the sum gives `+0` there, and otherwise already has the sign of `hi`);
 //! - `cos hi = 1 + (z^2 C(z) - z/2)`: the bracket lies in `[-0.31, 0]` and rounds to within
 //!   `2^-55`, a quarter of an ulp of the result (`>= 0.70`).
@@ -69,10 +73,11 @@ pub(crate) trait Trig: Vector {
 /// `1.5 * 2^52`: adding it rounds a number below `2^51` to an integer in the low mantissa bits.
 const ROUND: f64 = 6_755_399_441_055_744.0;
 const FRAC_2_PI: f64 = core::f64::consts::FRAC_2_PI;
-/// `pi/2 = P1 + P2 + P3` to 159 bits (each the nearest double to what the previous ones leave).
+/// `pi/2 = P1 + P2 + P3` to 159 bits: `P1` and `P3` the nearest doubles to what the previous ones
+/// leave, `P2` the double below that, so that `P3 > 0` (module doc).
 const P1: f64 = f64::from_bits(0x3FF9_21FB_5444_2D18);
-const P2: f64 = f64::from_bits(0x3C91_A626_3314_5C07);
-const P3: f64 = f64::from_bits(0xB91F_1976_B7ED_8FBC);
+const P2: f64 = f64::from_bits(0x3C91_A626_3314_5C06);
+const P3: f64 = f64::from_bits(0x394C_1CD1_2902_4E09);
 
 const S1: f64 = f64::from_bits(0xBFC5_5555_5555_5549);
 const S2: f64 = f64::from_bits(0x3F81_1111_1110_F8A6);
@@ -90,10 +95,11 @@ const C6: f64 = f64::from_bits(0xBDA8_FAE9_BE88_38D4);
 /// Sine and cosine of every lane of `x`.
 #[inline(always)]
 pub(crate) fn sin_cos<V: Trig>(x: V) -> (V, V) {
+    let r = reduce(x);
     if V::any_outside(x) {
         return V::with_scalar_lanes(x);
     }
-    let [short] = polynomials([reduce(x)]);
+    let [short] = polynomials([r]);
     short
 }
 
@@ -105,10 +111,11 @@ pub(crate) fn sin_cos<V: Trig>(x: V) -> (V, V) {
 /// nothing there.
 #[inline(always)]
 pub(crate) fn sin_cos_pair<V: Trig>(x0: V, x1: V) -> ((V, V), (V, V)) {
-    if V::any_outside(x0) || V::any_outside(x1) {
+    let (r0, r1) = (reduce(x0), reduce(x1));
+    if V::any_outside(x0) | V::any_outside(x1) {
         return (sin_cos(x0), sin_cos(x1));
     }
-    let [first, second] = polynomials([reduce(x0), reduce(x1)]);
+    let [first, second] = polynomials([r0, r1]);
     (first, second)
 }
 
@@ -117,12 +124,8 @@ pub(crate) fn sin_cos_pair<V: Trig>(x0: V, x1: V) -> ((V, V), (V, V)) {
 struct Reduced<V> {
     /// `x 2/pi + 1.5 * 2^52`: the quadrant `k mod 4` in its low bits.
     t: V,
-    /// The remainder `x - k pi/2` in one double.
+    /// The remainder `x - k pi/2` in one double (`x` itself where `k = 0`, `-0` included).
     hi: V,
-    /// The remainder before its last term `k P3`: the same sign as `hi` (the remainder of a
-    /// double below [`LIMIT`] is never within `2^-86` of zero unless it is zero), and `-0` for
-    /// `x = -0`, where `hi` is `+0` (`-0 + 0` rounds to `+0`).
-    sign: V,
 }
 
 /// The reduction: `k = round(x 2/pi)`, `r = ((x - k P1) - k P2) - k P3`, each step one fused
@@ -134,7 +137,7 @@ fn reduce<V: Trig>(x: V) -> Reduced<V> {
     let k = t - sp(ROUND);
     let r1 = (-k).mul_add(sp(P1), x);
     let r2 = (-k).mul_add(sp(P2), r1);
-    Reduced { t, hi: (-k).mul_add(sp(P3), r2), sign: r2 }
+    Reduced { t, hi: (-k).mul_add(sp(P3), r2) }
 }
 
 /// The sine and cosine of the remainders, put in their quadrants: `K` vectors, their Horner steps
@@ -161,7 +164,7 @@ fn polynomials<V: Trig, const K: usize>(r: [Reduced<V>; K]) -> [(V, V); K] {
         let (hi, z) = (r[i].hi, z[i]);
         // `hi + hi z S(z)` has the sign of `hi` (|hi| <= pi/4), except that `-0 + 0` is `+0`:
         // the sign bit put back keeps `sin(-0) = -0` (one bitwise operation).
-        let sin = V::or_sign(r[i].sign, (hi * z).mul_add(ps[i], hi));
+        let sin = V::or_sign(hi, (hi * z).mul_add(ps[i], hi));
         // cos(hi) = 1 + (z^2 C(z) - z/2): the bracket (|.| <= 0.31) rounds to 2^-55, a quarter
         // of an ulp of the result (>= 0.70).
         let cos = sp(1.0) + (z * z).mul_add(pc[i], sp(-0.5) * z);
