@@ -181,6 +181,27 @@ fn a_stiff_impurity_reflects_slow_antikinks_and_the_boundary_rises_with_v0() {
     assert!(boundary[3] > 1.5 && boundary[0] < 1.3, "{boundary:?}");
 }
 
+/// A defect launched at rest, 15 sites from the impurity, drifts but does not reach the
+/// impurity's range (`reach` = 4 sites) by t = 25: whatever the impurity (none, soft, stiff),
+/// nothing was reflected, transmitted or trapped. (An earlier rule took the antikink's first drift
+/// away from the impurity for a repulsion from afar and called it reflected.)
+#[test]
+fn a_defect_launched_at_rest_far_from_the_impurity_meets_nothing() {
+    for charge in [Charge::Antikink, Charge::Kink] {
+        for ki_ratio in [0.5, 1.0, 3.0] {
+            let result = run(charge, 0.0, ki_ratio, |s| s.run.t_max = 25.0);
+            assert_eq!(result.outcome, Outcome::Undecided, "{charge:?} at rest, k_i/k = {ki_ratio}");
+            let snapshots = &result.run.tracker.snapshots;
+            let nearest = snapshots
+                .iter()
+                .flat_map(|s| s.interior(charge).map(|x| (x - X_IMP).abs()))
+                .fold(f64::INFINITY, f64::min);
+            eprintln!("nearest approach {nearest:.2}");
+            assert!(nearest > 4.0, "{charge:?}, k_i/k = {ki_ratio}: came within {nearest} of the impurity");
+        }
+    }
+}
+
 #[test]
 fn transmitted_antikinks_slow_down_near_but_not_at_equal_stiffness() {
     // Paper Sec. VI: "for k_i/k near 1, the antikink gets transmitted with energy dissipation and

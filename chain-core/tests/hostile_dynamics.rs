@@ -214,6 +214,9 @@ fn impossible_scattering_setups_are_refused() {
         ("confirm", ScatterSetup { confirm: f64::INFINITY, ..good }),
         ("start", ScatterSetup { start: 100.0, ..good }),
         ("start", ScatterSetup { start: f64::NAN, ..good }),
+        // Within `edge_margin` (3) of an end: the wall would have reached it at once.
+        ("start", ScatterSetup { start: 56.5, ..good }),
+        ("start", ScatterSetup { start: 2.5, direction: Direction::Right, ..good }),
         ("v0", ScatterSetup { v0: f64::NAN, ..good }),
         ("t_max", ScatterSetup { run: RunOptions { t_max: f64::NAN, ..good.run }, ..good }),
     ];

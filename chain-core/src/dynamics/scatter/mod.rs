@@ -141,7 +141,8 @@ pub struct ScatterSetup {
     pub v0: f64,
     /// The impurity spring `p`.
     pub impurity: usize,
-    /// Where the defect starts (rotor index, fractional allowed).
+    /// Where the defect starts (rotor index, fractional allowed), farther than `edge_margin`
+    /// from either end.
     pub start: f64,
     /// Which way it is launched.
     pub direction: Direction,
@@ -157,7 +158,9 @@ pub struct ScatterSetup {
     /// How long a transmitted, reflected, split, broken or annihilated pattern must hold to
     /// decide. Default 0.5.
     pub persistence: f64,
-    /// How far a transmitted or reflected wall must move on while its pattern holds. Default 1.
+    /// How far a transmitted or reflected wall must move on while its pattern holds, and how much
+    /// nearer than its start a wall must have come for a turn before the impurity's range to
+    /// count as a repulsion from afar. Default 1.
     pub progress: f64,
     /// The shortest time a wall must stay at the impurity to count as trapped. Default 1.
     pub trap_time: f64,
@@ -245,9 +248,18 @@ pub struct Scattering {
     pub run: Run,
 }
 
+impl ScatterSetup {
+    /// Whether the setup describes an experiment on a chain of `rotors` rotors (what [`scatter`]
+    /// checks first): the impurity one of its springs, every window and distance finite and of
+    /// its sign, and the start on the chain, farther than `edge_margin` from either end (nearer,
+    /// the launched wall would count as having reached that end at once).
+    pub fn check(&self, rotors: usize) -> Result<(), DynamicsError> {
+        check_setup(rotors, self)
+    }
+}
+
 /// A setup whose numbers cannot describe an experiment.
-fn check_setup<M: ChainModel + ?Sized>(model: &M, setup: &ScatterSetup) -> Result<(), DynamicsError> {
-    let n = model.rotor_count();
+fn check_setup(n: usize, setup: &ScatterSetup) -> Result<(), DynamicsError> {
     if setup.impurity >= n.saturating_sub(1) {
         return Err(DynamicsError::NoSuchSpring { spring: setup.impurity, springs: n.saturating_sub(1) });
     }
@@ -278,11 +290,12 @@ fn check_setup<M: ChainModel + ?Sized>(model: &M, setup: &ScatterSetup) -> Resul
             return Err(DynamicsError::InvalidSetup { name, value, rule: "positive and finite" });
         }
     }
-    if !(setup.start.is_finite() && setup.start >= 0.0 && setup.start <= (n - 1) as f64) {
+    let last = n.saturating_sub(1) as f64;
+    if !(setup.start > setup.edge_margin && setup.start < last - setup.edge_margin) {
         return Err(DynamicsError::InvalidSetup {
             name: "start",
             value: setup.start,
-            rule: "a position on the chain",
+            rule: "a position on the chain, farther than edge_margin from either end",
         });
     }
     Ok(())
@@ -308,7 +321,7 @@ fn check_setup<M: ChainModel + ?Sized>(model: &M, setup: &ScatterSetup) -> Resul
 /// # }
 /// ```
 pub fn scatter<M: ChainModel + ?Sized>(model: &M, setup: &ScatterSetup) -> Result<Scattering, DynamicsError> {
-    check_setup(model, setup)?;
+    check_setup(model.rotor_count(), setup)?;
     let launched = launch(model, setup.charge, setup.start, setup.v0, setup.direction)?;
     let mut classifier = rules::Classifier::new(setup, model.rotor_count());
     let run = propagate(model, launched.state, &setup.run, &mut |s| classifier.observe(s))?;

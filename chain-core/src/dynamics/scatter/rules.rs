@@ -254,12 +254,17 @@ impl Classifier {
         if (x - self.extreme) * self.heading > 0.0 {
             self.extreme = x;
         } else if (self.extreme - x) * self.heading >= self.setup.turn_band {
+            // How far the wall went towards the impurity before this turn (negative if it never
+            // did: a defect launched at rest that drifts away has met nothing).
+            let advanced = (self.extreme - self.setup.start) * self.heading;
             self.heading = -self.heading;
             self.extreme = x;
             self.turns += 1;
-            // Turned back before reaching the impurity's range: repelled by it (a stiff spring
-            // repels a slow antikink from farther than `reach`).
-            if pattern == Pattern::Approaching && self.heading == self.side {
+            // Turned back before reaching the impurity's range, after coming `progress` sites
+            // nearer: repelled by it (a stiff spring repels a slow antikink from farther than
+            // `reach`).
+            if pattern == Pattern::Approaching && self.heading == self.side && advanced >= self.setup.progress
+            {
                 self.visited = true;
             }
         }
