@@ -122,6 +122,15 @@ pub enum ConfigError {
         /// The rule it breaks.
         rule: &'static str,
     },
+    #[error("a chain of {n} rotors cannot hold the experiment: {source}")]
+    /// The experiment of [`PhaseDiagram::setup`] does not fit on the chain (too short for the
+    /// defect's start 15.5 sites right of the middle spring).
+    Experiment {
+        /// Rotors.
+        n: usize,
+        /// What the setup breaks.
+        source: DynamicsError,
+    },
 }
 
 /// The energy tolerance of a sweep point: 5e-3 of the run's initial energy.
@@ -206,14 +215,14 @@ impl PhaseDiagram {
         if let Some(dt) = self.dt {
             positive("dt", dt)?;
         }
-        if self.n < 20 {
-            return Err(ConfigError::Value {
-                name: "n",
-                value: self.n as f64,
-                rule: "at least 20 (the defect starts 15 sites from the middle spring)",
-            });
+        if self.n < 2 {
+            return Err(ConfigError::Value { name: "n", value: self.n as f64, rule: "at least 2" });
         }
-        Ok(())
+        // The experiment itself (the defect starts 15.5 sites right of the middle spring, more
+        // than `edge_margin` from the end): refused here, not at every point of the grid.
+        self.setup(1.0, self.integrator)
+            .check(self.n)
+            .map_err(|source| ConfigError::Experiment { n: self.n, source })
     }
 
     /// Checks an impurity stiffness ratio: `k_i = ki_ratio * k` must be a positive, finite
@@ -553,6 +562,34 @@ pub fn fake_point(ki_ratio: f64, v0: f64) -> PointRecord {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The shortest chains: every length that passes `check` runs a point of either defect, and
+    /// every shorter one is refused by `check`, with the setup's reason, before any point runs.
+    #[test]
+    fn check_refuses_exactly_the_chains_too_short_for_the_experiment() {
+        let mut shortest = None;
+        for n in 2..=45 {
+            for defect in [Defect::Kink, Defect::Antikink] {
+                let mut d = PhaseDiagram::new(n, 0.8, 1.0e4, 0.28, defect).unwrap();
+                d.t_max = 2.0;
+                match d.check() {
+                    Ok(()) => {
+                        let point = d.compute_point(0.5, 2.0);
+                        assert!(point.is_ok(), "n = {n}, {defect:?}: {point:?}");
+                        shortest.get_or_insert(n);
+                    }
+                    Err(ConfigError::Experiment { n: m, source }) => {
+                        assert_eq!(m, n);
+                        assert!(shortest.is_none(), "n = {n} refused after a shorter chain passed");
+                        assert!(d.compute_point(0.5, 2.0).is_err(), "n = {n} refused, yet its point ran");
+                        assert!(source.to_string().contains("start"), "{source}");
+                    }
+                    Err(other) => panic!("n = {n}: {other}"),
+                }
+            }
+        }
+        assert!(shortest.is_some_and(|n| n <= 40), "{shortest:?}");
+    }
 
     #[test]
     fn outcome_names_round_trip() {

@@ -58,7 +58,8 @@ struct Cli {
     /// Launch speed of the defect, evenly spaced (both ends included)
     #[arg(long, value_name = "FROM:TO:COUNT[:log]", allow_hyphen_values = true, required = true)]
     v0: Option<Axis>,
-    /// Number of rotors (the paper's phase diagram: 60)
+    /// Number of rotors (the paper's phase diagram: 60); at least 38, for the defect's start 15.5
+    /// sites right of the middle spring to lie more than 3 sites from the end
     #[arg(long, default_value_t = 60)]
     n: usize,
     /// Rotor length r, in units of the lattice spacing a = 1 (paper: r/a = 0.8)
@@ -79,7 +80,8 @@ struct Cli {
     /// The integrator each point starts with
     #[arg(long, value_enum, default_value_t = IntegratorArg::Verlet)]
     integrator: IntegratorArg,
-    /// Verlet's time step [default: a tenth of its stability limit]
+    /// Verlet's time step, shortened to divide the output interval 0.01 [default: a tenth of its
+    /// stability limit]
     #[arg(long)]
     dt: Option<f64>,
     /// Largest relative energy error of a point before it is recomputed with DOP853 (or, with
