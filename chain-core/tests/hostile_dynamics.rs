@@ -49,6 +49,27 @@ fn a_step_that_is_zero_negative_or_not_a_number_is_refused() {
     }
 }
 
+/// A tip mass so small that `1 / (M r^2)` overflows: no default step can be stable, and the
+/// error says so with the numbers (an early version reported "dt = 0 is invalid", a step the user
+/// never gave). Masses small but representable still run.
+#[test]
+fn a_mass_too_small_for_any_stable_step_is_refused_with_the_reason() {
+    for mass in [1e-310, 5e-324] {
+        let model = RuntimeChain::builder(60, 0.8, 1.0e4, 0.28).mass(mass).build().unwrap();
+        match quickly("tiny mass", || run(&model, RunOptions::default())) {
+            Err(DynamicsError::Integrate(IntegrateError::NoStableStep { norm, inverse_inertia })) => {
+                assert!(
+                    norm > 0.0 && norm.is_finite() && inverse_inertia * mass > 1.0,
+                    "{norm} {inverse_inertia}"
+                );
+            }
+            other => panic!("mass {mass}: {other:?}"),
+        }
+    }
+    let light = RuntimeChain::builder(60, 0.8, 1.0e4, 0.28).mass(1e-6).build().unwrap();
+    run(&light, RunOptions { t_max: 1e-4, output_interval: 1e-5, ..RunOptions::default() }).unwrap();
+}
+
 #[test]
 fn runs_too_long_for_their_budgets_are_refused_before_they_start() {
     let model = paper();
@@ -72,6 +93,17 @@ fn runs_too_long_for_their_budgets_are_refused_before_they_start() {
                 assert!(steps > budget as f64 && step == dt, "{steps} {budget}");
             }
             other => panic!("dt {dt}: {other:?}"),
+        }
+    }
+    // An output interval longer than the run: one output, at `start + interval`, whose steps
+    // the budget refuses, with that span in the error (not 0).
+    for interval in [1e6, 1e300] {
+        let options = RunOptions { t_max: 1.0, output_interval: interval, ..RunOptions::default() };
+        match quickly("long interval", || run(&model, options)) {
+            Err(DynamicsError::Integrate(IntegrateError::StepBudget { span, steps, budget, .. })) => {
+                assert!(span == interval && steps > budget as f64, "{span} {steps} {budget}");
+            }
+            other => panic!("interval {interval}: {other:?}"),
         }
     }
     // A stiffness so large that the stable step is ~1e-22 (and others): refused, not run.

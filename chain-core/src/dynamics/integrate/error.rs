@@ -134,4 +134,17 @@ pub enum IntegrateError {
         /// The norm of the tangent stiffness, which gives no finite stability limit.
         norm: f64,
     },
+    /// The bound on the fastest mode's angular frequency, `sqrt(||K||_inf / I_min)`, is not
+    /// finite (an inertia `M r^2` so small that its inverse overflows), so the stable step would
+    /// be 0: no default step exists. Give the step (`dt`) yourself, or larger masses.
+    #[error(
+        "the fastest mode's frequency bound sqrt({norm:e} x {inverse_inertia:e}) is not finite: the stable \
+         step would be 0 (an inertia M r^2 too small); give dt, or larger masses"
+    )]
+    NoStableStep {
+        /// The norm of the tangent stiffness.
+        norm: f64,
+        /// The largest inverse inertia `1 / (M r^2)`.
+        inverse_inertia: f64,
+    },
 }

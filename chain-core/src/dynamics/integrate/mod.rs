@@ -263,7 +263,12 @@ impl Schedule {
             return Err(IntegrateError::EndBeforeStart { start, end: t_max });
         }
         check_positive("output_interval", interval)?;
-        let needed = libm::ceil((t_max - start) / interval - 1e-9).max(0.0);
+        // At least one output when the run has a span: an interval longer than the run ends it
+        // at `start + interval` (the tolerance for rounding would otherwise give 0 outputs).
+        let mut needed = libm::ceil((t_max - start) / interval - 1e-9).max(0.0);
+        if t_max > start {
+            needed = needed.max(1.0);
+        }
         if needed > max_outputs as f64 {
             return Err(IntegrateError::OutputBudget { outputs: needed, budget: max_outputs });
         }

@@ -113,7 +113,11 @@ pub fn omega_bound<M: ChainModel + ?Sized>(
     if !(norm > 0.0 && norm.is_finite()) {
         return Err(IntegrateError::NoTimeScale { norm });
     }
-    Ok(crate::math::sqrt(norm * max_inverse_inertia))
+    let omega = crate::math::sqrt(norm * max_inverse_inertia);
+    if !omega.is_finite() {
+        return Err(IntegrateError::NoStableStep { norm, inverse_inertia: max_inverse_inertia });
+    }
+    Ok(omega)
 }
 
 /// The number of equal steps of at most `dt` that cover `span`: a span that is a whole number of
