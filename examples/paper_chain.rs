@@ -41,11 +41,13 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     }
     let energy = chain.energy(&theta);
     let max_force = chain.gradient(&theta).iter().fold(0.0f64, |acc, g| acc.max(g.abs()));
-    println!("energy V = {energy:.3e} k a^2 (a zero-energy mechanism), max |dV/dtheta| = {max_force:.3e}");
+    println!(
+        "energy V = {energy:.3e} M a^2/t^2 (a zero-energy mechanism), max |dV/dtheta| = {max_force:.3e}"
+    );
 
     let antikink = theta.map(|t| -t);
     println!(
-        "its reflection (an unrelaxed antikink) costs V = {:.1} (= {:.4} k a^2)",
+        "its reflection (an unrelaxed antikink) costs V = {:.1} M a^2/t^2 (= {:.4} k a^2)",
         chain.energy(&antikink),
         chain.energy(&antikink) / k
     );

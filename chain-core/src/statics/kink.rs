@@ -20,6 +20,9 @@ use crate::embedded::{self, EmbeddedError};
 use crate::model::ChainModel;
 
 /// The zero-energy kink of `model` centred at `centre` (in rotor indices, `0 <= centre <= n - 1`).
+/// At `centre = 0` or `n - 1` the wall sits on the end rotor, which stands vertical: the wall has
+/// reached the end, the chain is one domain, and [`domain_walls`](super::walls::domain_walls)
+/// finds no wall (it reports sign changes between two leaning rotors).
 /// # Example
 ///
 /// ```
