@@ -263,10 +263,11 @@ impl Schedule {
             return Err(IntegrateError::EndBeforeStart { start, end: t_max });
         }
         check_positive("output_interval", interval)?;
-        // At least one output when the run has a span: an interval longer than the run ends it
-        // at `start + interval` (the tolerance for rounding would otherwise give 0 outputs).
         let mut needed = libm::ceil((t_max - start) / interval - 1e-9).max(0.0);
-        if t_max > start {
+        // The `1e-9` absorbs rounding in a span that is a whole number of intervals; a span more
+        // than rounding above 0 still takes one output, at `start + interval`, even when the
+        // interval is more than 1e9 times longer than the run.
+        if t_max - start > 4.0 * f64::EPSILON * start.abs().max(t_max.abs()) {
             needed = needed.max(1.0);
         }
         if needed > max_outputs as f64 {
