@@ -257,7 +257,7 @@ impl Schedule {
         max_outputs: usize,
     ) -> Result<Self, IntegrateError> {
         if !t_max.is_finite() {
-            return Err(IntegrateError::NotFinite { what: "t_max", time: start, index: 0, value: t_max });
+            return Err(IntegrateError::InvalidOption { name: "t_max", value: t_max, rule: "finite" });
         }
         if t_max < start {
             return Err(IntegrateError::EndBeforeStart { start, end: t_max });

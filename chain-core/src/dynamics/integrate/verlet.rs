@@ -255,7 +255,7 @@ pub fn verlet<M: ChainModel + ?Sized>(
     check_option("output_every", output_every as f64, output_every > 0, "at least 1")?;
     let rates = damping_rates(model.rotor_count(), options.damping, options.sponge)?;
     if !t_end.is_finite() {
-        return Err(IntegrateError::NotFinite { what: "t_end", time: state.time, index: 0, value: t_end });
+        return Err(IntegrateError::InvalidOption { name: "t_end", value: t_end, rule: "finite" });
     }
     if t_end < state.time {
         return Err(IntegrateError::EndBeforeStart { start: state.time, end: t_end });
