@@ -6,7 +6,9 @@
 //! array-typed conveniences.
 //!
 //! Units: angles in radians, lengths in the units of `a`, stiffnesses `k` in energy per length
-//! squared, so energies come out in the units of `k a^2`. Slices of rotor quantities have length `n`, slices of spring quantities `n - 1`.
+//! squared, so energies are absolute, in the unit of `k` times the length unit squared (`M a^2 /
+//! t^2` with the paper's `k` in `M / t^2`; not divided by `k a^2`). Slices of rotor quantities have
+//! length `n`, slices of spring quantities `n - 1`.
 //!
 //! # Panics
 //! The `*_into` methods panic if a slice has the wrong length: that is a programming error, not
