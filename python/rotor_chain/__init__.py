@@ -19,9 +19,12 @@ True
   or a Dask cluster, resumable CSV files shared with the ``phase-diagram`` command.
 - :mod:`rotor_chain.errors`: the exceptions, one class per Rust error family.
 
-Units: angles in radians, lengths in the lattice spacing ``a``, energies in ``k a^2``, time in
-the unit ``t`` of the paper's Appendix B (``M = 1``, ``k`` in ``M/t^2``). Arrays are numpy
-``float64``. Long computations release the GIL, so threads run them in parallel.
+Units: every number is absolute, in the units of the parameters given; nothing is divided by
+``a`` or ``k``. Angles are in radians, lengths in the length unit of ``a`` and ``r``, energies in
+the unit of ``k`` times that length unit squared (the barrier above is 0.668 for ``k = 1e4``,
+``a = 1``: ``6.7e-5 k a^2``), time in the unit ``t`` of the paper's Appendix B (``M = 1``, ``k`` in
+``M/t^2``). Arrays are numpy ``float64``. Long computations release the GIL, so threads run them
+in parallel. Results pickle (multiprocessing, Dask).
 """
 
 from . import errors, sweep

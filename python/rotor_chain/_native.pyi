@@ -1,7 +1,12 @@
 """Type stubs of the compiled module rotor_chain._native (the Rust half of rotor_chain).
 
-Units: angles in radians, lengths in the lattice spacing ``a``, energies in ``k a^2``, time in the
-unit ``t`` of the paper's Appendix B, speeds in ``a/t``, frequencies in ``1/t``.
+Units: every number is absolute, in the units of the parameters given (nothing is divided by
+``a`` or ``k``): angles in radians, lengths in the length unit of ``a`` and ``r``, energies in the
+unit of ``k`` times that length unit squared (``Chain(60, 0.8, 1e4, 0.58)``'s Peierls-Nabarro
+minimum is 1392.03, that is 0.139 ``k a^2``), time in the unit ``t`` of the paper's Appendix B
+(``k`` in ``M / t^2``), speeds in length per ``t``, frequencies in ``1/t``.
+
+Every class but ``ResultsFile`` (an open, locked file) pickles.
 """
 
 from __future__ import annotations
@@ -21,6 +26,8 @@ Record = Dict[str, Any]
 
 __version__: str
 DEFAULT_ENERGY_TOLERANCE: float
+MAX_AXIS_COUNT: int
+MAX_GRID_POINTS: int
 
 class Chain:
     """A rotor chain of runtime size (see ``help(rotor_chain.Chain)``)."""
@@ -59,7 +66,7 @@ class Chain:
     @property
     def inertia(self) -> Array: ...
     def energy(self, theta: ArrayLike) -> float:
-        """Potential energy ``V`` (``k a^2``)."""
+        """Potential energy ``V``: absolute, in the unit of ``k`` times the length unit squared."""
     def gradient(self, theta: ArrayLike) -> Array:
         """``dV/dtheta_i``, length ``n``."""
     def energy_and_gradient(self, theta: ArrayLike) -> Tuple[float, Array]: ...
@@ -263,4 +270,6 @@ class ResultsFile:
     def __exit__(self, *args: Any) -> bool: ...
 
 def axis(spec: Union[str, Sequence[float]]) -> List[float]: ...
+def check_grid(xs: Sequence[float], ys: Sequence[float]) -> None:
+    """GridError unless ``xs`` x ``ys`` is within the limits (``MAX_GRID_POINTS``, ...)."""
 def read_points(path: Union[str, PathLike[str]]) -> List[Record]: ...

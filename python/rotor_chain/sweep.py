@@ -80,6 +80,11 @@ COLUMNS: Tuple[str, ...] = (
 )
 
 DEFAULT_ENERGY_TOLERANCE: float = _native.DEFAULT_ENERGY_TOLERANCE
+#: The most values an axis may have, and the most points a phase diagram may have: the limits of
+#: the ``phase-diagram`` command (chain-sweep's ``grid.rs``). A larger grid is refused with
+#: :class:`~rotor_chain.GridError` before anything is allocated per point.
+MAX_AXIS_COUNT: int = _native.MAX_AXIS_COUNT
+MAX_GRID_POINTS: int = _native.MAX_GRID_POINTS
 
 
 def axis(spec: AxisSpec) -> List[float]:
@@ -87,6 +92,15 @@ def axis(spec: AxisSpec) -> List[float]:
     ``"FROM:TO:COUNT:log"`` (evenly spaced in the logarithm), as on the ``phase-diagram``
     command line, or a sequence of finite floats. Raises :class:`~rotor_chain.GridError`."""
     return _native.axis(spec)
+
+
+def _check_v0(v0: float) -> None:
+    if not (v0 >= 0.0 and math.isfinite(v0)):
+        raise ConfigError(
+            f"invalid v0: every launch speed must be >= 0, got {v0}",
+            "Value",
+            {"name": "v0", "value": v0, "rule": ">= 0 and finite"},
+        )
 
 
 def point(
@@ -112,7 +126,7 @@ def point(
     Raises:
         PointError: the point failed (energy budget, a failed run, rotors spun through pi), with
             the numbers (``variant``, ``error``, ``tolerance``, ``time``, ...).
-        ConfigError: invalid settings.
+        ConfigError: invalid settings, ``ki`` or ``v0`` (as :func:`phase_diagram` raises them).
     """
     d = _native.PhaseDiagram(
         defect,
@@ -128,6 +142,8 @@ def point(
         recompute=recompute,
         t_max=t_max,
     )
+    d.check_ki(ki)
+    _check_v0(v0)
     return d.compute_point(ki, v0)
 
 
@@ -163,7 +179,9 @@ def phase_diagram(
         ki: impurity stiffness ratios ``k_i/k`` (every value > 0): ``"0.01:3:40:log"``,
             ``"0.1:1:10"`` or a sequence of floats.
         v0: launch speeds (``a/t``, every value >= 0), likewise.
-        theta_bar, n, r, k, mass: the chain (paper Sec. VI: 0.28, 60, 0.8, 1e4, 1; ``n >= 20``).
+        theta_bar, n, r, k, mass: the chain (paper Sec. VI: 0.28, 60, 0.8, 1e4, 1); ``n`` must
+            hold the experiment, the defect starting 15.5 sites right of the middle spring
+            (``n >= 38``; shorter: ``ConfigError`` with ``variant == "Experiment"``).
         ends: ``"free"`` (the paper's) or ``"absorbing"`` (a damping sponge at each end).
         integrator: ``"verlet"`` (default; recomputed with DOP853 over the energy budget) or
             ``"dop853"``.
@@ -187,7 +205,10 @@ def phase_diagram(
             recorded as failed with the reason.
 
     Raises:
-        ConfigError, GridError: invalid settings or axes (nothing is computed or written).
+        ConfigError, GridError: invalid settings or axes, or a grid of more than
+            ``MAX_GRID_POINTS`` points (``GridError`` with ``variant == "TooLarge"``, ``nx``,
+            ``ny``), the ``phase-diagram`` command's limit: refused before anything is
+            allocated per point, computed or written.
         SweepError: ``out`` belongs to another sweep (another grid or settings), is locked by a
             running sweep, or cannot be written.
     """
@@ -206,16 +227,12 @@ def phase_diagram(
         t_max=t_max,
     )
     d = _native.PhaseDiagram(**settings)  # checks them all: ConfigError or ValueError
-    xs, ys = _native.axis(ki), _native.axis(v0)
+    xs, ys = _native.axis(ki), _native.axis(v0)  # at most MAX_AXIS_COUNT values each
+    _native.check_grid(xs, ys)  # before any list of points: GridError past MAX_GRID_POINTS
     for x in xs:
         d.check_ki(x)
     for y in ys:
-        if not (y >= 0.0 and math.isfinite(y)):
-            raise ConfigError(
-                f"invalid v0: every launch speed must be >= 0, got {y}",
-                "Value",
-                {"name": "v0", "value": y, "rule": ">= 0 and finite"},
-            )
+        _check_v0(y)
     if threads is not None and threads < 1:
         raise ValueError(f"threads must be at least 1, got {threads}")
     if chunk_size is not None and chunk_size < 1:
@@ -224,10 +241,9 @@ def phase_diagram(
     file = None
     if out is not None:
         file = _native.ResultsFile(xs, ys, os.fspath(out), d.run_label, retry_failed=retry_failed)
-        todo = file.missing()
+        points = [(i, j, xs[i], ys[j]) for i, j in file.missing()]
     else:
-        todo = [(i, j) for i in range(len(xs)) for j in range(len(ys))]
-    points = [(i, j, xs[i], ys[j]) for i, j in todo]
+        points = [(i, j, x, y) for i, x in enumerate(xs) for j, y in enumerate(ys)]
     records: List[Record] = []
 
     def sink(record: Record) -> None:
@@ -259,12 +275,18 @@ def read_results(path: Union[str, "os.PathLike[str]"]) -> List[Record]:
 def outcome_grid(records: Iterable[Record]):
     """``(ki, v0, outcomes)`` for plotting: the sorted axis values and a 2-D numpy array of
     outcome names, ``outcomes[j, i]`` at ``v0[j]``, ``ki[i]`` (``"failed"`` for a failed point,
-    ``""`` for a point not in ``records``)."""
+    ``""`` for a point not in ``records``).
+
+    Raises:
+        GridError: the records span more than ``MAX_GRID_POINTS`` cells (records that are not
+            one grid's: each distinct ``ki`` and ``v0`` is a column and a row)."""
     import numpy as np
 
     records = list(records)
     ki = sorted({r["ki"] for r in records})
     v0 = sorted({r["v0"] for r in records})
+    if ki and v0:
+        _native.check_grid(ki, v0)
     col = {x: i for i, x in enumerate(ki)}
     row = {y: j for j, y in enumerate(v0)}
     grid = np.full((len(v0), len(ki)), "", dtype=object)

@@ -3,6 +3,7 @@
 use numpy::ndarray::Array2;
 use numpy::{AllowTypeChange, IntoPyArray, PyArray1, PyArray2, PyArrayLike1};
 use pyo3::prelude::*;
+use pyo3::types::PyDict;
 use rotor_chain::statics::walls::Charge;
 
 use crate::errors::value_error;
@@ -17,6 +18,18 @@ pub fn vector(x: PyArrayLike1<'_, f64, AllowTypeChange>, what: &str, n: usize) -
         return Err(value_error(format!("{what}[{index}] = {value} is not finite")));
     }
     Ok(values)
+}
+
+/// The entry `key` of `dict` (a record, a pickled object's state), or a `ValueError` that names
+/// `what` and the key.
+pub fn item<'py, T: FromPyObjectOwned<'py>>(dict: &Bound<'py, PyDict>, what: &str, key: &str) -> PyResult<T> {
+    match dict.get_item(key)? {
+        Some(v) => v.extract::<T>().map_err(|e| {
+            let e: PyErr = e.into();
+            value_error(format!("{what} field `{key}`: {e}"))
+        }),
+        None => Err(value_error(format!("the {what} has no field `{key}`"))),
+    }
 }
 
 /// A 1-D float64 numpy array that owns `values`.
@@ -42,6 +55,11 @@ pub fn choice<T: Copy>(what: &str, value: &str, choices: &[(&str, T)]) -> PyResu
         let names: Vec<String> = choices.iter().map(|(n, _)| format!("'{n}'")).collect();
         value_error(format!("{what} must be one of {}, got '{value}'", names.join(", ")))
     })
+}
+
+/// The name of `value` in `choices` (the inverse of `choice`, for pickling).
+pub fn name_of<T: Copy + PartialEq>(value: T, choices: &[(&'static str, T)]) -> &'static str {
+    choices.iter().find(|(_, t)| *t == value).map_or("", |(name, _)| *name)
 }
 
 pub fn charge(defect: &str) -> PyResult<Charge> {

@@ -1,14 +1,16 @@
 //! `Chain`: a `RuntimeChain`, its evaluation methods, and the entry points of its statics and
 //! dynamics; `Continuum`: the continuum theory of the same chain.
 
+use chain_core::geometry::{IndexKind, MAX_ROTORS};
 use numpy::{AllowTypeChange, PyArray1, PyArray2, PyArrayLike1};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyTuple};
 use rotor_chain::statics::continuum::ContinuumChain;
-use rotor_chain::{ChainModel, Law, RuntimeChain};
+use rotor_chain::{ChainModel, Law, ParameterError, RuntimeChain};
 
 use crate::args::{self, array, choice, matrix, vector};
 use crate::errors::{self, value_error};
+use crate::pickle::{self, Pickle};
 
 /// How the chain was asked for: kept for `repr`, pickling and the continuum theory.
 #[derive(Clone, Debug)]
@@ -28,9 +30,13 @@ struct Spec {
 /// distance ``a`` apart, their tips (mass ``mass`` each) joined by ``n - 1`` springs of stiffness
 /// ``k`` whose rest length makes ``theta_i = +theta_bar`` and ``-theta_bar`` the uniform states.
 ///
-/// Units: angles in radians (from the vertical, alternately measured as in the paper), lengths in
-/// the unit of ``a``, stiffness ``k`` in energy per length squared, so energies are in the unit of
-/// ``k a^2``; time is the unit ``t`` of Appendix B (``k`` in ``M / t^2``).
+/// Units: every number is absolute, in the units of the parameters given; nothing is divided by
+/// ``a`` or ``k``. Angles are in radians (from the vertical, alternately measured as in the
+/// paper); lengths in the length unit ``a`` and ``r`` are given in; ``k`` is an energy per length
+/// squared, so energies are in the unit of ``k`` times that length unit squared (the paper's
+/// figures plot ``V / (k a^2)`` instead: ``peierls_nabarro().minimum_energy`` is 1392.03 for
+/// ``k = 1e4``, ``a = 1``, that is ``0.139 k a^2``). Time is the unit ``t`` of Appendix B, in
+/// which ``k`` is given (``M / t^2``), so with ``a = M = 1`` energies are in ``M a^2 / t^2``.
 ///
 /// Args:
 ///     n: number of rotors, at least 2.
@@ -55,13 +61,13 @@ pub struct Chain {
 }
 
 /// `IndexOutOfRange` for an index Python gave as negative (the Rust error holds a `usize`).
-fn negative_index(py: Python<'_>, kind: &str, index: i64, count: usize) -> PyErr {
+fn negative_index(py: Python<'_>, kind: IndexKind, index: i64, count: usize) -> PyErr {
     let message = format!(
         "{kind} index {index} is out of range: the chain has {count} {kind}s, numbered 0 to {}",
         count.saturating_sub(1)
     );
     let fields = PyDict::new(py);
-    let _ = fields.set_item("kind", kind);
+    let _ = fields.set_item("kind", kind.to_string());
     let _ = fields.set_item("index", index);
     let _ = fields.set_item("count", count);
     raise_parameter(py, message, "IndexOutOfRange", fields)
@@ -75,8 +81,23 @@ fn raise_parameter(py: Python<'_>, message: String, variant: &str, fields: Bound
     build().unwrap_or_else(|e| e)
 }
 
-fn index(py: Python<'_>, kind: &str, index: i64, count: usize) -> PyResult<usize> {
+/// An index that is not negative (the constructor's overrides: the builder checks the upper end,
+/// after its checks of `n`).
+fn unsigned_index(py: Python<'_>, kind: IndexKind, index: i64, count: usize) -> PyResult<usize> {
     usize::try_from(index).map_err(|_| negative_index(py, kind, index, count))
+}
+
+/// A spring or rotor index of a chain with `count` of them. Out of range either way, it is the
+/// builder's `ParameterError::IndexOutOfRange`, whichever method was given it (the Rust methods
+/// that take an index report one past the end in their own error families,
+/// `BranchError::NoSuchSpring` and `DynamicsError::NoSuchSpring`).
+fn index(py: Python<'_>, kind: IndexKind, index: i64, count: usize) -> PyResult<usize> {
+    let i = unsigned_index(py, kind, index, count)?;
+    if i < count {
+        Ok(i)
+    } else {
+        Err(errors::parameter(py, &ParameterError::IndexOutOfRange { kind, index: i, count }))
+    }
 }
 
 impl Chain {
@@ -125,7 +146,7 @@ impl Chain {
         let mut spring_list = Vec::new();
         if let Some(springs) = springs {
             for (p, spec) in springs.iter() {
-                let p = index(py, "spring", p.extract()?, n.saturating_sub(1))?;
+                let p = unsigned_index(py, IndexKind::Spring, p.extract()?, n.saturating_sub(1))?;
                 let spec = spec.cast_into::<PyDict>().map_err(|_| {
                     value_error(format!("springs[{p}] must be a dict with the keys 'k' and/or 'l0'"))
                 })?;
@@ -147,7 +168,8 @@ impl Chain {
         let mut rotor_list = Vec::new();
         if let Some(rotors) = rotors {
             for (i, ri) in rotors.iter() {
-                rotor_list.push((index(py, "rotor", i.extract()?, n)?, ri.extract::<f64>()?));
+                let i = unsigned_index(py, IndexKind::Rotor, i.extract()?, n)?;
+                rotor_list.push((i, ri.extract::<f64>()?));
             }
         }
         let mut builder = RuntimeChain::builder(n, r, k, theta_bar).lattice_spacing(a).mass(mass).law(law);
@@ -199,7 +221,7 @@ impl Chain {
         self.spec.law
     }
 
-    /// Rotor lengths ``r_i`` (length ``n``), in units of ``a``.
+    /// Rotor lengths ``r_i`` (length ``n``), in the length unit of ``a``.
     #[getter]
     fn rotor_lengths(&self, py: Python<'_>) -> Py<PyArray1<f64>> {
         array(py, (0..self.n()).map(|i| self.chain.rotor_length(i)).collect())
@@ -211,7 +233,7 @@ impl Chain {
         array(py, (0..self.chain.spring_count()).map(|p| self.chain.stiffness(p)).collect())
     }
 
-    /// Spring rest lengths ``l0_p`` (length ``n - 1``), in units of ``a``.
+    /// Spring rest lengths ``l0_p`` (length ``n - 1``), in the length unit of ``a``.
     #[getter]
     fn rest_lengths(&self, py: Python<'_>) -> Py<PyArray1<f64>> {
         array(py, (0..self.chain.spring_count()).map(|p| self.chain.rest_length(p)).collect())
@@ -223,14 +245,15 @@ impl Chain {
         array(py, (0..self.n()).map(|i| self.chain.inertia(i)).collect())
     }
 
-    /// Potential energy ``V(theta) = sum_p law(l_p)``, in units of ``k a^2``.
+    /// Potential energy ``V(theta) = sum_p law(l_p)``: absolute, in the unit of ``k`` times the
+    /// length unit squared (not divided by ``k a^2``).
     fn energy(&self, py: Python<'_>, theta: PyArrayLike1<'_, f64, AllowTypeChange>) -> PyResult<f64> {
         let theta = self.theta(theta)?;
         Ok(py.detach(|| self.chain.energy(&theta)))
     }
 
-    /// Gradient ``dV/dtheta_i`` (length ``n``; the torques are its negative), in units of
-    /// ``k a^2`` per radian.
+    /// Gradient ``dV/dtheta_i`` (length ``n``; the torques are its negative): energy per radian,
+    /// absolute as ``energy``.
     fn gradient(
         &self,
         py: Python<'_>,
@@ -262,7 +285,7 @@ impl Chain {
 
     /// The tangent stiffness ``d2V/dtheta_i dtheta_j`` (paper Appendix D), tridiagonal:
     /// ``(diag, off)`` with ``diag`` of length ``n`` and ``off[p]`` the entry ``(p, p + 1)``
-    /// (length ``n - 1``); units of ``k a^2`` per radian squared.
+    /// (length ``n - 1``); energy per radian squared, absolute as ``energy``.
     fn tangent_stiffness(
         &self,
         py: Python<'_>,
@@ -314,7 +337,7 @@ impl Chain {
         Ok(matrix(py, n, n, dense))
     }
 
-    /// Spring lengths ``l_p`` (length ``n - 1``), in units of ``a``.
+    /// Spring lengths ``l_p`` (length ``n - 1``), in the length unit of ``a``.
     fn spring_lengths(
         &self,
         py: Python<'_>,
@@ -323,8 +346,8 @@ impl Chain {
         self.per_spring(py, theta, |c, t, o| c.spring_lengths_into(t, o))
     }
 
-    /// Spring tensions ``t_p = dlaw/dl`` at the current lengths (length ``n - 1``), in units of
-    /// ``k a``.
+    /// Spring tensions ``t_p = dlaw/dl`` at the current lengths (length ``n - 1``): the unit of
+    /// ``k`` times the length unit (absolute, not divided by ``k a``).
     fn tensions(
         &self,
         py: Python<'_>,
@@ -366,17 +389,20 @@ impl Chain {
     /// solve of Appendix A), flipper branch first.
     ///
     /// Raises:
+    ///     ParameterError: no spring ``p`` (``variant == "IndexOutOfRange"``, with ``index`` and
+    ///         ``count``).
     ///     BranchError: no real root (``variant == "NoRealRoot"``, with ``distance``, ``min``,
-    ///         ``max``, ...), or no such spring.
+    ///         ``max``, ...), or a non-finite ``theta_p``.
     fn next_angles(&self, py: Python<'_>, p: i64, theta_p: f64) -> PyResult<(f64, f64)> {
-        let p = index(py, "spring", p, self.chain.spring_count())?;
+        let p = index(py, IndexKind::Spring, p, self.chain.spring_count())?;
         let [a, b] = self.chain.next_angles(p, theta_p).map_err(|e| errors::branch(py, &e))?;
         Ok((a, b))
     }
 
-    /// Both ``theta_p`` that put spring ``p`` at its rest length given ``theta_{p+1}``: the inverse map.
+    /// Both ``theta_p`` that put spring ``p`` at its rest length given ``theta_{p+1}``: the inverse
+    /// map. Raises as ``next_angles``.
     fn previous_angles(&self, py: Python<'_>, p: i64, theta_next: f64) -> PyResult<(f64, f64)> {
-        let p = index(py, "spring", p, self.chain.spring_count())?;
+        let p = index(py, IndexKind::Spring, p, self.chain.spring_count())?;
         let [a, b] = self.chain.previous_angles(p, theta_next).map_err(|e| errors::branch(py, &e))?;
         Ok((a, b))
     }
@@ -396,9 +422,7 @@ impl Chain {
     /// ``r``, ``theta_bar``, ``k`` and ``M`` (per-spring and per-rotor overrides are not part of it).
     fn continuum(&self, py: Python<'_>) -> PyResult<Continuum> {
         let s = &self.spec;
-        let c =
-            ContinuumChain::new(s.a, s.r, s.theta_bar, s.k, s.mass).map_err(|e| errors::parameter(py, &e))?;
-        Ok(Continuum { c })
+        Continuum::new(py, [s.a, s.r, s.theta_bar, s.k, s.mass])
     }
 
     // --- statics (paper Secs. II-V, VII) -------------------------------------------------------
@@ -434,7 +458,7 @@ impl Chain {
 
     /// The Peierls-Nabarro barrier (paper Sec. V): the antikink centred on the middle rotor and
     /// on the neighbouring spring, which is the minimum and which the saddle, and the barrier
-    /// ``V_saddle - V_minimum`` (units of ``k a^2``).
+    /// ``V_saddle - V_minimum`` (absolute energies, as ``energy``).
     #[pyo3(signature = (*, ends = "held"))]
     fn peierls_nabarro(&self, py: Python<'_>, ends: &str) -> PyResult<crate::statics::PeierlsNabarro> {
         crate::statics::peierls_nabarro(self, py, ends)
@@ -469,7 +493,7 @@ impl Chain {
     // --- dynamics (paper Secs. V, VI, Appendix B) ----------------------------------------------
 
     /// A ``defect`` (``"kink"`` or ``"antikink"``) at ``position`` set in motion along its
-    /// translation mode with speed amplitude ``v0`` (``a/t``) towards ``direction``
+    /// translation mode with speed amplitude ``v0`` (length per ``t``) towards ``direction``
     /// (``"left"``: rotor 0, or ``"right"``); Appendix B: ``r_i thetadot_i = v0 e_i``, kinetic
     /// energy ``M v0^2 / 2``.
     #[pyo3(signature = (defect, position, v0, direction = "left"))]
@@ -522,6 +546,7 @@ impl Chain {
         let theta = self.theta(theta)?;
         let omega = vector(omega, "omega", self.n())?;
         let options = crate::dynamics::run_options(
+            py,
             t_max,
             output_interval,
             method,
@@ -562,10 +587,11 @@ impl Chain {
     ) -> PyResult<crate::dynamics::Scattering> {
         let springs = self.chain.spring_count();
         let impurity = match impurity {
-            Some(p) => index(py, "spring", p, springs)?,
+            Some(p) => index(py, IndexKind::Spring, p, springs)?,
             None => (self.n() - 1) / 2,
         };
         let options = crate::dynamics::run_options(
+            py,
             t_max,
             0.01,
             method,
@@ -685,42 +711,77 @@ impl Chain {
 #[pyclass(frozen, module = "rotor_chain._native")]
 pub struct Continuum {
     c: ContinuumChain,
+    /// `[a, r, theta_bar, k, mass]`, for pickling.
+    parameters: [f64; 5],
+}
+
+/// The names of `Continuum::parameters`, in order.
+const CONTINUUM_PARAMETERS: [&str; 5] = ["a", "r", "theta_bar", "k", "mass"];
+
+impl Continuum {
+    fn new(py: Python<'_>, parameters: [f64; 5]) -> PyResult<Self> {
+        let [a, r, theta_bar, k, mass] = parameters;
+        let c = ContinuumChain::new(a, r, theta_bar, k, mass).map_err(|e| errors::parameter(py, &e))?;
+        Ok(Self { c, parameters })
+    }
+}
+
+/// A continuum pickles as its chain's parameters, checked again when unpickled.
+impl Pickle for Continuum {
+    fn state<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let state = PyDict::new(py);
+        for (name, value) in CONTINUUM_PARAMETERS.iter().zip(self.parameters) {
+            state.set_item(name, value)?;
+        }
+        Ok(state)
+    }
+
+    fn from_state(state: &Bound<'_, PyDict>) -> PyResult<Self> {
+        let mut parameters = [0.0; 5];
+        for (name, value) in CONTINUUM_PARAMETERS.iter().zip(&mut parameters) {
+            *value = args::item(state, "pickled Continuum state", name)?;
+        }
+        Self::new(state.py(), parameters)
+    }
 }
 
 #[pymethods]
 impl Continuum {
-    /// Energy of the static continuum antikink, Eq. (akenergy), in the energy unit ``k a^2``
-    /// (``V = k a^2 (16/3)(r/a)^3 sin^3(theta_bar) / (1 + 4 (r/a)^2 cos^2(theta_bar))``).
+    /// Energy of the static continuum antikink, Eq. (akenergy), absolute as ``Chain.energy``:
+    /// ``V = k a^2 (16/3)(r/a)^3 sin^3(theta_bar) / (1 + 4 (r/a)^2 cos^2(theta_bar))`` (1610.2 for
+    /// ``k = 1e4``, ``a = 1``, ``r = 0.8``, ``theta_bar = 0.58``; divide by ``k a^2`` for the
+    /// paper's Fig. ``fig:akenergy``).
     #[getter]
     fn antikink_energy(&self) -> f64 {
         self.c.antikink_energy()
     }
 
-    /// Wall width ``w = a^2 / (2 r sin theta_bar)`` (Sec. III), in units of ``a``.
+    /// Wall width ``w = a^2 / (2 r sin theta_bar)`` (Sec. III), in the length unit of ``a``.
     #[getter]
     fn width(&self) -> f64 {
         self.c.width()
     }
 
-    /// Sound speed ``c`` of the continuum (``a/t``).
+    /// Sound speed ``c`` of the continuum: the length unit of ``a`` per ``t``.
     #[getter]
     fn sound_speed(&self) -> f64 {
         self.c.sound_speed()
     }
 
-    /// Rest length ``lbar`` of the springs.
+    /// Rest length ``lbar`` of the springs, in the length unit of ``a``.
     #[getter]
     fn rest_length(&self) -> f64 {
         self.c.rest_length()
     }
 
-    /// Peierls-Nabarro barrier of the continuum estimate (Sec. V), units of ``k a^2``.
+    /// Peierls-Nabarro barrier of the continuum estimate (Sec. V), an absolute energy as
+    /// ``antikink_energy``.
     #[getter]
     fn pn_barrier(&self) -> f64 {
         self.c.pn_barrier()
     }
 
-    /// ``l_critical`` of a spring-length impurity (Sec. VII-A), in units of ``a``.
+    /// ``l_critical`` of a spring-length impurity (Sec. VII-A), in the length unit of ``a``.
     #[getter]
     fn l_critical(&self) -> f64 {
         self.c.l_critical()
@@ -733,8 +794,29 @@ impl Continuum {
         (lo, hi)
     }
 
-    /// The continuum angle profile of a wall of ``defect`` at ``x0`` on ``n`` rotors (radians).
+    /// The continuum angle profile of a wall of ``defect`` at ``x0`` (a length, in the unit of
+    /// ``a``) on ``n`` rotors at ``x = i a`` (radians).
+    ///
+    /// Raises:
+    ///     ParameterError: more rotors than a chain may have (``variant == "TooManyRotors"``).
+    ///     ValueError: ``x0`` is not finite.
     fn angle_profile(&self, py: Python<'_>, defect: &str, n: usize, x0: f64) -> PyResult<Py<PyArray1<f64>>> {
-        Ok(array(py, self.c.angle_profile(args::charge(defect)?, n, x0)))
+        let charge = args::charge(defect)?;
+        if n > MAX_ROTORS {
+            return Err(errors::parameter(py, &ParameterError::TooManyRotors { n, max: MAX_ROTORS }));
+        }
+        if !x0.is_finite() {
+            return Err(value_error(format!("x0 = {x0} is not finite")));
+        }
+        Ok(array(py, py.detach(|| self.c.angle_profile(charge, n, x0))))
+    }
+
+    fn __repr__(&self) -> String {
+        let [a, r, theta_bar, k, mass] = self.parameters;
+        format!("Continuum(a={a:?}, r={r:?}, theta_bar={theta_bar:?}, k={k:?}, mass={mass:?})")
+    }
+
+    fn __reduce__<'py>(slf: &Bound<'py, Self>) -> PyResult<pickle::Reduced<'py>> {
+        pickle::reduce(slf)
     }
 }

@@ -3,7 +3,7 @@
 
 use numpy::{PyArray1, PyArray2};
 use pyo3::prelude::*;
-use rotor_chain::dynamics::integrate::State;
+use rotor_chain::dynamics::integrate::{IntegrateError, State};
 use rotor_chain::dynamics::launch::{self as ln, Direction};
 use rotor_chain::dynamics::run::{self as rn, ABSORBING_ENDS, Method, RunOptions};
 use rotor_chain::dynamics::scatter::{self as sc, ScatterSetup};
@@ -11,15 +11,19 @@ use rotor_chain::dynamics::scatter::{self as sc, ScatterSetup};
 use crate::args::{array, charge, charge_name, choice, matrix, rows};
 use crate::chain::Chain;
 use crate::errors::{self, value_error};
+use crate::pickle::{self, pickle_fields};
 
 fn direction(name: &str) -> PyResult<Direction> {
     choice("direction", name, &[("left", Direction::Left), ("right", Direction::Right)])
 }
 
-/// The run options of `Chain.propagate` and `Chain.scatter`, checked where the Rust options
-/// would only fail later.
+/// The run options of `Chain.propagate` and `Chain.scatter`. `t_max` is checked here, with one
+/// rule for Python's runs, which always start at t = 0 (the Rust run refuses a non-finite one as
+/// `InvalidOption` and one before the start as `EndBeforeStart`); the other options the Rust run
+/// checks by name.
 #[allow(clippy::too_many_arguments)]
 pub fn run_options(
+    py: Python<'_>,
     t_max: f64,
     output_interval: f64,
     method: &str,
@@ -30,6 +34,11 @@ pub fn run_options(
     space_time: bool,
     energy_limit: f64,
 ) -> PyResult<RunOptions> {
+    if !(t_max >= 0.0 && t_max.is_finite()) {
+        let rule = "finite and >= 0 (runs start at t = 0)";
+        let e = IntegrateError::InvalidOption { name: "t_max", value: t_max, rule };
+        return Err(errors::integrate(py, &e));
+    }
     let adaptive = choice("method", method, &[("verlet", false), ("dop853", true)])?;
     let method = if adaptive { Method::Dop853 { rtol, atol } } else { Method::Verlet };
     Ok(RunOptions {
@@ -57,7 +66,7 @@ pub struct Launch {
     /// Where the defect starts (Appendix C wall position).
     position: f64,
     /// ``"kink"`` or ``"antikink"``.
-    defect: &'static str,
+    defect: String,
 }
 
 #[pymethods]
@@ -65,7 +74,13 @@ impl Launch {
     fn __repr__(&self) -> String {
         format!("Launch(defect='{}', position={:?})", self.defect, self.position)
     }
+
+    fn __reduce__<'py>(slf: &Bound<'py, Self>) -> PyResult<pickle::Reduced<'py>> {
+        pickle::reduce(slf)
+    }
 }
+
+pickle_fields!(Launch { theta, omega, mode, position, defect });
 
 pub fn launch(
     chain: &Chain,
@@ -84,7 +99,7 @@ pub fn launch(
         omega: array(py, l.state.omega),
         mode: array(py, l.mode),
         position: l.position,
-        defect: charge_name(l.charge),
+        defect: charge_name(l.charge).to_owned(),
     })
 }
 
@@ -93,11 +108,12 @@ pub fn launch(
 pub struct Run {
     /// Output times (``t``).
     times: Py<PyArray1<f64>>,
-    /// Kinetic energy at each output (units of ``k a^2``).
+    /// Kinetic energy ``sum_i M r_i^2 thetadot_i^2 / 2`` at each output, absolute as
+    /// ``Chain.energy``.
     kinetic: Py<PyArray1<f64>>,
     /// The walls at each output: ``[(position, "kink" | "antikink"), ...]``, interior walls left
     /// to right, then walls that left through an end (kept at ``0`` or ``n - 1``, Appendix C).
-    walls: Vec<Vec<(f64, &'static str)>>,
+    walls: Vec<Vec<(f64, String)>>,
     /// ``(kinks, antikinks)`` at each output (``T x 2``).
     wall_counts: Py<PyArray2<f64>>,
     /// Output times at which the conserved ``N_kink - N_antikink`` was violated (rotors spun
@@ -119,7 +135,7 @@ pub struct Run {
     steps: usize,
     rejected: usize,
     /// ``"verlet"`` or ``"dop853"``.
-    integrator: &'static str,
+    integrator: String,
 }
 
 #[pymethods]
@@ -130,7 +146,30 @@ impl Run {
             self.integrator, self.time, self.steps, self.relative_energy_error
         )
     }
+
+    fn __reduce__<'py>(slf: &Bound<'py, Self>) -> PyResult<pickle::Reduced<'py>> {
+        pickle::reduce(slf)
+    }
 }
+
+pickle_fields!(Run {
+    times,
+    kinetic,
+    walls,
+    wall_counts,
+    violations,
+    space_time,
+    time,
+    theta,
+    omega,
+    energy_initial,
+    energy_final,
+    max_energy_error,
+    relative_energy_error,
+    steps,
+    rejected,
+    integrator
+});
 
 fn run_of(py: Python<'_>, run: rn::Run) -> Run {
     let snapshots = &run.tracker.snapshots;
@@ -143,7 +182,7 @@ fn run_of(py: Python<'_>, run: rn::Run) -> Run {
         .collect();
     let walls = snapshots
         .iter()
-        .map(|s| s.walls.iter().map(|w| (w.position, charge_name(w.charge))).collect())
+        .map(|s| s.walls.iter().map(|w| (w.position, charge_name(w.charge).to_owned())).collect())
         .collect();
     let n = run.final_state.theta.len();
     let space_time = (!run.space_time.times.is_empty()).then(|| rows(py, &run.space_time.theta, n));
@@ -163,7 +202,7 @@ fn run_of(py: Python<'_>, run: rn::Run) -> Run {
         relative_energy_error: run.report.relative_energy_error(),
         steps: run.report.steps,
         rejected: run.report.rejected,
-        integrator: run.integrator,
+        integrator: run.integrator.to_owned(),
     }
 }
 
@@ -186,13 +225,13 @@ pub fn propagate(
 pub struct Scattering {
     /// ``"transmitted"``, ``"reflected"``, ``"trapped"``, ``"split"``, ``"annihilated"``,
     /// ``"disintegrated"``, ``"pair-creation"`` or ``"undecided"`` (docs/dynamics.md §5).
-    outcome: &'static str,
+    outcome: String,
     /// When the outcome was decided (``t``; the run's end if undecided).
     decided_at: f64,
     /// Whether the confirmation window closed before the run ended.
     confirmed: bool,
     /// An event after the outcome was settled (``"annihilated"`` or ``"escaped"``), or ``None``.
-    later: Option<&'static str>,
+    later: Option<String>,
     /// Its time, or ``None``.
     later_at: Option<f64>,
     /// The run (walls, energies, final state).
@@ -207,11 +246,17 @@ impl Scattering {
             self.outcome,
             self.decided_at,
             if self.confirmed { "True" } else { "False" },
-            self.later.map_or("None".to_owned(), |l| format!("'{l}'")),
+            self.later.as_ref().map_or("None".to_owned(), |l| format!("'{l}'")),
             self.later_at.map_or("None".to_owned(), |t| format!("{t:?}"))
         )
     }
+
+    fn __reduce__<'py>(slf: &Bound<'py, Self>) -> PyResult<pickle::Reduced<'py>> {
+        pickle::reduce(slf)
+    }
 }
+
+pickle_fields!(Scattering { outcome, decided_at, confirmed, later, later_at, run });
 
 pub struct ScatterArgs<'a> {
     pub defect: &'a str,
@@ -239,10 +284,10 @@ pub fn scatter(chain: &Chain, py: Python<'_>, a: ScatterArgs<'_>) -> PyResult<Sc
     setup.run = a.options;
     let s = py.detach(|| sc::scatter(&chain.chain, &setup)).map_err(|e| errors::dynamics(py, &e))?;
     Ok(Scattering {
-        outcome: s.outcome.name(),
+        outcome: s.outcome.name().to_owned(),
         decided_at: s.decided_at,
         confirmed: s.confirmed,
-        later: s.later.map(|(e, _)| e.name()),
+        later: s.later.map(|(e, _)| e.name().to_owned()),
         later_at: s.later.map(|(_, t)| t),
         run: Py::new(py, run_of(py, s.run))?,
     })

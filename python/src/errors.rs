@@ -90,6 +90,18 @@ pub fn parameter(py: Python<'_>, e: &ParameterError) -> PyErr {
             .f("kind", kind.to_string())
             .f("index", index)
             .f("count", count),
+        ParameterError::TooManyRotors { n, max } => {
+            Details { variant: "TooManyRotors", ..d }.f("n", n).f("max", max)
+        }
+        ParameterError::EmptyOverride { kind, index } => {
+            Details { variant: "EmptyOverride", ..d }.f("kind", kind.to_string()).f("index", index)
+        }
+        ParameterError::OverriddenTwice { kind, index } => {
+            Details { variant: "OverriddenTwice", ..d }.f("kind", kind.to_string()).f("index", index)
+        }
+        ParameterError::AllocationFailed { n, bytes } => {
+            Details { variant: "AllocationFailed", ..d }.f("n", n).f("bytes", bytes)
+        }
         _ => Details { variant: "Other", ..d },
     };
     d.raise("ParameterError", e.to_string())
@@ -113,6 +125,9 @@ pub fn branch(py: Python<'_>, e: &BranchError) -> PyErr {
         }
         BranchError::NoSuchSpring { spring, springs } => {
             Details { variant: "NoSuchSpring", ..d }.f("spring", spring).f("springs", springs)
+        }
+        BranchError::Degenerate { spring, theta } => {
+            Details { variant: "Degenerate", ..d }.f("spring", spring).f("theta", theta)
         }
         _ => Details { variant: "Other", ..d },
     };
@@ -168,6 +183,12 @@ pub fn statics(py: Python<'_>, e: &StaticsError) -> PyErr {
         &StaticsError::NotFinite { what, index, value } => {
             Details { variant: "NotFinite", ..d }.f("what", what).f("index", index).f("value", value)
         }
+        &StaticsError::InvalidValue { what, value, expected } => {
+            Details { variant: "InvalidValue", ..d }.f("what", what).f("value", value).f("expected", expected)
+        }
+        &StaticsError::TooLarge { what, value, max } => {
+            Details { variant: "TooLarge", ..d }.f("what", what).f("value", value).f("max", max)
+        }
         _ => Details { variant: "Other", ..d },
     };
     d.raise("StaticsError", e.to_string())
@@ -222,6 +243,9 @@ pub fn integrate(py: Python<'_>, e: &IntegrateError) -> PyErr {
             Details { variant: "BadInertia", ..d }.f("index", index).f("inertia", inertia)
         }
         IntegrateError::NoTimeScale { norm } => Details { variant: "NoTimeScale", ..d }.f("norm", norm),
+        IntegrateError::NoStableStep { norm, inverse_inertia } => {
+            Details { variant: "NoStableStep", ..d }.f("norm", norm).f("inverse_inertia", inverse_inertia)
+        }
         _ => Details { variant: "Other", ..d },
     };
     d.raise("IntegrateError", e.to_string())
@@ -257,6 +281,9 @@ pub fn config(py: Python<'_>, e: &ConfigError) -> PyErr {
         &ConfigError::Value { name, value, rule } => {
             Details { variant: "Value", ..d }.f("name", name).f("value", value).f("rule", rule)
         }
+        ConfigError::Experiment { n, source } => {
+            Details { variant: "Experiment", ..d }.f("n", *n).source(dynamics(py, source))
+        }
         _ => Details { variant: "Other", ..d },
     };
     d.raise("ConfigError", e.to_string())
@@ -280,6 +307,7 @@ pub fn point(py: Python<'_>, e: &PointError) -> PyErr {
             let d = Details { variant: "Recomputed", ..d }.f("verlet", verlet.to_string());
             let d = match verlet {
                 VerletBreach::EnergyError { error } => d.f("verlet_energy_error", *error),
+                VerletBreach::Failed { source } => d.f("verlet_error", dynamics(py, source).value(py)),
                 _ => d,
             };
             d.source(point(py, dop853))
@@ -356,6 +384,29 @@ pub fn sweep(py: Python<'_>, e: &SweepError) -> PyErr {
             Details { variant: "AlreadyDone", ..d }.f("path", path(p)).f("index", *index)
         }
         SweepError::Grid(g) => Details { variant: "Grid", ..d }.source(grid(py, g)),
+        SweepError::NoShards { reason } => Details { variant: "NoShards", ..d }.f("reason", reason.as_str()),
+        SweepError::NotAShard { path: p } => Details { variant: "NotAShard", ..d }.f("path", path(p)),
+        SweepError::ShardSet { reason } => Details { variant: "ShardSet", ..d }.f("reason", reason.as_str()),
+        SweepError::DuplicatePoint { index, first, second } => Details { variant: "DuplicatePoint", ..d }
+            .f("index", *index)
+            .f("first", path(first))
+            .f("second", path(second)),
+        SweepError::MissingPoints { missing, total, first, unfinished } => {
+            Details { variant: "MissingPoints", ..d }
+                .f("missing", *missing)
+                .f("total", *total)
+                .f("first", *first)
+                .f("unfinished", unfinished.as_str())
+        }
+        SweepError::WouldOverwrite { path: p, reason } => {
+            Details { variant: "WouldOverwrite", ..d }.f("path", path(p)).f("reason", reason.as_str())
+        }
+        SweepError::InvalidRecord { reason } => {
+            Details { variant: "InvalidRecord", ..d }.f("reason", reason.as_str())
+        }
+        SweepError::ThreadPool { threads, .. } => {
+            Details { variant: "ThreadPool", ..d }.f("threads", *threads)
+        }
         _ => Details { variant: "Other", ..d },
     };
     d.raise("SweepError", e.to_string())

@@ -16,6 +16,7 @@ mod args;
 mod chain;
 mod dynamics;
 mod errors;
+mod pickle;
 mod statics;
 mod sweep;
 
@@ -35,7 +36,11 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(statics::domain_walls, m)?)?;
     m.add_function(wrap_pyfunction!(sweep::axis, m)?)?;
     m.add_function(wrap_pyfunction!(sweep::read_points, m)?)?;
+    m.add_function(wrap_pyfunction!(sweep::check_grid, m)?)?;
+    m.add_function(wrap_pyfunction!(pickle::restore, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     m.add("DEFAULT_ENERGY_TOLERANCE", chain_sweep::scattering::DEFAULT_ENERGY_TOLERANCE)?;
+    m.add("MAX_AXIS_COUNT", chain_sweep::grid::MAX_AXIS_COUNT)?;
+    m.add("MAX_GRID_POINTS", chain_sweep::grid::MAX_GRID_POINTS)?;
     Ok(())
 }

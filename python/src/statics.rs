@@ -13,6 +13,7 @@ use rotor_chain::statics::walls;
 use crate::args::{array, charge_name, choice, rows};
 use crate::chain::Chain;
 use crate::errors;
+use crate::pickle::{self, pickle_fields};
 
 fn ends(name: &str) -> PyResult<Ends> {
     choice("ends", name, &[("held", Ends::Held), ("free", Ends::Free)])
@@ -23,7 +24,8 @@ pub fn kink(chain: &Chain, py: Python<'_>, centre: f64) -> PyResult<Py<PyArray1<
     Ok(array(py, theta.map_err(|e| errors::statics(py, &e))?))
 }
 
-/// An antikink equilibrium (see ``Chain.antikink``). Energies in units of ``k a^2``.
+/// An antikink equilibrium (see ``Chain.antikink``). Energies are absolute, as ``Chain.energy``
+/// (the unit of ``k`` times the length unit squared, not divided by ``k a^2``).
 #[pyclass(frozen, get_all, module = "rotor_chain._native")]
 pub struct Antikink {
     /// The angles (radians).
@@ -37,7 +39,7 @@ pub struct Antikink {
     /// Eigenvalues within the tolerance of zero.
     nullity: usize,
     /// ``"minimum"``, ``"degenerate-minimum"`` or ``"saddle"``.
-    kind: &'static str,
+    kind: String,
     /// ``max |dV/dtheta| / ||K||`` at the end (near-null directions held).
     residual: f64,
     /// The force left on the held near-null directions (tails reaching the free ends).
@@ -62,7 +64,24 @@ impl Antikink {
             self.energy, self.centre, self.kind, self.index
         )
     }
+
+    fn __reduce__<'py>(slf: &Bound<'py, Self>) -> PyResult<pickle::Reduced<'py>> {
+        pickle::reduce(slf)
+    }
 }
+
+pickle_fields!(Antikink {
+    theta,
+    energy,
+    centre,
+    index,
+    nullity,
+    kind,
+    residual,
+    edge_force,
+    newton_iterations,
+    relax_steps
+});
 
 fn antikink_of(py: Python<'_>, a: &ak::Antikink) -> Antikink {
     let kind = match a.classification.kind {
@@ -76,7 +95,7 @@ fn antikink_of(py: Python<'_>, a: &ak::Antikink) -> Antikink {
         centre: a.centre,
         index: a.classification.index,
         nullity: a.classification.nullity,
-        kind,
+        kind: kind.to_owned(),
         residual: a.residual,
         edge_force: a.edge_force,
         newton_iterations: a.newton_iterations,
@@ -104,7 +123,8 @@ pub fn antikink(
 }
 
 /// Both antikink equilibria in the middle of the chain and the Peierls-Nabarro barrier
-/// between them (paper Sec. V). Energies in units of ``k a^2``.
+/// between them (paper Sec. V). Energies are absolute, as ``Chain.energy`` (not divided by
+/// ``k a^2``).
 #[pyclass(frozen, get_all, module = "rotor_chain._native")]
 pub struct PeierlsNabarro {
     /// The lower-energy equilibrium.
@@ -145,7 +165,13 @@ impl PeierlsNabarro {
             if self.resolved { "True" } else { "False" }
         )
     }
+
+    fn __reduce__<'py>(slf: &Bound<'py, Self>) -> PyResult<pickle::Reduced<'py>> {
+        pickle::reduce(slf)
+    }
 }
+
+pickle_fields!(PeierlsNabarro { minimum, saddle, rotor_centred, spring_centred, barrier, resolved });
 
 pub fn peierls_nabarro(chain: &Chain, py: Python<'_>, ends_name: &str) -> PyResult<PeierlsNabarro> {
     let options = AntikinkOptions { ends: ends(ends_name)?, ..AntikinkOptions::default() };
@@ -186,7 +212,7 @@ pub struct Modes {
     participation: Py<PyArray1<f64>>,
     /// Where each mode lives: ``"translation"``, ``"shape"``, ``"edge-left"``, ``"edge-right"``
     /// or ``"extended"``.
-    kinds: Vec<&'static str>,
+    kinds: Vec<String>,
 }
 
 #[pymethods]
@@ -202,7 +228,13 @@ impl Modes {
             self.kinds.iter().map(|k| format!("'{k}'")).collect::<Vec<_>>().join(", ")
         )
     }
+
+    fn __reduce__<'py>(slf: &Bound<'py, Self>) -> PyResult<pickle::Reduced<'py>> {
+        pickle::reduce(slf)
+    }
 }
+
+pickle_fields!(Modes { frequencies, omega_squared, vectors, positions, participation, kinds });
 
 pub fn modes(
     chain: &Chain,
@@ -232,6 +264,7 @@ pub fn modes(
                 ModeKind::Edge { left: false } => "edge-right",
                 ModeKind::Extended => "extended",
             })
+            .map(str::to_owned)
             .collect(),
     })
 }
@@ -279,7 +312,22 @@ impl Counting {
             self.springs - self.rank
         )
     }
+
+    fn __reduce__<'py>(slf: &Bound<'py, Self>) -> PyResult<pickle::Reduced<'py>> {
+        pickle::reduce(slf)
+    }
 }
+
+pickle_fields!(Counting {
+    rotors,
+    springs,
+    singular_values,
+    tolerance,
+    rank,
+    zero_modes,
+    self_stresses,
+    index
+});
 
 pub fn maxwell_calladine(
     chain: &Chain,

@@ -16,10 +16,10 @@ use chain_sweep::scattering::{
 };
 use chain_sweep::{Axis, Grid, Point, ResultsFile as File, SweepOptions};
 use pyo3::prelude::*;
-use pyo3::types::{PyDict, PyString};
+use pyo3::types::{PyDict, PyString, PyTuple};
 use rayon::prelude::*;
 
-use crate::args::choice;
+use crate::args::{self, choice, name_of};
 use crate::errors::{self, value_error};
 
 /// One phase diagram's settings, checked (chain-sweep's ``PhaseDiagram``): the chain of paper
@@ -32,6 +32,10 @@ pub struct PhaseDiagram {
 
 /// `(i, j, ki, v0)`: a grid point with its coordinates.
 type GridPoint = (usize, usize, f64, f64);
+
+const DEFECTS: &[(&str, Defect)] = &[("kink", Defect::Kink), ("antikink", Defect::Antikink)];
+const ENDS: &[(&str, Ends)] = &[("free", Ends::Free), ("absorbing", Ends::Absorbing)];
+const INTEGRATORS: &[(&str, Integrator)] = &[("verlet", Integrator::Verlet), ("dop853", Integrator::Dop853)];
 
 #[pymethods]
 impl PhaseDiagram {
@@ -55,13 +59,9 @@ impl PhaseDiagram {
         recompute: bool,
         t_max: f64,
     ) -> PyResult<Self> {
-        let defect = choice("defect", defect, &[("kink", Defect::Kink), ("antikink", Defect::Antikink)])?;
-        let ends = choice("ends", ends, &[("free", Ends::Free), ("absorbing", Ends::Absorbing)])?;
-        let integrator = choice(
-            "integrator",
-            integrator,
-            &[("verlet", Integrator::Verlet), ("dop853", Integrator::Dop853)],
-        )?;
+        let defect = choice("defect", defect, DEFECTS)?;
+        let ends = choice("ends", ends, ENDS)?;
+        let integrator = choice("integrator", integrator, INTEGRATORS)?;
         let mut d = Diagram::new(n, r, k, theta_bar, defect).map_err(|e| errors::config(py, &e))?;
         d.mass = mass;
         d.ends = ends;
@@ -131,6 +131,25 @@ impl PhaseDiagram {
     fn __repr__(&self) -> String {
         format!("PhaseDiagram({})", self.d.run_label())
     }
+
+    /// Pickling (for multiprocessing and Dask): the constructor's arguments, checked again.
+    fn __getnewargs_ex__<'py>(&self, py: Python<'py>) -> PyResult<(Bound<'py, PyTuple>, Bound<'py, PyDict>)> {
+        let d = &self.d;
+        let args = PyTuple::new(py, [name_of(d.defect, DEFECTS)])?;
+        let kwargs = PyDict::new(py);
+        kwargs.set_item("n", d.n)?;
+        kwargs.set_item("r", d.r)?;
+        kwargs.set_item("k", d.k)?;
+        kwargs.set_item("theta_bar", d.theta_bar)?;
+        kwargs.set_item("mass", d.mass)?;
+        kwargs.set_item("ends", name_of(d.ends, ENDS))?;
+        kwargs.set_item("integrator", name_of(d.integrator, INTEGRATORS))?;
+        kwargs.set_item("dt", d.dt)?;
+        kwargs.set_item("energy_tolerance", d.energy_tolerance)?;
+        kwargs.set_item("recompute", d.recompute)?;
+        kwargs.set_item("t_max", d.t_max)?;
+        Ok((args, kwargs))
+    }
 }
 
 /// One point; a panic becomes its error, as in chain-sweep's sweeps.
@@ -193,13 +212,7 @@ fn record_dict<'py>(
 }
 
 fn item<'py, T: FromPyObjectOwned<'py>>(d: &Bound<'py, PyDict>, key: &str) -> PyResult<T> {
-    match d.get_item(key)? {
-        Some(v) => v.extract::<T>().map_err(|e| {
-            let e: PyErr = e.into();
-            value_error(format!("record field `{key}`: {e}"))
-        }),
-        None => Err(value_error(format!("the record has no field `{key}`"))),
-    }
+    args::item(d, "record", key)
 }
 
 /// A record dict back into the point and its outcome.
@@ -244,6 +257,19 @@ pub fn axis(py: Python<'_>, spec: &Bound<'_, PyAny>) -> PyResult<Vec<f64>> {
         Axis::from_values(spec.extract::<Vec<f64>>()?)
     };
     Ok(axis.map_err(|e| errors::grid(py, &e))?.values().to_vec())
+}
+
+/// Checks that ``xs`` x ``ys`` is a grid a sweep may have: both axes non-empty, finite and of at
+/// most ``MAX_AXIS_COUNT`` values, and at most ``MAX_GRID_POINTS`` points in all (the
+/// ``phase-diagram`` command's limits). ``rotor_chain.sweep.phase_diagram`` calls it before it
+/// allocates anything per point.
+///
+/// Raises:
+///     GridError: ``variant == "TooLarge"`` (with ``nx``, ``ny``) for too many points;
+///         ``"EmptyAxis"``, ``"TooManyPoints"``, ``"NotFinite"`` for a bad axis.
+#[pyfunction]
+pub fn check_grid(py: Python<'_>, xs: Vec<f64>, ys: Vec<f64>) -> PyResult<()> {
+    grid(py, xs, ys).map(|_| ())
 }
 
 fn grid(py: Python<'_>, xs: Vec<f64>, ys: Vec<f64>) -> PyResult<Grid> {

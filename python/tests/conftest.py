@@ -79,3 +79,30 @@ def close(actual: Any, expected: Any, rtol: float = 1e-12, what: str = "") -> No
     scale = max(float(np.max(np.abs(e))) if e.size else 0.0, 1e-300)
     err = float(np.max(np.abs(a - e))) if e.size else 0.0
     assert err <= rtol * scale, f"{what}: max |difference| {err:.3e} > {rtol:.0e} x {scale:.3e}"
+
+
+def assert_same_object(got: Any, expected: Any, what: str = "") -> List[str]:
+    """``got`` is of ``expected``'s class, has its ``repr``, and every public attribute of it
+    equal: numpy arrays of the same dtype, shape and bytes, floats bit for bit, nested results
+    (``rotor_chain._native`` objects) compared the same way. Returns the names compared."""
+    what = what or type(expected).__name__
+    assert type(got) is type(expected), f"{what}: {type(got)} is not {type(expected)}"
+    assert repr(got) == repr(expected), what
+    names = [n for n in dir(expected) if not n.startswith("_") and not callable(getattr(expected, n))]
+    assert names, f"{what}: no attributes to compare"
+    for name in names:
+        _assert_same_value(getattr(got, name), getattr(expected, name), f"{what}.{name}")
+    return names
+
+
+def _assert_same_value(got: Any, expected: Any, what: str) -> None:
+    if isinstance(expected, np.ndarray):
+        assert isinstance(got, np.ndarray), what
+        assert (got.dtype, got.shape) == (expected.dtype, expected.shape), what
+        assert got.tobytes() == expected.tobytes(), what
+    elif type(expected).__module__ == "rotor_chain._native":
+        assert_same_object(got, expected, what)
+    elif isinstance(expected, float):
+        assert type(got) is float and got.hex() == expected.hex(), f"{what}: {got!r} != {expected!r}"
+    else:
+        assert type(got) is type(expected) and got == expected, f"{what}: {got!r} != {expected!r}"

@@ -90,7 +90,7 @@ def test_properties_and_the_constructor_round_trip():
     assert np.array_equal(chain.uniform(-1), -0.2 * np.ones(17))
 
 
-@pytest.mark.parametrize("p,theta_p", [(0, 0.3), (10, 0.58), (30, -0.2), (58, 0.1), (20, 1.4), (59, 0.3)])
+@pytest.mark.parametrize("p,theta_p", [(0, 0.3), (10, 0.58), (30, -0.2), (58, 0.1), (20, 1.4)])
 def test_branch_solve_matches_rust(p, theta_p, reference):
     spec = CHAINS[0]
     chain = make(spec)
@@ -126,6 +126,8 @@ BAD = [
     (dict(n=10, r=0.8, k=1e4, theta_bar=0.3, springs=[(9, 1.0, None)]), "IndexOutOfRange", {"index": 9, "count": 9, "kind": "spring"}),
     (dict(n=10, r=0.8, k=1e4, theta_bar=0.3, springs=[(2, None, -1.0)]), "NotPositive", {"key": "l0"}),
     (dict(n=10, r=0.8, k=1e4, theta_bar=0.3, rotors=[(10, 0.5)]), "IndexOutOfRange", {"kind": "rotor", "index": 10}),
+    (dict(n=200_000_000, r=0.8, k=1e4, theta_bar=0.3), "TooManyRotors", {"n": 200_000_000, "max": 100_000_000}),
+    (dict(n=10, r=0.8, k=1e4, theta_bar=0.3, springs=[(4, None, None)]), "EmptyOverride", {"kind": "spring", "index": 4}),
 ]
 
 
@@ -158,3 +160,27 @@ def test_python_side_misuse_is_a_clear_value_error():
     assert info.value.n == -3
     with pytest.raises(rc.ParameterError, match="spring index -1 is out of range"):
         rc.Chain(10, 0.8, 1e4, 0.3, springs={-1: {"k": 1.0}})
+
+
+def test_an_index_out_of_range_is_a_parameter_error_in_every_method(reference):
+    spec = CHAINS[0]
+    chain = make(spec)
+    # The message is the Rust builder's for the same index (a spring override past the end).
+    (past_end,) = reference([{"chain": dict(spec, springs=[(59, 1.0, None)]), "op": "build"}])
+    calls = {
+        "next_angles": lambda p: chain.next_angles(p, 0.3),
+        "previous_angles": lambda p: chain.previous_angles(p, 0.3),
+        "scatter": lambda p: chain.scatter("antikink", 4.0, p),
+    }
+    for name, call in calls.items():
+        for p, message in ((59, past_end["error"]), (-1, "spring index -1 is out of range: the chain has 59 springs, numbered 0 to 58")):
+            with pytest.raises(rc.ParameterError) as info:
+                call(p)
+            e = info.value
+            assert not isinstance(e, (rc.BranchError, rc.DynamicsError)), name
+            assert str(e) == message, name
+            assert (e.variant, e.kind, e.index, e.count) == ("IndexOutOfRange", "spring", p, 59), name
+    # The last spring is in range; a branch solve there without a root is still a BranchError.
+    assert len(chain.next_angles(58, 0.1)) == len(chain.previous_angles(58, 0.1)) == 2
+    with pytest.raises(rc.BranchError):
+        chain.next_angles(58, 1.5)

@@ -4,11 +4,14 @@ identical outcomes and decision times; dynamics errors with their numbers."""
 
 from __future__ import annotations
 
+import math
+import pickle
+
 import numpy as np
 import pytest
 
 import rotor_chain as rc
-from conftest import close
+from conftest import assert_same_object, close
 
 BASE = dict(n=60, r=0.8, k=1.0e4, theta_bar=0.28)
 
@@ -103,6 +106,42 @@ def test_dynamics_errors_carry_the_numbers():
         assert e.relative > e.limit == 0.1 and 0 < e.time <= 2.0
     with pytest.raises(ValueError, match="method must be one of 'verlet', 'dop853'"):
         c.propagate(theta, np.zeros(60), method="rk4")
-    with pytest.raises(rc.DynamicsError) as info:
+    # An impurity past the last spring is an index out of range, as for every method (test_chain.py).
+    with pytest.raises(rc.ParameterError) as info:
         c.scatter("kink", 4.0, 60)
-    assert (info.value.variant, info.value.spring, info.value.springs) == ("NoSuchSpring", 60, 59)
+    assert (info.value.variant, info.value.kind, info.value.index, info.value.count) == ("IndexOutOfRange", "spring", 60, 59)
+
+
+@pytest.mark.parametrize("t_max", [float("nan"), float("inf"), -1.0])
+def test_a_bad_t_max_is_named_as_the_user_passed_it(t_max):
+    c = rc.Chain(60, 0.8, 1.0e4, 0.28)
+    calls = {
+        "propagate": lambda: c.propagate(c.kink(40.0), np.zeros(60), t_max=t_max),
+        "scatter": lambda: c.scatter("antikink", 4.0, t_max=t_max),
+    }
+    for name, call in calls.items():
+        with pytest.raises(rc.IntegrateError) as info:
+            call()
+        e = info.value
+        shown = {"nan": "NaN", "inf": "inf"}.get(str(t_max), "-1")
+        assert str(e) == f"t_max = {shown} is invalid: it must be finite and >= 0 (runs start at t = 0)", name
+        assert "[0]" not in str(e)
+        assert (e.variant, e.name, e.rule) == ("InvalidOption", "t_max", "finite and >= 0 (runs start at t = 0)")
+        assert e.value == t_max or (math.isnan(e.value) and math.isnan(t_max))
+
+
+def test_dynamics_results_pickle_field_by_field():
+    spec, c = with_impurity(0.7)
+    launch = c.launch("antikink", 44.5, 4.0)
+    run = c.propagate(launch.theta, launch.omega, t_max=0.3)
+    with_space_time = c.propagate(launch.theta, launch.omega, t_max=0.3, method="dop853", space_time=True)
+    scattering = c.scatter("antikink", 4.0, 29)
+    assert scattering.outcome == "trapped" and run.space_time is None and with_space_time.space_time.shape[1] == 60
+    for result, fields in (
+        (launch, {"theta", "omega", "mode", "position", "defect"}),
+        (run, {"times", "kinetic", "walls", "wall_counts", "violations", "space_time", "steps", "integrator"}),
+        (with_space_time, {"space_time", "rejected", "energy_initial", "energy_final", "max_energy_error"}),
+        (scattering, {"outcome", "decided_at", "confirmed", "later", "later_at", "run"}),
+    ):
+        names = assert_same_object(pickle.loads(pickle.dumps(result)), result)
+        assert fields <= set(names), fields - set(names)

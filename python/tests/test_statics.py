@@ -4,11 +4,13 @@ counts, the continuum; statics errors with their numbers."""
 
 from __future__ import annotations
 
+import pickle
+
 import numpy as np
 import pytest
 
 import rotor_chain as rc
-from conftest import close
+from conftest import assert_same_object, close
 
 PAPER = dict(n=60, r=0.8, k=1.0e4, theta_bar=0.58)
 
@@ -87,3 +89,49 @@ def test_statics_errors_carry_the_numbers():
     assert str(e) == "centre 75 is outside the chain: it must lie in [0, 59] for 60 rotors"
     with pytest.raises(ValueError, match="ends must be one of 'held', 'free'"):
         c.peierls_nabarro(ends="fixed")
+
+
+def test_statics_results_pickle_field_by_field():
+    c = chain(PAPER)
+    pn = c.peierls_nabarro()
+    antikink = c.antikink(33.0)
+    results = [
+        antikink,
+        c.antikink(29.5, relaxed=False),
+        pn,
+        c.modes(antikink.theta, 6),
+        c.maxwell_calladine(antikink.theta),
+        c.continuum(),
+    ]
+    for result in results:
+        again = pickle.loads(pickle.dumps(result))
+        names = assert_same_object(again, result)
+        assert len(names) >= 5, names
+    again = pickle.loads(pickle.dumps(pn))
+    assert {"minimum", "saddle", "rotor_centred", "spring_centred", "barrier", "resolved"} <= set(dir(again))
+    # The minimum is one of the two centrings, the same object after unpickling as before.
+    assert again.minimum is (again.rotor_centred if pn.minimum is pn.rotor_centred else again.spring_centred)
+    modes = pickle.loads(pickle.dumps(results[3]))
+    assert len(modes) == 6 and modes.kinds == results[3].kinds
+    continuum = pickle.loads(pickle.dumps(c.continuum()))
+    assert np.array_equal(continuum.angle_profile("kink", 60, 29.5), c.continuum().angle_profile("kink", 60, 29.5))
+
+
+def test_a_bad_pickled_state_is_a_value_error():
+    with pytest.raises(ValueError, match="the pickled Antikink state has no field `theta`"):
+        rc._native._restore("Antikink", {})
+    state = pickle.loads(pickle.dumps(chain(PAPER).continuum())).__reduce__()[1][1]
+    with pytest.raises(rc.ParameterError) as info:  # the parameters are checked again
+        rc._native._restore("Continuum", dict(state, k=-1.0))
+    assert (info.value.variant, info.value.key, info.value.value) == ("NotPositive", "k", -1.0)
+    with pytest.raises(ValueError, match="has no result class `Chain`"):
+        rc._native._restore("Chain", {})
+
+
+def test_continuum_profile_refuses_what_it_cannot_compute():
+    continuum = chain(PAPER).continuum()
+    with pytest.raises(rc.ParameterError) as info:  # not an allocation of 8 TB
+        continuum.angle_profile("antikink", 10**12, 0.0)
+    assert (info.value.variant, info.value.n, info.value.max) == ("TooManyRotors", 10**12, 100_000_000)
+    with pytest.raises(ValueError, match="x0 = NaN is not finite"):
+        continuum.angle_profile("antikink", 60, float("nan"))

@@ -4,14 +4,16 @@ with their numbers; the GIL released during long computations."""
 
 from __future__ import annotations
 
+import pickle
 import threading
 import time
+import tracemalloc
 
 import numpy as np
 import pytest
 
 import rotor_chain as rc
-from rotor_chain import sweep
+from rotor_chain import _native, sweep
 from cli_results import cli_records, line_count, preamble, read_csv, run_cli
 
 ANTIKINK = ("antikink", "0.05:3:4:log", "0.5:12:4")
@@ -84,9 +86,16 @@ def test_settings_errors_carry_the_numbers(phase_diagram_cli, tmp_path):
         sweep.phase_diagram("antikink", "0.1:1:2", "1:2:2", theta_bar=0.7)
     assert info.value.variant == "Chain" and isinstance(info.value.__cause__, rc.ParameterError)
     assert info.value.__cause__.variant == "OutsideFlipperPhase"
+    # A chain too short for the experiment (the defect starts 15.5 sites right of the middle
+    # spring): refused up front, the setup's reason as the cause.
     with pytest.raises(rc.ConfigError) as info:
         sweep.phase_diagram("antikink", "0.1:1:2", "1:2:2", n=12)
-    assert (info.value.name, info.value.value) == ("n", 12.0)
+    e = info.value
+    assert (e.variant, e.n) == ("Experiment", 12) and str(e).startswith("a chain of 12 rotors cannot hold the experiment")
+    assert isinstance(e.__cause__, rc.DynamicsError) and e.__cause__ is e.details["source"]
+    assert (e.__cause__.variant, e.__cause__.name, e.__cause__.value) == ("InvalidSetup", "start", 20.5)
+    cli = run_cli(phase_diagram_cli, tmp_path / "short.csv", "antikink", "0.1:1:2", "1:2:2", "--n", "12")
+    assert cli.returncode == 2 and str(e) in cli.stderr
     with pytest.raises(rc.ConfigError, match="must be > 0") as info:
         sweep.phase_diagram("kink", "0:1:3", "1:2:2")
     assert (info.value.name, info.value.value) == ("k_i/k", 0.0)
@@ -107,6 +116,74 @@ def test_settings_errors_carry_the_numbers(phase_diagram_cli, tmp_path):
     assert e.variant == "RunMismatch" and e.path == str(other)
     assert "theta_bar=0.3" in e.found and "theta_bar=0.28" in e.expected
     assert other.read_bytes() == before
+
+
+class _Untouchable:
+    """A Dask client stand-in that fails the test if anything of it is used."""
+
+    def __getattr__(self, name):
+        raise AssertionError(f"client.{name} was used before the grid was refused")
+
+
+def test_a_grid_past_the_clis_limit_is_refused_before_any_point_is_listed(tmp_path):
+    # 10^10 points: the list of points alone would be hundreds of GB. Refused from the two axes
+    # (1e5 values each), with the command's message and numbers, and nothing written.
+    out = tmp_path / "huge.csv"
+    for kwargs in ({}, {"out": out}, {"client": _Untouchable()}):
+        tracemalloc.start()
+        try:
+            with pytest.raises(rc.GridError) as info:
+                sweep.phase_diagram("antikink", "0.1:1:100000", "1:2:100000", **kwargs)
+            peak = tracemalloc.get_traced_memory()[1]
+        finally:
+            tracemalloc.stop()
+        e = info.value
+        assert str(e) == "the grid has 100000 x 100000 points, more than the limit of 10000000", kwargs
+        assert (e.variant, e.nx, e.ny) == ("TooLarge", 100_000, 100_000)
+        assert peak < 32 * 2**20, f"{kwargs}: {peak / 2**20:.0f} MiB allocated before the refusal"
+    assert not out.exists()
+    # The limit is chain-sweep's, exactly: a grid at it passes the check, one more row does not.
+    assert (sweep.MAX_AXIS_COUNT, sweep.MAX_GRID_POINTS) == (100_000, 10_000_000)
+    xs = sweep.axis(f"0.1:1:{sweep.MAX_AXIS_COUNT}")
+    rows = sweep.MAX_GRID_POINTS // sweep.MAX_AXIS_COUNT
+    assert _native.check_grid(xs, [1.0] * rows) is None
+    with pytest.raises(rc.GridError) as info:
+        _native.check_grid(xs, [1.0] * (rows + 1))
+    assert (info.value.nx, info.value.ny) == (sweep.MAX_AXIS_COUNT, rows + 1)
+    with pytest.raises(rc.GridError) as info:  # a results file checks the same grid
+        _native.ResultsFile(xs, [1.0] * (rows + 1), str(out), "run")
+    assert info.value.variant == "TooLarge" and not out.exists()
+    with pytest.raises(rc.GridError) as info:  # and an axis has its own limit
+        sweep.axis(f"0.1:1:{sweep.MAX_AXIS_COUNT + 1}")
+    assert (info.value.variant, info.value.count) == ("TooManyPoints", sweep.MAX_AXIS_COUNT + 1)
+    # outcome_grid makes a cell per (ki, v0) pair of the records: records off any grid could ask
+    # for more cells than a grid may have points.
+    side = 3163  # 3163^2 > 10^7
+    scattered = [dict(ki=0.1 + i, v0=float(i), outcome=None, error="x") for i in range(side)]
+    with pytest.raises(rc.GridError) as info:
+        sweep.outcome_grid(scattered)
+    assert (info.value.nx, info.value.ny) == (side, side)
+
+
+def test_point_refuses_settings_as_phase_diagram_does():
+    with pytest.raises(rc.ConfigError) as info:
+        sweep.point("antikink", 0.5, float("nan"))
+    assert info.value.name == "v0" and str(info.value) == "invalid v0: every launch speed must be >= 0, got nan"
+    with pytest.raises(rc.ConfigError) as info:
+        sweep.point("antikink", -0.5, 4.0)
+    assert (info.value.name, info.value.value) == ("k_i/k", -0.5)
+
+
+def test_phase_diagram_settings_pickle_and_a_results_file_does_not(tmp_path):
+    d = _native.PhaseDiagram("kink", n=40, ends="absorbing", integrator="dop853", dt=1e-3, recompute=False, t_max=3.5)
+    again = pickle.loads(pickle.dumps(d))
+    assert type(again) is _native.PhaseDiagram and again.run_label == d.run_label
+    assert "integrator=dop853" in d.run_label and "t_max=3.5" in d.run_label
+    assert again.compute_point(0.5, 2.0) == d.compute_point(0.5, 2.0)
+    # A results file is an open, locked file: like a Python file object it does not pickle.
+    with _native.ResultsFile([0.5], [2.0], str(tmp_path / "f.csv"), d.run_label) as f:
+        with pytest.raises(TypeError, match="ResultsFile"):
+            pickle.dumps(f)
 
 
 def _main_thread_progress(call) -> tuple:
