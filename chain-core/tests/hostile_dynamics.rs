@@ -49,22 +49,32 @@ fn a_step_that_is_zero_negative_or_not_a_number_is_refused() {
     }
 }
 
-/// A tip mass so small that `1 / (M r^2)` overflows: no default step can be stable, and the
-/// error says so with the numbers (an early version reported "dt = 0 is invalid", a step the user
-/// never gave). Masses small but representable still run.
+/// A tip mass so small that `1 / (M r^2)` overflows is a bad inertia for every integrator, with
+/// or without a step given (an early version reported "dt = 0 is invalid", a step the user never
+/// gave); a stiffness so large for its inertia that the frequency bound overflows has no default
+/// step, and says so with the numbers. Masses small but representable still run.
 #[test]
-fn a_mass_too_small_for_any_stable_step_is_refused_with_the_reason() {
+fn an_inertia_too_small_for_any_stable_step_is_refused_with_the_reason() {
+    let methods = [(Method::Verlet, None), (Method::Verlet, Some(1e-3)), (Method::dop853(), None)];
     for mass in [1e-310, 5e-324] {
         let model = RuntimeChain::builder(60, 0.8, 1.0e4, 0.28).mass(mass).build().unwrap();
-        match quickly("tiny mass", || run(&model, RunOptions::default())) {
-            Err(DynamicsError::Integrate(IntegrateError::NoStableStep { norm, inverse_inertia })) => {
-                assert!(
-                    norm > 0.0 && norm.is_finite() && inverse_inertia * mass > 1.0,
-                    "{norm} {inverse_inertia}"
-                );
+        for (method, dt) in methods {
+            match quickly("tiny mass", || run(&model, RunOptions { method, dt, ..RunOptions::default() })) {
+                Err(DynamicsError::Integrate(IntegrateError::BadInertia { index: 0, inertia })) => {
+                    assert_eq!(inertia, model.inertia(0));
+                }
+                other => panic!("mass {mass}, {method:?}, dt {dt:?}: {other:?}"),
             }
-            other => panic!("mass {mass}: {other:?}"),
         }
+    }
+    let stiff = RuntimeChain::builder(60, 0.8, 1.0e305, 0.28).mass(1e-5).build().unwrap();
+    match quickly("stiff, light", || run(&stiff, RunOptions::default())) {
+        Err(DynamicsError::Integrate(IntegrateError::NoStableStep { norm, inverse_inertia })) => {
+            let finite = norm > 0.0 && norm.is_finite();
+            assert!(finite && inverse_inertia == 1.0 / stiff.inertia(0), "{norm} {inverse_inertia}");
+            assert_eq!(norm * inverse_inertia, f64::INFINITY);
+        }
+        other => panic!("k = 1e305, M = 1e-5: {other:?}"),
     }
     let light = RuntimeChain::builder(60, 0.8, 1.0e4, 0.28).mass(1e-6).build().unwrap();
     run(&light, RunOptions { t_max: 1e-4, output_interval: 1e-5, ..RunOptions::default() }).unwrap();

@@ -119,8 +119,9 @@ pub enum IntegrateError {
         /// The time of the output before it.
         previous: f64,
     },
-    /// A rotor whose inertia `M r_i^2` is not positive and finite.
-    #[error("rotor {index} has inertia {inertia}: it must be positive and finite")]
+    /// A rotor whose inertia `M r_i^2` is not positive and finite, or so small that its inverse
+    /// overflows.
+    #[error("rotor {index} has inertia {inertia}: it must be positive and finite, with a finite inverse")]
     BadInertia {
         /// The rotor.
         index: usize,
@@ -134,12 +135,12 @@ pub enum IntegrateError {
         /// The norm of the tangent stiffness, which gives no finite stability limit.
         norm: f64,
     },
-    /// The bound on the fastest mode's angular frequency, `sqrt(||K||_inf / I_min)`, is not
-    /// finite (an inertia `M r^2` so small that its inverse overflows), so the stable step would
-    /// be 0: no default step exists. Give the step (`dt`) yourself, or larger masses.
+    /// The bound on the fastest mode's angular frequency, `sqrt(||K||_inf / I_min)`, overflows
+    /// (a stiffness far too large for the inertia), so the stable step would be 0: no default
+    /// step exists.
     #[error(
-        "the fastest mode's frequency bound sqrt({norm:e} x {inverse_inertia:e}) is not finite: the stable \
-         step would be 0 (an inertia M r^2 too small); give dt, or larger masses"
+        "the fastest mode's frequency bound sqrt({norm:e} x {inverse_inertia:e}) overflows: the stable step \
+         would be 0 (stiffness far too large for the inertia M r^2)"
     )]
     NoStableStep {
         /// The norm of the tangent stiffness.

@@ -314,7 +314,8 @@ fn inverse_inertia<M: ChainModel + ?Sized>(model: &M) -> Result<Vec<f64>, Integr
     (0..model.rotor_count())
         .map(|i| {
             let inertia = model.inertia(i);
-            if inertia > 0.0 && inertia.is_finite() {
+            // A subnormal inertia is positive and finite, but its inverse overflows.
+            if inertia > 0.0 && inertia.is_finite() && (1.0 / inertia).is_finite() {
                 Ok(1.0 / inertia)
             } else {
                 Err(IntegrateError::BadInertia { index: i, inertia })

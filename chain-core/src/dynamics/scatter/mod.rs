@@ -231,6 +231,52 @@ impl ScatterSetup {
             run: RunOptions::default(),
         }
     }
+
+    /// Whether the setup describes an experiment on a chain of `n` rotors (what [`scatter`]
+    /// checks first): the impurity one of its springs, every window and distance finite and of
+    /// its sign, and the start on the chain, farther than `edge_margin` from either end (nearer,
+    /// the launched wall would count as having reached that end at once).
+    pub fn check(&self, n: usize) -> Result<(), DynamicsError> {
+        if self.impurity >= n.saturating_sub(1) {
+            return Err(DynamicsError::NoSuchSpring { spring: self.impurity, springs: n.saturating_sub(1) });
+        }
+        let times = [
+            ("persistence", self.persistence),
+            ("progress", self.progress),
+            ("trap_time", self.trap_time),
+            ("trap_crossings", self.trap_crossings),
+            ("turn_band", self.turn_band),
+            ("entry_window", self.entry_window),
+            ("pair_age", self.pair_age),
+            ("pair_extent", self.pair_extent),
+            ("grace", self.grace),
+            ("break_time", self.break_time),
+            ("confirm", self.confirm),
+            ("watch", self.watch),
+            ("edge_margin", self.edge_margin),
+        ];
+        for (name, value) in times {
+            if !(value >= 0.0 && value.is_finite()) {
+                return Err(DynamicsError::InvalidSetup { name, value, rule: "non-negative and finite" });
+            }
+        }
+        for (name, value) in
+            [("reach", self.reach), ("max_jump", self.max_jump), ("cluster_gap", self.cluster_gap)]
+        {
+            if !(value > 0.0 && value.is_finite()) {
+                return Err(DynamicsError::InvalidSetup { name, value, rule: "positive and finite" });
+            }
+        }
+        let last = n.saturating_sub(1) as f64;
+        if !(self.start > self.edge_margin && self.start < last - self.edge_margin) {
+            return Err(DynamicsError::InvalidSetup {
+                name: "start",
+                value: self.start,
+                rule: "a position on the chain, farther than edge_margin from either end",
+            });
+        }
+        Ok(())
+    }
 }
 
 /// The result of [`scatter`].
@@ -246,59 +292,6 @@ pub struct Scattering {
     pub later: Option<(LaterEvent, f64)>,
     /// The run.
     pub run: Run,
-}
-
-impl ScatterSetup {
-    /// Whether the setup describes an experiment on a chain of `rotors` rotors (what [`scatter`]
-    /// checks first): the impurity one of its springs, every window and distance finite and of
-    /// its sign, and the start on the chain, farther than `edge_margin` from either end (nearer,
-    /// the launched wall would count as having reached that end at once).
-    pub fn check(&self, rotors: usize) -> Result<(), DynamicsError> {
-        check_setup(rotors, self)
-    }
-}
-
-/// A setup whose numbers cannot describe an experiment.
-fn check_setup(n: usize, setup: &ScatterSetup) -> Result<(), DynamicsError> {
-    if setup.impurity >= n.saturating_sub(1) {
-        return Err(DynamicsError::NoSuchSpring { spring: setup.impurity, springs: n.saturating_sub(1) });
-    }
-    let times = [
-        ("persistence", setup.persistence),
-        ("progress", setup.progress),
-        ("trap_time", setup.trap_time),
-        ("trap_crossings", setup.trap_crossings),
-        ("turn_band", setup.turn_band),
-        ("entry_window", setup.entry_window),
-        ("pair_age", setup.pair_age),
-        ("pair_extent", setup.pair_extent),
-        ("grace", setup.grace),
-        ("break_time", setup.break_time),
-        ("confirm", setup.confirm),
-        ("watch", setup.watch),
-        ("edge_margin", setup.edge_margin),
-    ];
-    for (name, value) in times {
-        if !(value >= 0.0 && value.is_finite()) {
-            return Err(DynamicsError::InvalidSetup { name, value, rule: "non-negative and finite" });
-        }
-    }
-    for (name, value) in
-        [("reach", setup.reach), ("max_jump", setup.max_jump), ("cluster_gap", setup.cluster_gap)]
-    {
-        if !(value > 0.0 && value.is_finite()) {
-            return Err(DynamicsError::InvalidSetup { name, value, rule: "positive and finite" });
-        }
-    }
-    let last = n.saturating_sub(1) as f64;
-    if !(setup.start > setup.edge_margin && setup.start < last - setup.edge_margin) {
-        return Err(DynamicsError::InvalidSetup {
-            name: "start",
-            value: setup.start,
-            rule: "a position on the chain, farther than edge_margin from either end",
-        });
-    }
-    Ok(())
 }
 
 /// Launches the defect of `setup` towards the impurity and runs until the outcome is decided,
@@ -321,7 +314,7 @@ fn check_setup(n: usize, setup: &ScatterSetup) -> Result<(), DynamicsError> {
 /// # }
 /// ```
 pub fn scatter<M: ChainModel + ?Sized>(model: &M, setup: &ScatterSetup) -> Result<Scattering, DynamicsError> {
-    check_setup(model.rotor_count(), setup)?;
+    setup.check(model.rotor_count())?;
     let launched = launch(model, setup.charge, setup.start, setup.v0, setup.direction)?;
     let mut classifier = rules::Classifier::new(setup, model.rotor_count());
     let run = propagate(model, launched.state, &setup.run, &mut |s| classifier.observe(s))?;
