@@ -546,7 +546,6 @@ impl Chain {
         let theta = self.theta(theta)?;
         let omega = vector(omega, "omega", self.n())?;
         let options = crate::dynamics::run_options(
-            py,
             t_max,
             output_interval,
             method,
@@ -591,7 +590,6 @@ impl Chain {
             None => (self.n() - 1) / 2,
         };
         let options = crate::dynamics::run_options(
-            py,
             t_max,
             0.01,
             method,

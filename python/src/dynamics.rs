@@ -3,7 +3,7 @@
 
 use numpy::{PyArray1, PyArray2};
 use pyo3::prelude::*;
-use rotor_chain::dynamics::integrate::{IntegrateError, State};
+use rotor_chain::dynamics::integrate::State;
 use rotor_chain::dynamics::launch::{self as ln, Direction};
 use rotor_chain::dynamics::run::{self as rn, ABSORBING_ENDS, Method, RunOptions};
 use rotor_chain::dynamics::scatter::{self as sc, ScatterSetup};
@@ -17,13 +17,10 @@ fn direction(name: &str) -> PyResult<Direction> {
     choice("direction", name, &[("left", Direction::Left), ("right", Direction::Right)])
 }
 
-/// The run options of `Chain.propagate` and `Chain.scatter`. `t_max` is checked here, with one
-/// rule for Python's runs, which always start at t = 0 (the Rust run refuses a non-finite one as
-/// `InvalidOption` and one before the start as `EndBeforeStart`); the other options the Rust run
-/// checks by name.
+/// The run options of `Chain.propagate` and `Chain.scatter`; the Rust run checks each by name
+/// (a non-finite `t_max` is `InvalidOption`, a negative one `EndBeforeStart`).
 #[allow(clippy::too_many_arguments)]
 pub fn run_options(
-    py: Python<'_>,
     t_max: f64,
     output_interval: f64,
     method: &str,
@@ -34,11 +31,6 @@ pub fn run_options(
     space_time: bool,
     energy_limit: f64,
 ) -> PyResult<RunOptions> {
-    if !(t_max >= 0.0 && t_max.is_finite()) {
-        let rule = "finite and >= 0 (runs start at t = 0)";
-        let e = IntegrateError::InvalidOption { name: "t_max", value: t_max, rule };
-        return Err(errors::integrate(py, &e));
-    }
     let adaptive = choice("method", method, &[("verlet", false), ("dop853", true)])?;
     let method = if adaptive { Method::Dop853 { rtol, atol } } else { Method::Verlet };
     Ok(RunOptions {

@@ -263,13 +263,8 @@ impl Schedule {
             return Err(IntegrateError::EndBeforeStart { start, end: t_max });
         }
         check_positive("output_interval", interval)?;
-        let mut needed = libm::ceil((t_max - start) / interval - 1e-9).max(0.0);
-        // The `1e-9` absorbs rounding in a span that is a whole number of intervals; a span more
-        // than rounding above 0 still takes one output, at `start + interval`, even when the
-        // interval is more than 1e9 times longer than the run.
-        if t_max - start > 4.0 * f64::EPSILON * start.abs().max(t_max.abs()) {
-            needed = needed.max(1.0);
-        }
+        // An interval longer than the run still takes one output, at `start + interval`.
+        let needed = step_count(t_max - start, interval);
         if needed > max_outputs as f64 {
             return Err(IntegrateError::OutputBudget { outputs: needed, budget: max_outputs });
         }
@@ -322,6 +317,20 @@ fn inverse_inertia<M: ChainModel + ?Sized>(model: &M) -> Result<Vec<f64>, Integr
             }
         })
         .collect()
+}
+
+/// The number of equal steps of at most `dt` that cover `span` (Verlet's steps, a schedule's
+/// outputs): a span that is a whole number of
+/// steps up to rounding takes exactly that many, and a positive span takes at least one (so the
+/// time always reaches the end). As a float: the caller checks it against its budget.
+pub(crate) fn step_count(span: f64, dt: f64) -> f64 {
+    if span <= 0.0 {
+        return 0.0;
+    }
+    let ratio = span / dt;
+    let nearest = libm::round(ratio);
+    let count = if (ratio - nearest).abs() <= 1e-9 * nearest.max(1.0) { nearest } else { libm::ceil(ratio) };
+    count.max(1.0)
 }
 
 /// `Ok` if `ok`, else `InvalidOption` with the rule the value broke.

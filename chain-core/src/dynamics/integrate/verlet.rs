@@ -27,7 +27,7 @@ use alloc::vec::Vec;
 
 use super::{
     DEFAULT_ENERGY_LIMIT, Flow, IntegrateError, Integrator, Monitor, Report, Schedule, Sponge, State,
-    check_option, check_positive, damping_rates, inverse_inertia, not_finite,
+    check_option, check_positive, damping_rates, inverse_inertia, not_finite, step_count,
 };
 use crate::model::ChainModel;
 use crate::statics::equilibrium;
@@ -118,19 +118,6 @@ pub fn omega_bound<M: ChainModel + ?Sized>(
         return Err(IntegrateError::NoStableStep { norm, inverse_inertia: max_inverse_inertia });
     }
     Ok(omega)
-}
-
-/// The number of equal steps of at most `dt` that cover `span`: a span that is a whole number of
-/// steps up to rounding takes exactly that many, and a positive span takes at least one (so the
-/// time always reaches the end). As a float: the caller checks it against its budget.
-fn step_count(span: f64, dt: f64) -> f64 {
-    if span <= 0.0 {
-        return 0.0;
-    }
-    let ratio = span / dt;
-    let nearest = libm::round(ratio);
-    let count = if (ratio - nearest).abs() <= 1e-9 * nearest.max(1.0) { nearest } else { libm::ceil(ratio) };
-    count.max(1.0)
 }
 
 /// One velocity-Verlet step after another on a state: the one implementation of the damped
