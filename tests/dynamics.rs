@@ -161,6 +161,24 @@ fn a_second_integrator_and_absorbing_ends_give_the_same_labels() {
 }
 
 #[test]
+fn a_split_whose_kinks_leave_through_the_ends_is_a_split_with_either_integrator() {
+    // The kink diagram's point (k_i/k = 0.04317, v0 = 10.23): the kink splits at t ~ 0.8, the
+    // transmitted kink leaves through the left end at t ~ 1.5 and the reflected one through the
+    // right end at t ~ 2.26, the antikink stays at the impurity. While a leaving wall was unseen
+    // (the grace time before it counts as gone through the end) the split's pattern broke and
+    // its clock restarted, so the label hung on which output the right kink left at: DOP853 said
+    // split at t = 2.25, Verlet, one output later, pair-creation at 5.28 (found by an independent
+    // model's audit; the two runs' walls agree within 0.04 sites throughout).
+    let (ki, v0) = (0.01 * 300f64.powf(10.0 / 39.0), 0.5 + 11.5 * 33.0 / 39.0);
+    let verlet = run(Charge::Kink, v0, ki, |_| {});
+    let dop = run(Charge::Kink, v0, ki, |s| s.run.method = Method::dop853());
+    assert_eq!(verlet.outcome, Outcome::Split);
+    assert_eq!(dop.outcome, Outcome::Split);
+    // Decided from the same pattern at nearly the same time.
+    assert!((verlet.decided_at - dop.decided_at).abs() < 0.05, "{} {}", verlet.decided_at, dop.decided_at);
+}
+
+#[test]
 fn a_stiff_impurity_reflects_slow_antikinks_and_the_boundary_rises_with_v0() {
     // Paper Sec. VI: "a stiffer impurity acts like a repulsive potential ... the higher the
     // barrier is, the faster the antikink needs to be to get transmitted". For each v0 the

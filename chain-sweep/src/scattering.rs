@@ -139,9 +139,15 @@ pub enum ConfigError {
 /// it by up to `(omega dt)^2 / 4` of the energy in the fastest phonons, 1 % at the default step.
 /// A collision that radiates a tenth of the energy into phonons therefore shows ~1e-3 without any
 /// error in the walls' motion: over both 40 x 40 diagrams the largest is 1.75e-3, and the labels
-/// agree with DOP853 (energy error ~1e-9) at 99.4-99.9 % of the points (docs/dynamics.md §6).
+/// agree with DOP853 (energy error ~1e-9) at 99.5-100 % of the points (docs/dynamics.md §6).
 /// A step past the stability limit exceeds it within a few steps.
 pub const DEFAULT_ENERGY_TOLERANCE: f64 = 5e-3;
+
+/// The version of the scattering physics and outcome rules in every run label: a results file
+/// written by other rules is refused on resume instead of mixing two rules' labels in one
+/// diagram. Raised whenever a rule changes a label: v3, a wall unseen for less than the grace
+/// time counts where it was last seen (a split no longer hangs on the output a wall leaves at).
+pub const PHYSICS: &str = "scatter-v3";
 
 /// One phase diagram: the chain, the defect, and how each point is computed. Build with
 /// [`PhaseDiagram::new`], then change the public fields as needed.
@@ -238,13 +244,13 @@ impl PhaseDiagram {
         }
     }
 
-    /// The run label stored in a results file: a file of another chain, defect or method is
-    /// refused on resume.
+    /// The run label stored in a results file: a file of another chain, defect, method or
+    /// version of the outcome rules ([`PHYSICS`]) is refused on resume.
     pub fn run_label(&self) -> String {
         let dt = self.dt.map_or("stable".to_owned(), |dt| format!("{dt:?}"));
         format!(
             "defect={} n={} r={:?} k={:?} theta_bar={:?}{} ends={} integrator={} dt={dt} energy_tolerance={:?} \
-             recompute={} t_max={:?} physics=scatter-v2",
+             recompute={} t_max={:?} physics={PHYSICS}",
             self.defect.name(),
             self.n,
             self.r,

@@ -259,7 +259,7 @@ fn run(cli: &Cli) -> Result<(Summary, PathBuf), Failure> {
     };
     let fake_delay = cli.fake_delay_ms.map(Duration::from_millis);
     let label = if fake_delay.is_some() {
-        d.run_label().replace("physics=scatter-v2", "physics=fake")
+        d.run_label().replace(&format!("physics={}", chain_sweep::scattering::PHYSICS), "physics=fake")
     } else {
         d.run_label()
     };

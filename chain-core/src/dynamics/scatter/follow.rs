@@ -111,6 +111,12 @@ impl Follower {
         !self.ghosts.is_empty()
     }
 
+    /// The walls unseen for less than the grace time, as last seen: each may reappear, or turn
+    /// out to have left through an end or been annihilated.
+    pub fn ghosts(&self) -> &[Followed] {
+        &self.ghosts
+    }
+
     /// Matches the interior walls of `s` to the walls followed so far; returns the walls that
     /// vanished (stayed unseen for the grace time) at this output.
     pub fn update(&mut self, s: &Snapshot) -> Vec<Vanished> {

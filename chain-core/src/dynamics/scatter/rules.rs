@@ -12,7 +12,7 @@
 
 use alloc::vec::Vec;
 
-use super::follow::{Follower, Origin};
+use super::follow::{Followed, Follower, Origin};
 use super::{LaterEvent, Outcome, ScatterSetup};
 use crate::dynamics::track::Snapshot;
 use crate::statics::walls::Charge;
@@ -133,8 +133,8 @@ impl Classifier {
     }
 
     /// The defect's walls at `time`, reduced to their net charges: the walls not born at an end
-    /// (those that left through an end counted at that end),
-    /// grouped where they lie within [`ScatterSetup::cluster_gap`] of each other, each group
+    /// (those that left through an end counted at that end, those unseen for less than the grace
+    /// time where they were last seen), grouped where they lie within [`ScatterSetup::cluster_gap`] of each other, each group
     /// `(signed distance from the impurity, charge)` at its mean position, groups of net charge
     /// 0 (a bound kink-antikink pair) left out. The *young* walls, born inside the chain or
     /// reappeared after vanishing less than [`ScatterSetup::pair_age`] ago, are left out
@@ -144,10 +144,13 @@ impl Classifier {
     fn defect(&self, time: f64) -> Vec<(f64, Charge)> {
         let s = &self.setup;
         let charge = |q: Charge| if q == Charge::Kink { 1 } else { -1 };
-        let young = |w: &&super::follow::Followed| {
-            time - w.appeared < s.pair_age && (w.origin == Origin::Inside || w.appeared > w.born)
-        };
-        let defect = self.follower.walls.iter().filter(|w| w.origin != Origin::End);
+        let young = |w: &&Followed| self.young(w, time);
+        // A ghost counts where it was last seen until its fate is known: a wall leaving through an
+        // end, or hidden for an output or two in another's core, would otherwise break the
+        // pattern for the grace time and restart its clock (a split decided or not by one
+        // output, whichever integrator got there first).
+        let live_and_ghosts = self.follower.walls.iter().chain(self.follower.ghosts());
+        let defect = live_and_ghosts.filter(|w| w.origin != Origin::End);
         let (mut low, mut high, mut net) = (f64::INFINITY, f64::NEG_INFINITY, 0);
         for w in defect.clone().filter(young) {
             low = low.min(w.position);
@@ -181,6 +184,12 @@ impl Classifier {
                 ((x - self.x_imp) * self.side, if g.2 > 0 { Charge::Kink } else { Charge::Antikink })
             })
             .collect()
+    }
+
+    /// Whether a wall is *young* at `time`: born inside the chain, or reappeared after vanishing,
+    /// less than [`ScatterSetup::pair_age`] ago.
+    fn young(&self, w: &Followed, time: f64) -> bool {
+        time - w.appeared < self.setup.pair_age && (w.origin == Origin::Inside || w.appeared > w.born)
     }
 
     /// The pattern of the defect's walls at `time`, and the position of its single wall if it
