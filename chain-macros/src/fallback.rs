@@ -39,9 +39,10 @@ impl Stubs {
                 let m = n - 1;
                 (quote!(), quote!(), quote!(#n), quote!(#m), n)
             }
-            None => {
-                (quote!(<const K: usize>), quote!(<const K: usize, const L: usize>), quote!(K), quote!(L), 2)
-            }
+            // An invalid `n`: the length of `theta` fixes `K`, and the spring count is `K` too
+            // (a free `L` could not be inferred from the arguments, so an unannotated
+            // `let t = chain.tangent_stiffness(&theta);` added a "type annotations needed" error).
+            None => (quote!(<const K: usize>), quote!(<const K: usize>), quote!(K), quote!(K), 2),
         };
         let m_value = n_value - 1;
         // The methods the real expansion would have for this `n` (all of them for an unknown `n`).

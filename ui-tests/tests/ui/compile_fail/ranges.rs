@@ -69,7 +69,15 @@ mod n_too_small {
     #[rotor_chain(n = 1, r = 0.8, theta_bar = 0.58, k = 1.0e4)]
     pub struct Chain;
 
-    pub fn main() {}
+    // One error, at `n`: the stubs beside it type-check without annotations (the spring-count
+    // methods included), so these calls add none.
+    pub fn main() {
+        let theta = [0.58f64; 1];
+        let _ = Chain.tangent_stiffness(&theta).diag[0] + Chain.material_stiffness(&theta).diag[0];
+        let _ = Chain.spring_lengths(&theta)[0] + Chain.compatibility(&theta).left[0];
+        let (e, g, k) = Chain.energy_gradient_stiffness(&theta);
+        let _ = e + g[0] + k.diag[0] + Chain.tensions(&theta)[0] + Chain.stress_matrix(&theta).diag[0];
+    }
 }
 
 mod r_not_positive {
