@@ -74,6 +74,16 @@ pub enum ShardError {
         /// `SLURM_ARRAY_TASK_COUNT`.
         count: usize,
     },
+    /// An array of one task whose id is not 0: most likely one task of an earlier array
+    /// resubmitted on its own (`sbatch --array=3`), which SLURM runs as an array of one, so that
+    /// `--shard slurm` would make it shard 0 of 1, the whole diagram.
+    #[error(
+        "this SLURM array has one task, id {id}: with --shard slurm it would be shard 0/1 and compute          the whole diagram into a file of its own. To redo task {id} of an array of N tasks, resubmit          the whole array (sbatch --array=0-<N-1>; finished shards find their points done and end at          once) or run that shard by hand with --shard {id}/N"
+    )]
+    SlurmLoneTask {
+        /// This task's id.
+        id: usize,
+    },
 }
 
 /// Shard `index` of `count` (see the module doc).
@@ -144,6 +154,9 @@ impl Shard {
         }
         if id < min || id > max || (id - min) % step != 0 || max < min || (max - min) / step + 1 != count {
             return Err(inconsistent);
+        }
+        if count == 1 && id != 0 {
+            return Err(ShardError::SlurmLoneTask { id });
         }
         Self::new((id - min) / step, count)
     }
@@ -258,6 +271,20 @@ mod tests {
             ("SLURM_ARRAY_TASK_STEP", "2"),
         ];
         assert_eq!(ok(&stepped), Shard::new(3, 8));
+        // sbatch --array=3, one task of an earlier array resubmitted on its own: SLURM makes it an
+        // array of one (what slurm-wlm 22.05 sets), which must not become shard 0/1.
+        let lone = [
+            ("SLURM_ARRAY_TASK_ID", "3"),
+            ("SLURM_ARRAY_TASK_COUNT", "1"),
+            ("SLURM_ARRAY_TASK_MIN", "3"),
+            ("SLURM_ARRAY_TASK_MAX", "3"),
+            ("SLURM_ARRAY_TASK_STEP", "1"),
+        ];
+        let err = ok(&lone).unwrap_err();
+        assert_eq!(err, ShardError::SlurmLoneTask { id: 3 });
+        assert!(err.to_string().contains("--shard 3/N"), "{err}");
+        // --array=0: an array of one task is the whole diagram, as asked.
+        assert_eq!(ok(&[("SLURM_ARRAY_TASK_ID", "0"), ("SLURM_ARRAY_TASK_COUNT", "1")]), Shard::new(0, 1));
     }
 
     #[test]
