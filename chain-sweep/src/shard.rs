@@ -78,7 +78,10 @@ pub enum ShardError {
     /// resubmitted on its own (`sbatch --array=3`), which SLURM runs as an array of one, so that
     /// `--shard slurm` would make it shard 0 of 1, the whole diagram.
     #[error(
-        "this SLURM array has one task, id {id}: with --shard slurm it would be shard 0/1 and compute          the whole diagram into a file of its own. To redo task {id} of an array of N tasks, resubmit          the whole array (sbatch --array=0-<N-1>; finished shards find their points done and end at          once) or run that shard by hand with --shard {id}/N"
+        "this SLURM array has one task, id {id}: with --shard slurm it would be shard 0/1 and compute \
+         the whole diagram into a file of its own. To redo task {id} of an array of N tasks, resubmit \
+         the whole array (sbatch --array=0-<N-1>; finished shards find their points done and end at \
+         once) or run that shard by hand with --shard {id}/N"
     )]
     SlurmLoneTask {
         /// This task's id.
@@ -283,6 +286,7 @@ mod tests {
         let err = ok(&lone).unwrap_err();
         assert_eq!(err, ShardError::SlurmLoneTask { id: 3 });
         assert!(err.to_string().contains("--shard 3/N"), "{err}");
+        assert!(!err.to_string().contains("  "), "one space between words: {err}");
         // --array=0: an array of one task is the whole diagram, as asked.
         assert_eq!(ok(&[("SLURM_ARRAY_TASK_ID", "0"), ("SLURM_ARRAY_TASK_COUNT", "1")]), Shard::new(0, 1));
     }

@@ -106,11 +106,6 @@ impl Follower {
         }
     }
 
-    /// Whether a wall is unseen but not yet vanished (its fate is not known yet).
-    pub fn has_ghosts(&self) -> bool {
-        !self.ghosts.is_empty()
-    }
-
     /// The walls unseen for less than the grace time, as last seen: each may reappear, or turn
     /// out to have left through an end or been annihilated.
     pub fn ghosts(&self) -> &[Followed] {

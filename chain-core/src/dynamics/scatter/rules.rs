@@ -134,7 +134,8 @@ impl Classifier {
 
     /// The defect's walls at `time`, reduced to their net charges: the walls not born at an end
     /// (those that left through an end counted at that end, those unseen for less than the grace
-    /// time where they were last seen), grouped where they lie within [`ScatterSetup::cluster_gap`] of each other, each group
+    /// time where they were last seen), grouped where they lie within
+    /// [`ScatterSetup::cluster_gap`] of each other, each group
     /// `(signed distance from the impurity, charge)` at its mean position, groups of net charge
     /// 0 (a bound kink-antikink pair) left out. The *young* walls, born inside the chain or
     /// reappeared after vanishing less than [`ScatterSetup::pair_age`] ago, are left out
@@ -392,8 +393,11 @@ impl Classifier {
         let annihilated = self.lost_to_end.is_some_and(|t| t >= v.decided_at - s.grace);
         let gone = matches!(pattern, Pattern::Unclear | Pattern::Annihilated);
         // A wall unseen for less than the grace time may yet reappear, or turn out to have left
-        // through an end or been annihilated: wait before judging.
-        let pending = self.follower.has_ghosts();
+        // through an end or been annihilated: wait before judging. The defect's own ghosts
+        // already hold their place in the pattern (`defect`); this also waits on an end-born
+        // wall's (without it, 42 antikink points of the 40 x 40 diagram withdraw a decision and
+        // decide the same label later).
+        let pending = !self.follower.ghosts().is_empty();
         // A trapped wall on a wide orbit in the impurity's basin is still trapped.
         let orbiting = v.outcome == Outcome::Trapped && pattern == Pattern::Around;
         let holds = now == Some(v.outcome)
