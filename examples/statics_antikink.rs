@@ -76,7 +76,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
 
     // Fig. fig:aktheta: the profile of the minimum against Eq. (eq:kinksolution), and the stretch of
     // each spring (symmetric about the centre, as force balance requires).
-    let profile = continuum(0.58)?.angle_profile(Charge::Antikink, 60, pn.minimum().centre);
+    let profile = continuum(0.58)?.angle_profile(Charge::Antikink, 60, pn.minimum().centre)?;
     let mut lengths = vec![0.0; 59];
     Chain.spring_lengths_into(&pn.minimum().theta, &mut lengths);
     println!("\nProfile of the minimum (Fig. fig:aktheta): angles in rad, stretch l_p - lbar in a");

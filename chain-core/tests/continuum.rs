@@ -115,10 +115,17 @@ fn static_walls_run_between_the_uniform_states() {
         let du = (c.field(Charge::Kink, x + h, 0.1) - c.field(Charge::Kink, x - h, 0.1)) / (2.0 * h);
         assert!(c.potential_density(u, du) < 1e-18, "{x}");
     }
-    let profile = c.angle_profile(Charge::Kink, 9, 4.0);
+    let profile = c.angle_profile(Charge::Kink, 9, 4.0).unwrap();
     assert_eq!(profile.len(), 9);
     assert_eq!(profile[4], 0.0);
     assert!(profile.windows(2).all(|p| p[1] < p[0]));
+    // A profile is a chain's: its rotor count is checked before anything is allocated.
+    let too_many = c.angle_profile(Charge::Kink, chain_core::geometry::MAX_ROTORS + 1, 0.0);
+    assert!(matches!(too_many, Err(chain_core::ParameterError::TooManyRotors { .. })), "{too_many:?}");
+    assert!(matches!(
+        c.angle_profile(Charge::Kink, 1, 0.0),
+        Err(chain_core::ParameterError::TooFewRotors { n: 1 })
+    ));
 }
 
 #[test]

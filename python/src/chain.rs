@@ -1,12 +1,12 @@
 //! `Chain`: a `RuntimeChain`, its evaluation methods, and the entry points of its statics and
 //! dynamics; `Continuum`: the continuum theory of the same chain.
 
-use chain_core::geometry::{IndexKind, MAX_ROTORS};
+use chain_core::geometry::{IndexKind, check_index};
 use numpy::{AllowTypeChange, PyArray1, PyArray2, PyArrayLike1};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyTuple};
 use rotor_chain::statics::continuum::ContinuumChain;
-use rotor_chain::{ChainModel, Law, ParameterError, RuntimeChain};
+use rotor_chain::{ChainModel, Law, RuntimeChain};
 
 use crate::args::{self, array, choice, matrix, vector};
 use crate::errors::{self, value_error};
@@ -93,11 +93,7 @@ fn unsigned_index(py: Python<'_>, kind: IndexKind, index: i64, count: usize) -> 
 /// `BranchError::NoSuchSpring` and `DynamicsError::NoSuchSpring`).
 fn index(py: Python<'_>, kind: IndexKind, index: i64, count: usize) -> PyResult<usize> {
     let i = unsigned_index(py, kind, index, count)?;
-    if i < count {
-        Ok(i)
-    } else {
-        Err(errors::parameter(py, &ParameterError::IndexOutOfRange { kind, index: i, count }))
-    }
+    check_index(kind, i, count).map_err(|e| errors::parameter(py, &e))
 }
 
 impl Chain {
@@ -796,17 +792,17 @@ impl Continuum {
     /// ``a``) on ``n`` rotors at ``x = i a`` (radians).
     ///
     /// Raises:
-    ///     ParameterError: more rotors than a chain may have (``variant == "TooManyRotors"``).
+    ///     ParameterError: ``n`` not a chain's rotor count (``variant == "TooFewRotors"`` below 2,
+    ///         ``"TooManyRotors"`` past ``MAX_ROTORS``).
     ///     ValueError: ``x0`` is not finite.
     fn angle_profile(&self, py: Python<'_>, defect: &str, n: usize, x0: f64) -> PyResult<Py<PyArray1<f64>>> {
         let charge = args::charge(defect)?;
-        if n > MAX_ROTORS {
-            return Err(errors::parameter(py, &ParameterError::TooManyRotors { n, max: MAX_ROTORS }));
-        }
         if !x0.is_finite() {
             return Err(value_error(format!("x0 = {x0} is not finite")));
         }
-        Ok(array(py, py.detach(|| self.c.angle_profile(charge, n, x0))))
+        let profile =
+            py.detach(|| self.c.angle_profile(charge, n, x0)).map_err(|e| errors::parameter(py, &e))?;
+        Ok(array(py, profile))
     }
 
     fn __repr__(&self) -> String {

@@ -217,9 +217,12 @@ impl ContinuumChain {
         Ok(libm::asin(self.moving_field(charge, x, t, x0, v)? / self.r))
     }
 
-    /// The static wall's angles at rotors `i = 0..n` (at `x = i a`), centre `x0`.
-    pub fn angle_profile(&self, charge: Charge, n: usize, x0: f64) -> Vec<f64> {
-        (0..n).map(|i| self.angle(charge, i as f64 * self.a, x0)).collect()
+    /// The static wall's angles at the rotors `i = 0..n` of a chain (at `x = i a`), centre `x0`;
+    /// `n` checked as a chain's rotor count (as [`finite_chain_spectrum`](Self::finite_chain_spectrum)
+    /// does), so that no request allocates past [`chain_geometry::MAX_ROTORS`].
+    pub fn angle_profile(&self, charge: Charge, n: usize, x0: f64) -> Result<Vec<f64>, ParameterError> {
+        let n = check_rotor_count(n)?;
+        Ok((0..n).map(|i| self.angle(charge, i as f64 * self.a, x0)).collect())
     }
 
     /// `sqrt(1 - v^2 / c^2)`, or an error unless `|v| < c`.
