@@ -57,11 +57,6 @@ pub fn choice<T: Copy>(what: &str, value: &str, choices: &[(&str, T)]) -> PyResu
     })
 }
 
-/// The name of `value` in `choices` (the inverse of `choice`, for pickling).
-pub fn name_of<T: Copy + PartialEq>(value: T, choices: &[(&'static str, T)]) -> &'static str {
-    choices.iter().find(|(_, t)| *t == value).map_or("", |(name, _)| *name)
-}
-
 pub fn charge(defect: &str) -> PyResult<Charge> {
     choice("defect", defect, &[("kink", Charge::Kink), ("antikink", Charge::Antikink)])
 }

@@ -19,7 +19,7 @@ use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyString, PyTuple};
 use rayon::prelude::*;
 
-use crate::args::{self, choice, name_of};
+use crate::args::{self, choice};
 use crate::errors::{self, value_error};
 
 /// One phase diagram's settings, checked (chain-sweep's ``PhaseDiagram``): the chain of paper
@@ -135,15 +135,15 @@ impl PhaseDiagram {
     /// Pickling (for multiprocessing and Dask): the constructor's arguments, checked again.
     fn __getnewargs_ex__<'py>(&self, py: Python<'py>) -> PyResult<(Bound<'py, PyTuple>, Bound<'py, PyDict>)> {
         let d = &self.d;
-        let args = PyTuple::new(py, [name_of(d.defect, DEFECTS)])?;
+        let args = PyTuple::new(py, [d.defect.name()])?;
         let kwargs = PyDict::new(py);
         kwargs.set_item("n", d.n)?;
         kwargs.set_item("r", d.r)?;
         kwargs.set_item("k", d.k)?;
         kwargs.set_item("theta_bar", d.theta_bar)?;
         kwargs.set_item("mass", d.mass)?;
-        kwargs.set_item("ends", name_of(d.ends, ENDS))?;
-        kwargs.set_item("integrator", name_of(d.integrator, INTEGRATORS))?;
+        kwargs.set_item("ends", d.ends.name())?;
+        kwargs.set_item("integrator", d.integrator.name())?;
         kwargs.set_item("dt", d.dt)?;
         kwargs.set_item("energy_tolerance", d.energy_tolerance)?;
         kwargs.set_item("recompute", d.recompute)?;
