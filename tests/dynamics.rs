@@ -178,6 +178,25 @@ fn a_split_whose_kinks_leave_through_the_ends_is_a_split_with_either_integrator(
     assert!((verlet.decided_at - dop.decided_at).abs() < 0.05, "{} {}", verlet.decided_at, dop.decided_at);
 }
 
+/// The same along the kink's whole split boundary, not only at the audited point: on every
+/// third `v0` row of the 40 x 40 diagram from 4.9 up, the two grid columns where Verlet's label
+/// changes get the same labels from DOP853 (both `split` or `transmitted`, never
+/// `pair-creation`).
+#[test]
+fn along_the_kinks_split_boundary_both_integrators_agree() {
+    let ki = |i: usize| 0.01 * 300f64.powf(i as f64 / 39.0);
+    for j in (15..40).step_by(3) {
+        let v0 = 0.5 + 11.5 * j as f64 / 39.0;
+        let labels: Vec<Outcome> = (0..15).map(|i| outcome(Charge::Kink, v0, ki(i))).collect();
+        let edge = labels.iter().position(|&o| o != Outcome::Split).expect("a split boundary in the row");
+        assert!(edge > 0 && labels[edge] == Outcome::Transmitted, "v0 = {v0}: {labels:?}");
+        for i in [edge - 1, edge] {
+            let dop = run(Charge::Kink, v0, ki(i), |s| s.run.method = Method::dop853());
+            assert_eq!(dop.outcome, labels[i], "v0 = {v0}, k_i/k = {}", ki(i));
+        }
+    }
+}
+
 #[test]
 fn a_stiff_impurity_reflects_slow_antikinks_and_the_boundary_rises_with_v0() {
     // Paper Sec. VI: "a stiffer impurity acts like a repulsive potential ... the higher the
