@@ -39,7 +39,7 @@ pub enum BranchError {
         /// The angle given.
         theta: f64,
     },
-    #[error("spring index {spring} is out of range: the chain has {springs} springs")]
+    #[error("spring index {spring} is out of range: the chain has {}", chain_geometry::Counted(*springs, "spring"))]
     /// A spring index past the end of the chain.
     NoSuchSpring {
         /// The spring index given.

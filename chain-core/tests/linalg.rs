@@ -486,7 +486,7 @@ fn bad_input_gives_typed_errors() {
 
     // The messages carry the numbers.
     let message = LinalgError::DimensionMismatch { diag: 3, off: 1 }.to_string();
-    assert_eq!(message, "off has 1 entries, but a matrix with 3 diagonal entries needs 2");
+    assert_eq!(message, "off has 1 value, but a matrix with 3 diagonal values needs 2");
     assert_eq!(
         LinalgError::NotFinite { input: Input::Rhs, index: 4, value: f64::NAN }.to_string(),
         "rhs[4] = NaN is not finite"

@@ -61,7 +61,7 @@ pub enum ParameterError {
         max: f64,
     },
     /// A spring or rotor index past the end of the chain.
-    #[error("{kind} index {index} is out of range: the chain has {count} {kind}s, numbered 0 to {}", count.saturating_sub(1))]
+    #[error("{kind} index {index} is out of range: the chain has {}, numbered 0 to {}", Counted(*count, kind), count.saturating_sub(1))]
     IndexOutOfRange {
         /// Spring or rotor.
         kind: IndexKind,
@@ -113,6 +113,18 @@ pub enum ParameterError {
 /// allocation failure.
 pub const MAX_ROTORS: usize = 100_000_000;
 
+/// A count and its noun for a message, plural unless the count is 1: `Counted(1, "spring")` shows
+/// `1 spring`, `Counted(59, "spring")` shows `59 springs` (through `Display`, so the crate needs no
+/// allocation).
+#[derive(Clone, Copy, Debug)]
+pub struct Counted<T>(pub usize, pub T);
+
+impl<T: fmt::Display> fmt::Display for Counted<T> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{} {}{}", self.0, self.1, if self.0 == 1 { "" } else { "s" })
+    }
+}
+
 /// The message of [`ParameterError::OutsideFlipperPhase`], naming the bound that is broken
 /// (written through `Display`, so the crate needs no allocation).
 struct PhaseMessage {
@@ -127,7 +139,9 @@ impl fmt::Display for PhaseMessage {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let Self { theta_bar, a, r, two_r_sin, limit } = *self;
         write!(f, "theta_bar = {theta_bar} is outside the flipper phase: ")?;
-        if theta_bar.is_nan() || theta_bar <= 0.0 {
+        if theta_bar.is_nan() {
+            write!(f, "it must be a number (the uniform states are theta_i = +theta_bar and -theta_bar)")
+        } else if theta_bar <= 0.0 {
             write!(f, "it must be > 0 (the uniform states are theta_i = +theta_bar and -theta_bar)")
         } else if two_r_sin >= a {
             write!(

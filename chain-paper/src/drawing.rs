@@ -40,7 +40,7 @@ pub struct ChainDrawing {
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 #[non_exhaustive]
 pub enum DrawingError {
-    #[error("{what} has {len} entries, the chain has {expected}")]
+    #[error("{what} has {}, the chain has {expected}", rotor_chain::geometry::Counted(*len, "value"))]
     /// An input with the wrong length.
     WrongLength {
         /// Which input.

@@ -9,15 +9,67 @@ use rotor_chain::statics::walls::Charge;
 use crate::errors::value_error;
 
 /// A float64 array-like of length `n` (angles, velocities), copied, every entry finite.
-pub fn vector(x: PyArrayLike1<'_, f64, AllowTypeChange>, what: &str, n: usize) -> PyResult<Vec<f64>> {
-    let values = x.as_array().to_vec();
+pub fn vector(x: &Bound<'_, PyAny>, what: &str, n: usize) -> PyResult<Vec<f64>> {
+    let values = floats(x, what)?;
     if values.len() != n {
-        return Err(value_error(format!("{what} has {} entries, the chain has {n} rotors", values.len())));
+        let len = rotor_chain::geometry::Counted(values.len(), "value");
+        return Err(value_error(format!("{what} has {len}, the chain has {n} rotors")));
     }
-    if let Some((index, value)) = values.iter().enumerate().find(|(_, v)| !v.is_finite()) {
-        return Err(value_error(format!("{what}[{index}] = {value} is not finite")));
+    finite(values, what)
+}
+
+/// A one-dimensional float64 array-like of any length, copied, every entry finite.
+pub fn finite_floats(x: &Bound<'_, PyAny>, what: &str) -> PyResult<Vec<f64>> {
+    finite(floats(x, what)?, what)
+}
+
+fn finite(values: Vec<f64>, what: &str) -> PyResult<Vec<f64>> {
+    match values.iter().enumerate().find(|(_, v)| !v.is_finite()) {
+        Some((index, value)) => Err(value_error(format!("{what}[{index}] = {value} is not finite"))),
+        None => Ok(values),
     }
-    Ok(values)
+}
+
+/// A one-dimensional float64 array-like, copied (numpy converts lists and integer arrays). An
+/// array of another dimension is a `ValueError` that gives its shape, like a wrong length; what
+/// numpy cannot read as numbers at all stays a `TypeError` that names the argument.
+fn floats(x: &Bound<'_, PyAny>, what: &str) -> PyResult<Vec<f64>> {
+    match x.extract::<PyArrayLike1<'_, f64, AllowTypeChange>>() {
+        Ok(array) => Ok(array.as_array().to_vec()),
+        Err(e) => {
+            // numpy's reading of `x`: its shape, if its values are real numbers.
+            let numbers = |array: Bound<'_, PyAny>| -> PyResult<Option<Vec<usize>>> {
+                let kind: String = array.getattr("dtype")?.getattr("kind")?.extract()?;
+                Ok(if "biuf".contains(kind.as_str()) {
+                    Some(array.getattr("shape")?.extract()?)
+                } else {
+                    None
+                })
+            };
+            let array = x.py().import("numpy")?.getattr("asarray")?.call1((x,));
+            match array.and_then(numbers) {
+                Ok(Some(shape)) if shape.len() != 1 => {
+                    let shape: Vec<String> = shape.iter().map(usize::to_string).collect();
+                    Err(value_error(format!(
+                        "{what} must be a one-dimensional array, got one of shape ({})",
+                        shape.join(", ")
+                    )))
+                }
+                _ => Err(pyo3::exceptions::PyTypeError::new_err(format!("argument '{what}': {e}"))),
+            }
+        }
+    }
+}
+
+/// A Python int (or an object with `__index__`, such as numpy's integers) as an `i64`: `None` for
+/// an int beyond `i64` (`10**20`), so that callers can give the documented error rather than
+/// Python's `OverflowError`; `TypeError` for anything else, as Python's own conversion gives.
+pub fn int(x: &Bound<'_, PyAny>) -> PyResult<Option<i64>> {
+    match x.extract::<i64>() {
+        Ok(i) => Ok(Some(i)),
+        Err(e) if e.is_instance_of::<pyo3::exceptions::PyOverflowError>(x.py()) => Ok(None),
+        Err(e) => Err(e),
+    }
 }
 
 /// The entry `key` of `dict` (a record, a pickled object's state), or a `ValueError` that names

@@ -1,8 +1,8 @@
 //! `Chain`: a `RuntimeChain`, its evaluation methods, and the entry points of its statics and
 //! dynamics; `Continuum`: the continuum theory of the same chain.
 
-use chain_core::geometry::{IndexKind, check_index};
-use numpy::{AllowTypeChange, PyArray1, PyArray2, PyArrayLike1};
+use chain_core::geometry::{Counted, IndexKind, MAX_ROTORS, check_index};
+use numpy::{PyArray1, PyArray2};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyTuple};
 use rotor_chain::statics::continuum::ContinuumChain;
@@ -60,10 +60,13 @@ pub struct Chain {
     spec: Spec,
 }
 
-/// `IndexOutOfRange` for an index Python gave as negative (the Rust error holds a `usize`).
-fn negative_index(py: Python<'_>, kind: IndexKind, index: i64, count: usize) -> PyErr {
+/// `IndexOutOfRange` for an index that no `usize` holds (negative, or a Python int as large as
+/// `10**20`), so the Rust error cannot carry it: the builder's message, with Python's own int in
+/// the text and in `index`.
+fn index_out_of_range(py: Python<'_>, kind: IndexKind, index: &Bound<'_, PyAny>, count: usize) -> PyErr {
     let message = format!(
-        "{kind} index {index} is out of range: the chain has {count} {kind}s, numbered 0 to {}",
+        "{kind} index {index} is out of range: the chain has {}, numbered 0 to {}",
+        Counted(count, kind),
         count.saturating_sub(1)
     );
     let fields = PyDict::new(py);
@@ -81,17 +84,27 @@ fn raise_parameter(py: Python<'_>, message: String, variant: &str, fields: Bound
     build().unwrap_or_else(|e| e)
 }
 
-/// An index that is not negative (the constructor's overrides: the builder checks the upper end,
-/// after its checks of `n`).
-fn unsigned_index(py: Python<'_>, kind: IndexKind, index: i64, count: usize) -> PyResult<usize> {
-    usize::try_from(index).map_err(|_| negative_index(py, kind, index, count))
+/// An index that is not negative and fits a `usize` (the constructor's overrides: the builder
+/// checks the upper end, after its checks of `n`). Any Python int (or object with `__index__`) is
+/// taken; one that is not an int is Python's `TypeError`.
+fn unsigned_index(
+    py: Python<'_>,
+    kind: IndexKind,
+    index: &Bound<'_, PyAny>,
+    count: usize,
+) -> PyResult<usize> {
+    match args::int(index)?.and_then(|i| usize::try_from(i).ok()) {
+        Some(i) => Ok(i),
+        None => Err(index_out_of_range(py, kind, index, count)),
+    }
 }
 
-/// A spring or rotor index of a chain with `count` of them. Out of range either way, it is the
-/// builder's `ParameterError::IndexOutOfRange`, whichever method was given it (the Rust methods
-/// that take an index report one past the end in their own error families,
-/// `BranchError::NoSuchSpring` and `DynamicsError::NoSuchSpring`).
-fn index(py: Python<'_>, kind: IndexKind, index: i64, count: usize) -> PyResult<usize> {
+/// A spring or rotor index of a chain with `count` of them. Out of range either way (negative,
+/// past the end, or beyond any machine integer), it is the builder's
+/// `ParameterError::IndexOutOfRange`, whichever method was given it (the Rust methods that take an
+/// index report one past the end in their own error families, `BranchError::NoSuchSpring` and
+/// `DynamicsError::NoSuchSpring`).
+fn index(py: Python<'_>, kind: IndexKind, index: &Bound<'_, PyAny>, count: usize) -> PyResult<usize> {
     let i = unsigned_index(py, kind, index, count)?;
     check_index(kind, i, count).map_err(|e| errors::parameter(py, &e))
 }
@@ -101,7 +114,7 @@ impl Chain {
         self.chain.rotor_count()
     }
 
-    pub fn theta(&self, theta: PyArrayLike1<'_, f64, AllowTypeChange>) -> PyResult<Vec<f64>> {
+    pub fn theta(&self, theta: &Bound<'_, PyAny>) -> PyResult<Vec<f64>> {
         vector(theta, "theta", self.n())
     }
 
@@ -117,7 +130,7 @@ impl Chain {
     #[allow(clippy::too_many_arguments)]
     fn new(
         py: Python<'_>,
-        n: i64,
+        n: &Bound<'_, PyAny>,
         r: f64,
         k: f64,
         theta_bar: f64,
@@ -132,17 +145,32 @@ impl Chain {
             law,
             &[("harmonic", ("harmonic", Law::Harmonic)), ("quartic", ("quartic", Law::Quartic))],
         )?;
-        let n = usize::try_from(n).map_err(|_| {
-            let fields = PyDict::new(py);
-            let _ = fields.set_item("n", n);
-            let message =
-                format!("`n` must be at least 2 (a chain needs two rotors and one spring), got {n}");
-            raise_parameter(py, message, "TooFewRotors", fields)
-        })?;
+        let n = match args::int(n)?.map(usize::try_from) {
+            Some(Ok(n)) => n,
+            // A Python int no `usize` holds: the builder's TooFewRotors or TooManyRotors, whose
+            // `n` field (a `usize`) could not carry it.
+            _ => {
+                let fields = PyDict::new(py);
+                let _ = fields.set_item("n", n);
+                let (variant, message) = if n.lt(0)? {
+                    (
+                        "TooFewRotors",
+                        format!("`n` must be at least 2 (a chain needs two rotors and one spring), got {n}"),
+                    )
+                } else {
+                    let _ = fields.set_item("max", MAX_ROTORS);
+                    (
+                        "TooManyRotors",
+                        format!("`n` = {n} is more rotors than a chain may have: at most {MAX_ROTORS}"),
+                    )
+                };
+                return Err(raise_parameter(py, message, variant, fields));
+            }
+        };
         let mut spring_list = Vec::new();
         if let Some(springs) = springs {
             for (p, spec) in springs.iter() {
-                let p = unsigned_index(py, IndexKind::Spring, p.extract()?, n.saturating_sub(1))?;
+                let p = unsigned_index(py, IndexKind::Spring, &p, n.saturating_sub(1))?;
                 let spec = spec.cast_into::<PyDict>().map_err(|_| {
                     value_error(format!("springs[{p}] must be a dict with the keys 'k' and/or 'l0'"))
                 })?;
@@ -164,7 +192,7 @@ impl Chain {
         let mut rotor_list = Vec::new();
         if let Some(rotors) = rotors {
             for (i, ri) in rotors.iter() {
-                let i = unsigned_index(py, IndexKind::Rotor, i.extract()?, n)?;
+                let i = unsigned_index(py, IndexKind::Rotor, &i, n)?;
                 rotor_list.push((i, ri.extract::<f64>()?));
             }
         }
@@ -243,18 +271,14 @@ impl Chain {
 
     /// Potential energy ``V(theta) = sum_p law(l_p)``: absolute, in the unit of ``k`` times the
     /// length unit squared (not divided by ``k a^2``).
-    fn energy(&self, py: Python<'_>, theta: PyArrayLike1<'_, f64, AllowTypeChange>) -> PyResult<f64> {
+    fn energy(&self, py: Python<'_>, theta: &Bound<'_, PyAny>) -> PyResult<f64> {
         let theta = self.theta(theta)?;
         Ok(py.detach(|| self.chain.energy(&theta)))
     }
 
     /// Gradient ``dV/dtheta_i`` (length ``n``; the torques are its negative): energy per radian,
     /// absolute as ``energy``.
-    fn gradient(
-        &self,
-        py: Python<'_>,
-        theta: PyArrayLike1<'_, f64, AllowTypeChange>,
-    ) -> PyResult<Py<PyArray1<f64>>> {
+    fn gradient(&self, py: Python<'_>, theta: &Bound<'_, PyAny>) -> PyResult<Py<PyArray1<f64>>> {
         let theta = self.theta(theta)?;
         let out = py.detach(|| {
             let mut out = vec![0.0; theta.len()];
@@ -268,7 +292,7 @@ impl Chain {
     fn energy_and_gradient(
         &self,
         py: Python<'_>,
-        theta: PyArrayLike1<'_, f64, AllowTypeChange>,
+        theta: &Bound<'_, PyAny>,
     ) -> PyResult<(f64, Py<PyArray1<f64>>)> {
         let theta = self.theta(theta)?;
         let (e, out) = py.detach(|| {
@@ -282,39 +306,23 @@ impl Chain {
     /// The tangent stiffness ``d2V/dtheta_i dtheta_j`` (paper Appendix D), tridiagonal:
     /// ``(diag, off)`` with ``diag`` of length ``n`` and ``off[p]`` the entry ``(p, p + 1)``
     /// (length ``n - 1``); energy per radian squared, absolute as ``energy``.
-    fn tangent_stiffness(
-        &self,
-        py: Python<'_>,
-        theta: PyArrayLike1<'_, f64, AllowTypeChange>,
-    ) -> PyResult<Banded> {
+    fn tangent_stiffness(&self, py: Python<'_>, theta: &Bound<'_, PyAny>) -> PyResult<Banded> {
         self.banded(py, theta, |c, t, d, o| c.tangent_stiffness_into(t, d, o))
     }
 
     /// The material part ``sum_p g_p a_p a_p^T`` of the tangent stiffness (Appendix D), as ``(diag, off)``.
-    fn material_stiffness(
-        &self,
-        py: Python<'_>,
-        theta: PyArrayLike1<'_, f64, AllowTypeChange>,
-    ) -> PyResult<Banded> {
+    fn material_stiffness(&self, py: Python<'_>, theta: &Bound<'_, PyAny>) -> PyResult<Banded> {
         self.banded(py, theta, |c, t, d, o| c.material_stiffness_into(t, d, o))
     }
 
     /// The stress matrix ``sum_p S_p`` (Appendix D), as ``(diag, off)``; material part + stress
     /// matrix = tangent stiffness.
-    fn stress_matrix(
-        &self,
-        py: Python<'_>,
-        theta: PyArrayLike1<'_, f64, AllowTypeChange>,
-    ) -> PyResult<Banded> {
+    fn stress_matrix(&self, py: Python<'_>, theta: &Bound<'_, PyAny>) -> PyResult<Banded> {
         self.banded(py, theta, |c, t, d, o| c.stress_matrix_into(t, d, o))
     }
 
     /// The tangent stiffness as a dense symmetric ``n x n`` array.
-    fn hessian(
-        &self,
-        py: Python<'_>,
-        theta: PyArrayLike1<'_, f64, AllowTypeChange>,
-    ) -> PyResult<Py<PyArray2<f64>>> {
+    fn hessian(&self, py: Python<'_>, theta: &Bound<'_, PyAny>) -> PyResult<Py<PyArray2<f64>>> {
         let theta = self.theta(theta)?;
         let n = theta.len();
         let dense = py.detach(|| {
@@ -334,21 +342,13 @@ impl Chain {
     }
 
     /// Spring lengths ``l_p`` (length ``n - 1``), in the length unit of ``a``.
-    fn spring_lengths(
-        &self,
-        py: Python<'_>,
-        theta: PyArrayLike1<'_, f64, AllowTypeChange>,
-    ) -> PyResult<Py<PyArray1<f64>>> {
+    fn spring_lengths(&self, py: Python<'_>, theta: &Bound<'_, PyAny>) -> PyResult<Py<PyArray1<f64>>> {
         self.per_spring(py, theta, |c, t, o| c.spring_lengths_into(t, o))
     }
 
     /// Spring tensions ``t_p = dlaw/dl`` at the current lengths (length ``n - 1``): the unit of
     /// ``k`` times the length unit (absolute, not divided by ``k a``).
-    fn tensions(
-        &self,
-        py: Python<'_>,
-        theta: PyArrayLike1<'_, f64, AllowTypeChange>,
-    ) -> PyResult<Py<PyArray1<f64>>> {
+    fn tensions(&self, py: Python<'_>, theta: &Bound<'_, PyAny>) -> PyResult<Py<PyArray1<f64>>> {
         self.per_spring(py, theta, |c, t, o| c.tensions_into(t, o))
     }
 
@@ -359,7 +359,7 @@ impl Chain {
     fn compatibility<'py>(
         &self,
         py: Python<'py>,
-        theta: PyArrayLike1<'py, f64, AllowTypeChange>,
+        theta: &Bound<'py, PyAny>,
         dense: bool,
     ) -> PyResult<Bound<'py, PyAny>> {
         let theta = self.theta(theta)?;
@@ -389,7 +389,7 @@ impl Chain {
     ///         ``count``).
     ///     BranchError: no real root (``variant == "NoRealRoot"``, with ``distance``, ``min``,
     ///         ``max``, ...), or a non-finite ``theta_p``.
-    fn next_angles(&self, py: Python<'_>, p: i64, theta_p: f64) -> PyResult<(f64, f64)> {
+    fn next_angles(&self, py: Python<'_>, p: &Bound<'_, PyAny>, theta_p: f64) -> PyResult<(f64, f64)> {
         let p = index(py, IndexKind::Spring, p, self.chain.spring_count())?;
         let [a, b] = self.chain.next_angles(p, theta_p).map_err(|e| errors::branch(py, &e))?;
         Ok((a, b))
@@ -397,7 +397,7 @@ impl Chain {
 
     /// Both ``theta_p`` that put spring ``p`` at its rest length given ``theta_{p+1}``: the inverse
     /// map. Raises as ``next_angles``.
-    fn previous_angles(&self, py: Python<'_>, p: i64, theta_next: f64) -> PyResult<(f64, f64)> {
+    fn previous_angles(&self, py: Python<'_>, p: &Bound<'_, PyAny>, theta_next: f64) -> PyResult<(f64, f64)> {
         let p = index(py, IndexKind::Spring, p, self.chain.spring_count())?;
         let [a, b] = self.chain.previous_angles(p, theta_next).map_err(|e| errors::branch(py, &e))?;
         Ok((a, b))
@@ -466,7 +466,7 @@ impl Chain {
     fn modes(
         &self,
         py: Python<'_>,
-        theta: PyArrayLike1<'_, f64, AllowTypeChange>,
+        theta: &Bound<'_, PyAny>,
         count: Option<usize>,
         hold_ends: bool,
     ) -> PyResult<crate::statics::Modes> {
@@ -480,7 +480,7 @@ impl Chain {
     fn maxwell_calladine(
         &self,
         py: Python<'_>,
-        theta: PyArrayLike1<'_, f64, AllowTypeChange>,
+        theta: &Bound<'_, PyAny>,
         tolerance: Option<f64>,
     ) -> PyResult<crate::statics::Counting> {
         crate::statics::maxwell_calladine(self, py, theta, tolerance)
@@ -526,8 +526,8 @@ impl Chain {
     fn propagate(
         &self,
         py: Python<'_>,
-        theta: PyArrayLike1<'_, f64, AllowTypeChange>,
-        omega: PyArrayLike1<'_, f64, AllowTypeChange>,
+        theta: &Bound<'_, PyAny>,
+        omega: &Bound<'_, PyAny>,
         t_max: f64,
         output_interval: f64,
         method: &str,
@@ -570,7 +570,7 @@ impl Chain {
         py: Python<'_>,
         defect: &str,
         v0: f64,
-        impurity: Option<i64>,
+        impurity: Option<&Bound<'_, PyAny>>,
         start: Option<f64>,
         direction: &str,
         t_max: f64,
@@ -670,7 +670,7 @@ impl Chain {
     fn banded(
         &self,
         py: Python<'_>,
-        theta: PyArrayLike1<'_, f64, AllowTypeChange>,
+        theta: &Bound<'_, PyAny>,
         f: impl Fn(&RuntimeChain, &[f64], &mut [f64], &mut [f64]) + Sync,
     ) -> PyResult<Banded> {
         let theta = self.theta(theta)?;
@@ -686,7 +686,7 @@ impl Chain {
     fn per_spring(
         &self,
         py: Python<'_>,
-        theta: PyArrayLike1<'_, f64, AllowTypeChange>,
+        theta: &Bound<'_, PyAny>,
         f: impl Fn(&RuntimeChain, &[f64], &mut [f64]) + Sync,
     ) -> PyResult<Py<PyArray1<f64>>> {
         let theta = self.theta(theta)?;

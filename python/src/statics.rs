@@ -1,7 +1,7 @@
 //! The statics of a `Chain` (paper Secs. II-V, VII-A): kink, antikink, Peierls-Nabarro barrier,
 //! modes, Maxwell-Calladine counting, domain walls. Each runs with the GIL released.
 
-use numpy::{AllowTypeChange, PyArray1, PyArray2, PyArrayLike1};
+use numpy::{PyArray1, PyArray2};
 use pyo3::prelude::*;
 use rotor_chain::ChainModel;
 use rotor_chain::statics::antikink::{self as ak, AntikinkOptions, Ends};
@@ -239,7 +239,7 @@ pickle_fields!(Modes { frequencies, omega_squared, vectors, positions, participa
 pub fn modes(
     chain: &Chain,
     py: Python<'_>,
-    theta: PyArrayLike1<'_, f64, AllowTypeChange>,
+    theta: &Bound<'_, PyAny>,
     count: Option<usize>,
     hold_ends: bool,
 ) -> PyResult<Modes> {
@@ -332,7 +332,7 @@ pickle_fields!(Counting {
 pub fn maxwell_calladine(
     chain: &Chain,
     py: Python<'_>,
-    theta: PyArrayLike1<'_, f64, AllowTypeChange>,
+    theta: &Bound<'_, PyAny>,
     tolerance: Option<f64>,
 ) -> PyResult<Counting> {
     let theta = chain.theta(theta)?;
@@ -354,10 +354,7 @@ pub fn maxwell_calladine(
 /// The domain walls of a profile (paper Appendix C): ``[(position, "kink" | "antikink"), ...]``
 /// from left to right, positions in rotor indices (the interpolated sign changes of the angles).
 #[pyfunction]
-pub fn domain_walls(theta: PyArrayLike1<'_, f64, AllowTypeChange>) -> PyResult<Vec<(f64, &'static str)>> {
-    let theta = theta.as_array().to_vec();
-    if let Some((i, v)) = theta.iter().enumerate().find(|(_, v)| !v.is_finite()) {
-        return Err(errors::value_error(format!("theta[{i}] = {v} is not finite")));
-    }
+pub fn domain_walls(theta: &Bound<'_, PyAny>) -> PyResult<Vec<(f64, &'static str)>> {
+    let theta = crate::args::finite_floats(theta, "theta")?;
     Ok(walls::domain_walls(&theta).into_iter().map(|w| (w.position, charge_name(w.charge))).collect())
 }

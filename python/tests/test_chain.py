@@ -147,7 +147,7 @@ def test_builder_errors_are_the_rust_errors(spec, variant, numbers, reference):
 
 def test_python_side_misuse_is_a_clear_value_error():
     chain = make(CHAINS[0])
-    with pytest.raises(ValueError, match="theta has 59 entries, the chain has 60 rotors"):
+    with pytest.raises(ValueError, match="theta has 59 values, the chain has 60 rotors"):
         chain.energy(np.zeros(59))
     with pytest.raises(ValueError, match=r"theta\[4\] = NaN is not finite"):
         chain.gradient(np.where(np.arange(60) == 4, np.nan, 0.3))
@@ -160,6 +160,28 @@ def test_python_side_misuse_is_a_clear_value_error():
     assert info.value.n == -3
     with pytest.raises(rc.ParameterError, match="spring index -1 is out of range"):
         rc.Chain(10, 0.8, 1e4, 0.3, springs={-1: {"k": 1.0}})
+    with pytest.raises(rc.ParameterError, match="rotor index 100000000000000000000 is out of range"):
+        rc.Chain(10, 0.8, 1e4, 0.3, rotors={10**20: 0.7})
+    # A size beyond every machine integer is the builder's error, not an OverflowError.
+    with pytest.raises(rc.ParameterError, match=r"`n` = 100000000000000000000 is more rotors") as info:
+        rc.Chain(10**20, 0.8, 1e4, 0.3)
+    assert (info.value.variant, info.value.n, info.value.max) == ("TooManyRotors", 10**20, 100_000_000)
+    with pytest.raises(rc.ParameterError, match="got -100000000000000000000") as info:
+        rc.Chain(-(10**20), 0.8, 1e4, 0.3)
+    assert info.value.variant == "TooFewRotors"
+    # A two-rotor chain has one spring, said in the singular.
+    with pytest.raises(rc.ParameterError, match="the chain has 1 spring, numbered 0 to 0"):
+        rc.Chain(2, 0.8, 1e4, 0.3).next_angles(1, 0.3)
+    # An array of another dimension is a ValueError with its shape, as a wrong length is; what is
+    # not numbers at all is a TypeError naming the argument.
+    with pytest.raises(ValueError, match=r"theta must be a one-dimensional array, got one of shape \(2, 60\)"):
+        chain.energy(np.zeros((2, 60)))
+    with pytest.raises(ValueError, match=r"omega must be a one-dimensional array, got one of shape \(\)"):
+        chain.propagate(np.zeros(60), 0.0, t_max=0.1)
+    with pytest.raises(ValueError, match=r"got one of shape \(1, 60\)"):
+        rc.domain_walls([[0.3] * 60])
+    with pytest.raises(TypeError, match="argument 'theta'"):
+        chain.gradient("sixty angles")
 
 
 def test_an_index_out_of_range_is_a_parameter_error_in_every_method(reference):
@@ -172,8 +194,13 @@ def test_an_index_out_of_range_is_a_parameter_error_in_every_method(reference):
         "previous_angles": lambda p: chain.previous_angles(p, 0.3),
         "scatter": lambda p: chain.scatter("antikink", 4.0, p),
     }
+    beyond = "spring index {} is out of range: the chain has 59 springs, numbered 0 to 58"
     for name, call in calls.items():
-        for p, message in ((59, past_end["error"]), (-1, "spring index -1 is out of range: the chain has 59 springs, numbered 0 to 58")):
+        # Past the end, negative, and beyond every machine integer (no OverflowError); numpy's
+        # integers are indices too.
+        cases = [(59, past_end["error"])] + [(p, beyond.format(p)) for p in (-1, 10**20, -(10**30), 2**63)]
+        cases.append((np.int64(59), past_end["error"]))
+        for p, message in cases:
             with pytest.raises(rc.ParameterError) as info:
                 call(p)
             e = info.value

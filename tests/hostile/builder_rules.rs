@@ -89,3 +89,20 @@ fn valid_overrides_still_apply() {
     assert_eq!((chain.stiffness(3), chain.rest_length(4), chain.rotor_length(2)), (2.0, 1.9, 0.7));
     assert_eq!(chain.stiffness(4), 1.0e4);
 }
+
+#[test]
+fn messages_count_in_the_singular_and_name_a_nan() {
+    // A two-rotor chain has one spring: the message says so in the singular.
+    let one = RuntimeChain::builder(2, 0.8, 1.0e4, 0.58).spring(1, Some(1.0), None).build().unwrap_err();
+    assert_eq!(one.to_string(), "spring index 1 is out of range: the chain has 1 spring, numbered 0 to 0");
+    let many = builder(10).rotor(10, 0.7).build().unwrap_err();
+    assert_eq!(many.to_string(), "rotor index 10 is out of range: the chain has 10 rotors, numbered 0 to 9");
+    // A NaN equilibrium angle is not "<= 0": the message says it must be a number.
+    let nan = RuntimeChain::builder(10, 0.8, 1.0e4, f64::NAN).build().unwrap_err().to_string();
+    assert!(nan.starts_with("theta_bar = NaN is outside the flipper phase: it must be a number"), "{nan}");
+    let zero = RuntimeChain::builder(10, 0.8, 1.0e4, 0.0).build().unwrap_err().to_string();
+    assert!(zero.contains("it must be > 0"), "{zero}");
+    // The branch solve's error counts the same way.
+    let spring = BranchError::NoSuchSpring { spring: 1, springs: 1 }.to_string();
+    assert_eq!(spring, "spring index 1 is out of range: the chain has 1 spring");
+}

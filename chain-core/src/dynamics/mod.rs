@@ -42,7 +42,7 @@ pub enum DynamicsError {
         v0: f64,
     },
     /// A scattering setup naming a spring the chain does not have.
-    #[error("spring {spring} does not exist: the chain has {springs} springs")]
+    #[error("spring {spring} does not exist: the chain has {}", chain_geometry::Counted(*springs, "spring"))]
     NoSuchSpring {
         /// The spring index given.
         spring: usize,

@@ -34,7 +34,9 @@ impl fmt::Display for Input {
 pub enum LinalgError {
     /// `off` must have one entry fewer than `diag` (none when `diag` has at most one).
     #[error(
-        "off has {off} entries, but a matrix with {diag} diagonal entries needs {expected}",
+        "off has {}, but a matrix with {} needs {expected}",
+        chain_geometry::Counted(*off, "value"),
+        chain_geometry::Counted(*diag, "diagonal value"),
         expected = .diag.saturating_sub(1)
     )]
     DimensionMismatch {

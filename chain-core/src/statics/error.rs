@@ -71,7 +71,7 @@ pub enum StaticsError {
         max: f64,
     },
     /// A slice with the wrong length for the chain.
-    #[error("{what} has {len} entries, the chain needs {expected}")]
+    #[error("{what} has {}, the chain needs {expected}", chain_geometry::Counted(*len, "value"))]
     WrongLength {
         /// Which input.
         what: &'static str,

@@ -5,7 +5,7 @@
 #[non_exhaustive]
 pub enum IntegrateError {
     /// A slice with the wrong length for the chain.
-    #[error("{what} has {len} entries, the chain has {expected} rotors")]
+    #[error("{what} has {}, the chain has {expected} rotors", chain_geometry::Counted(*len, "value"))]
     WrongLength {
         /// Which input.
         what: &'static str,
