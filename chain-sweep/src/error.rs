@@ -205,6 +205,24 @@ pub enum SweepError {
     #[error(transparent)]
     /// An axis or grid that cannot be built.
     Grid(#[from] GridError),
+    #[error(
+        "stopped before the end: {done} of the {total} points are in {}, {computed} of them computed \
+         by this run; run the same sweep again to compute the other {}",
+        path.display(),
+        total - done
+    )]
+    /// The sweep was asked to stop ([`crate::SweepOptions::stop`]) and did: the points being
+    /// computed were finished and written, no other point was started.
+    Stopped {
+        /// The results file.
+        path: PathBuf,
+        /// Points in the file now (of the shard, for a shard's sweep).
+        done: usize,
+        /// Points of the sweep (of the shard).
+        total: usize,
+        /// Points this run computed and wrote before it stopped.
+        computed: usize,
+    },
 }
 
 impl SweepError {

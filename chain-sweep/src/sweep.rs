@@ -19,8 +19,8 @@ use std::io::{IsTerminal, Read, Write};
 use std::marker::PhantomData;
 use std::panic::{AssertUnwindSafe, catch_unwind};
 use std::path::{Path, PathBuf};
-use std::sync::Mutex;
-use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressState, ProgressStyle};
@@ -58,6 +58,11 @@ pub struct SweepOptions {
     /// Compute only this shard's points (its file says so: `; shard I/N` on line 1); `None`:
     /// the whole grid.
     pub shard: Option<Shard>,
+    /// Set it (from a signal handler, another thread) to stop the sweep early: no point is
+    /// started after it is set, the points being computed are finished and written, and
+    /// [`run_sweep`] returns [`SweepError::Stopped`] with how many points the file holds. Running
+    /// the sweep again computes the rest. `None`: the sweep runs to the end.
+    pub stop: Option<Arc<AtomicBool>>,
 }
 
 impl SweepOptions {
@@ -71,6 +76,7 @@ impl SweepOptions {
             sync_interval: Duration::from_millis(500),
             progress: true,
             shard: None,
+            stop: None,
         }
     }
 }
@@ -127,10 +133,17 @@ where
     let todo = file.missing();
 
     let bar = progress_bar(&options.name, summary.total, summary.skipped, todo.len(), options.progress);
+    let path = file.path().to_owned();
     let file = Mutex::new(file);
     let failed = AtomicUsize::new(0);
+    let written = AtomicUsize::new(0);
+    let stopped = || options.stop.as_ref().is_some_and(|stop| stop.load(Ordering::Relaxed));
     let outcome = pool.install(|| {
         todo.par_iter().try_for_each(|&(i, j)| {
+            if stopped() {
+                // The error ends the loop; points already started finish and are written.
+                return Err(SweepError::Stopped { path: path.clone(), done: 0, total: 0, computed: 0 });
+            }
             let coords = (grid.xs()[i], grid.ys()[j]);
             let result = compute_one(&compute, coords);
             if result.is_err() {
@@ -140,13 +153,25 @@ where
             // A thread that panicked while holding the lock cannot have left a half line in the
             // file (`append` does not panic), so a poisoned lock is still usable.
             file.lock().unwrap_or_else(|e| e.into_inner()).append((i, j), &result)?;
+            written.fetch_add(1, Ordering::Relaxed);
             bar.inc(1);
             Ok::<_, SweepError>(())
         })
     });
     let synced = file.into_inner().unwrap_or_else(|e| e.into_inner()).finish();
-    bar.finish();
-    outcome?;
+    let computed = written.into_inner();
+    match outcome {
+        Err(SweepError::Stopped { .. }) => {
+            bar.abandon();
+            synced?;
+            let (total, done) = (summary.total, summary.skipped + computed);
+            return Err(SweepError::Stopped { path, done, total, computed });
+        }
+        outcome => {
+            bar.finish();
+            outcome?;
+        }
+    }
     synced?;
     summary.computed = todo.len();
     summary.failed = failed.into_inner();

@@ -94,6 +94,74 @@ fn a_killed_sweep_resumes_to_every_point_exactly_once() {
     assert_eq!(fs::read(&out).unwrap(), before);
 }
 
+/// Sends `signal` (a name `kill` knows: INT, TERM) to the process `pid`.
+fn send(signal: &str, pid: u32) {
+    let status = Command::new("kill").arg(format!("-{signal}")).arg(pid.to_string()).status().unwrap();
+    assert!(status.success(), "kill -{signal} {pid}");
+}
+
+#[test]
+fn a_signal_lets_the_points_in_progress_finish_and_says_how_many_are_saved() {
+    for (signal, status) in [("INT", 130), ("TERM", 143)] {
+        let dir = tempfile::tempdir().unwrap();
+        let out = dir.path().join("kink.csv");
+        // 36 points x 100 ms on 2 threads: the signal comes with two points in progress.
+        let args = ["--fake-delay-ms", "100"];
+        let child = phase_diagram(&out, KI, &args).spawn().unwrap();
+        let start = Instant::now();
+        while finished_points(&out) < 4 {
+            assert!(start.elapsed() < Duration::from_secs(60), "no points written within 60 s");
+            sleep(Duration::from_millis(2));
+        }
+        send(signal, child.id());
+        let stopped = child.wait_with_output().unwrap();
+        let stderr = String::from_utf8_lossy(&stopped.stderr);
+        assert_eq!(stopped.status.code(), Some(status), "SIG{signal}: {stderr}");
+        let saved = finished_points(&out);
+        assert!((4..36).contains(&saved), "SIG{signal}: {saved} points saved");
+        // Every point started was finished: the file ends with a whole line, and the message
+        // gives the count the file holds.
+        assert!(fs::read(&out).unwrap().ends_with(b"\n"));
+        let message = format!(
+            "phase-diagram: stopped by SIG{signal}: stopped before the end: {saved} of the 36 points are in {}, \
+             {saved} of them computed by this run; run the same sweep again to compute the other {}",
+            out.display(),
+            36 - saved
+        );
+        assert!(stderr.contains(&message), "SIG{signal}: {stderr}");
+        assert!(stderr.contains("finishing the points in progress"), "{stderr}");
+
+        // Run again: only the rest is computed, and every point is there once.
+        let resumed = run(&mut phase_diagram(&out, KI, &["--fake-delay-ms", "0"]));
+        let stderr = String::from_utf8_lossy(&resumed.stderr);
+        assert!(resumed.status.success(), "{stderr}");
+        assert!(stderr.contains(&format!("{} computed now (0 failed), {saved} already done", 36 - saved)));
+        assert_every_point_once(&out);
+    }
+}
+
+#[test]
+fn a_second_signal_stops_at_once() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("kink.csv");
+    // Points of 5 s: the first signal would wait for the two in progress, the second does not.
+    let child = phase_diagram(&out, KI, &["--fake-delay-ms", "5000"]).spawn().unwrap();
+    let start = Instant::now();
+    while !fs::read(&out).is_ok_and(|b| b.iter().filter(|&&c| c == b'\n').count() >= 2) {
+        assert!(start.elapsed() < Duration::from_secs(60), "no preamble within 60 s");
+        sleep(Duration::from_millis(2));
+    }
+    send("INT", child.id());
+    sleep(Duration::from_millis(200));
+    send("INT", child.id());
+    let stopped = child.wait_with_output().unwrap();
+    let stderr = String::from_utf8_lossy(&stopped.stderr);
+    assert_eq!(stopped.status.code(), Some(130), "{stderr}");
+    assert!(stderr.contains("SIGINT: stopping now"), "{stderr}");
+    assert!(start.elapsed() < Duration::from_secs(4), "the second signal should not wait for the points");
+    assert_eq!(finished_points(&out), 0);
+}
+
 #[test]
 fn a_file_of_another_grid_or_chain_is_refused() {
     let dir = tempfile::tempdir().unwrap();

@@ -245,12 +245,15 @@ def phase_diagram(
     else:
         points = [(i, j, x, y) for i, x in enumerate(xs) for j, y in enumerate(ys)]
     records: List[Record] = []
+    written = 0
 
     def sink(record: Record) -> None:
+        nonlocal written
         if file is not None:
             file.append(record)
         else:
             records.append(record)
+        written += 1
 
     report = _progress(progress, len(points), f"{defect} phase diagram")
     try:
@@ -258,6 +261,21 @@ def phase_diagram(
             _run_local(d, points, threads, chunk_size, sink, report)
         else:
             _run_dask(client, settings, points, chunk_size, sink, report, max_resubmits)
+    except KeyboardInterrupt:
+        # Say what was kept before Python's traceback.
+        total = len(xs) * len(ys)
+        if file is not None:
+            saved = total - len(points) + written
+            sys.stderr.write(
+                f"\n{defect} phase diagram interrupted: {saved} of the {total} points are in {os.fspath(out)}; "
+                f"call phase_diagram again with the same arguments to compute the other {total - saved}\n"
+            )
+        else:
+            sys.stderr.write(
+                f"\n{defect} phase diagram interrupted: the {written} points computed are not kept "
+                "(give out=... to keep every point as it is computed, and resume from it)\n"
+            )
+        raise
     finally:
         if file is not None:
             file.close()

@@ -31,7 +31,7 @@ def test_records_equal_the_clis(grid, phase_diagram_cli, tmp_path):
     assert outcomes.shape == (len(v0), len(ki)) and "" not in outcomes
 
 
-def test_the_file_is_the_clis_and_each_resumes_the_other(phase_diagram_cli, tmp_path):
+def test_the_file_is_the_clis_and_each_resumes_the_other(phase_diagram_cli, tmp_path, capsys):
     whole = cli_records(phase_diagram_cli, tmp_path / "cli.csv", *ANTIKINK)
     out = tmp_path / "pd.csv"
     seen = []
@@ -43,6 +43,9 @@ def test_the_file_is_the_clis_and_each_resumes_the_other(phase_diagram_cli, tmp_
     with pytest.raises(KeyboardInterrupt):
         sweep.phase_diagram(*ANTIKINK, out=out, chunk_size=5, progress=stop_after_first_chunk)
     assert seen == [(5, 16)] and line_count(out) == 2 + 5
+    # Before the traceback, a line says what was kept and how to go on.
+    message = f"antikink phase diagram interrupted: 5 of the 16 points are in {out}; call phase_diagram again"
+    assert message in capsys.readouterr().err
     assert preamble(out) == preamble(tmp_path / "cli.csv")
     # The command resumes the file Python started...
     done = run_cli(phase_diagram_cli, out, *ANTIKINK)

@@ -20,11 +20,16 @@
 //! file of another sweep, a locked file, an I/O error, shards that are missing points: the
 //! message says why); 2 bad arguments or an invalid value, nothing written; 3 the sweep (merge)
 //! finished but some points failed (their errors are in the file's `error` column;
-//! `--retry-failed` computes them again).
+//! `--retry-failed` computes them again); 128 + the signal's number (130 for Ctrl-C, 143 for
+//! SIGTERM, as a SLURM time limit sends) stopped by a signal: the first SIGINT, SIGTERM or SIGHUP
+//! lets the points being computed finish and be written, then says how many points the file
+//! holds; a second one stops at once (a line cut short is repaired by the next run).
 
 use std::num::NonZeroUsize;
 use std::path::PathBuf;
 use std::process::ExitCode;
+use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, AtomicI32, Ordering};
 use std::time::Duration;
 
 use chain_sweep::scattering::{
@@ -38,8 +43,8 @@ use clap::{Parser, Subcommand, ValueEnum};
 /// Sweep a scattering phase diagram: a kink or antikink launched at speed v0 towards an impurity
 /// spring of stiffness k_i, one simulation per grid point. Results are appended to --out as they
 /// finish; rerun the same command to resume. Exit status: 0 done, 1 the sweep could not run,
-/// 2 bad arguments, 3 some points failed. `phase-diagram merge --help`: join the files of a sweep
-/// split with --shard.
+/// 2 bad arguments, 3 some points failed, 130 (143) stopped by Ctrl-C (SIGTERM) after writing the
+/// points in progress. `phase-diagram merge --help`: join the files of a sweep split with --shard.
 #[derive(Debug, Parser)]
 #[command(
     name = "phase-diagram",
@@ -160,6 +165,9 @@ enum Failure {
     Usage(String),
     /// The sweep could not run or stopped: status 1.
     Run(String),
+    /// A signal stopped the sweep after the points in progress were written: status 128 + the
+    /// signal.
+    Signal(i32, String),
 }
 
 /// The phase diagram of the arguments, checked.
@@ -230,7 +238,58 @@ fn main() -> ExitCode {
             eprintln!("phase-diagram: error: {message}");
             ExitCode::from(1)
         }
+        Err(Failure::Signal(signal, message)) => {
+            eprintln!("phase-diagram: {message}");
+            ExitCode::from(u8::try_from(128 + signal).unwrap_or(1))
+        }
     }
+}
+
+/// The signal that asked the sweep to stop (0: none yet).
+static SIGNAL: AtomicI32 = AtomicI32::new(0);
+
+/// On the first SIGINT, SIGTERM or SIGHUP, set `stop` (the sweep starts no new point, writes the
+/// points in progress, and returns [`SweepError::Stopped`]); on a second, exit at once with
+/// 128 + the signal. The handler runs on a thread of its own (signal-hook), so it may print and
+/// exit, which a bare signal handler may not.
+#[cfg(unix)]
+fn stop_on_signals(stop: Arc<AtomicBool>) -> std::io::Result<()> {
+    use signal_hook::consts::{SIGHUP, SIGINT, SIGTERM};
+    let mut signals = signal_hook::iterator::Signals::new([SIGINT, SIGTERM, SIGHUP])?;
+    std::thread::spawn(move || {
+        for signal in signals.forever() {
+            if SIGNAL.swap(signal, Ordering::SeqCst) != 0 {
+                eprintln!("phase-diagram: {}: stopping now", signal_name(signal));
+                std::process::exit(128 + signal);
+            }
+            stop.store(true, Ordering::SeqCst);
+            eprintln!(
+                "phase-diagram: {}: finishing the points in progress, then stopping (send it again to stop at once)",
+                signal_name(signal)
+            );
+        }
+    });
+    Ok(())
+}
+
+#[cfg(not(unix))]
+fn stop_on_signals(_stop: Arc<AtomicBool>) -> std::io::Result<()> {
+    Ok(())
+}
+
+fn signal_name(signal: i32) -> &'static str {
+    #[cfg(unix)]
+    {
+        use signal_hook::consts::{SIGHUP, SIGINT, SIGTERM};
+        match signal {
+            SIGINT => return "SIGINT",
+            SIGTERM => return "SIGTERM",
+            SIGHUP => return "SIGHUP",
+            _ => {}
+        }
+    }
+    let _ = signal;
+    "a signal"
 }
 
 /// The shard of `--shard`, if any.
@@ -267,6 +326,10 @@ fn run(cli: &Cli) -> Result<(Summary, PathBuf), Failure> {
     options.threads = cli.threads.map(NonZeroUsize::get);
     options.retry_failed = cli.retry_failed;
     options.shard = shard;
+    let stop = Arc::new(AtomicBool::new(false));
+    options.stop = Some(Arc::clone(&stop));
+    stop_on_signals(stop)
+        .map_err(|e| Failure::Run(format!("cannot install the handlers of SIGINT and SIGTERM: {e}")))?;
     if let Some(s) = shard {
         eprintln!("phase-diagram: shard {s}: its points go to {}", out.display());
     }
@@ -281,6 +344,10 @@ fn run(cli: &Cli) -> Result<(Summary, PathBuf), Failure> {
     };
     let summary = run_sweep(&grid, &out, compute, &options).map_err(|e| match e {
         e @ SweepError::NotAFile { .. } => Failure::Usage(e.to_string()),
+        e @ SweepError::Stopped { .. } => {
+            let signal = SIGNAL.load(Ordering::SeqCst);
+            Failure::Signal(signal, format!("stopped by {}: {e}", signal_name(signal)))
+        }
         e => Failure::Run(e.to_string()),
     })?;
     Ok((summary, out))
