@@ -58,6 +58,26 @@ pub enum EmbeddedError {
         /// Its moment of inertia `M r_i^2`.
         inertia: f64,
     },
+    /// The energy left its band around a reference ([`super::Verlet::check_energy`]): most often
+    /// a time step too long for the chain's fastest phonon, whose energy then grows step by step
+    /// while every number stays finite.
+    #[error(
+        "energy {energy} after step {step} is {} from the reference {reference}, more than the \
+         tolerance {tolerance}: is dt = {dt} within the stability limit omega_max dt < 2?",
+        (energy - reference).abs()
+    )]
+    EnergyDrift {
+        /// The Verlet step.
+        step: u32,
+        /// `T + V` after it.
+        energy: f64,
+        /// The energy it was checked against.
+        reference: f64,
+        /// The largest `|energy - reference|` allowed.
+        tolerance: f64,
+        /// The stepper's time step.
+        dt: f64,
+    },
     /// A number of the state became NaN or infinite (an unstable time step, or a NaN force).
     #[error("{what}[{index}] = {value} is not finite after step {step}")]
     NotFinite {

@@ -73,7 +73,9 @@ pub fn translation_mode<T: Real, M: FloatChain<T> + ?Sized, const N: usize>(
 }
 
 /// The kink at `theta` launched towards rotor `n - 1` with speed amplitude `v0` (tip speed, in
-/// `a / t`): the angular velocities `thetadot_i = v0 e_i / r_i` (Appendix B).
+/// `a / t`): the angular velocities `thetadot_i = v0 e_i / r_i` (Appendix B). A negative `v0`
+/// launches it towards rotor 0 at speed `|v0|` (the same velocities, negated): this module has no
+/// separate direction, unlike `dynamics::launch`, which takes `v0 >= 0` and a `Direction`.
 pub fn launch_velocities<T: Real, M: FloatChain<T> + ?Sized, const N: usize>(
     model: &M,
     theta: &[T; N],

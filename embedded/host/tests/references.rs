@@ -7,6 +7,7 @@ use embedded_check::{
 };
 use rotor_chain::dynamics::integrate::{self, AdaptiveOptions, Flow, State, VerletOptions};
 use rotor_chain::dynamics::launch::{Direction, launch};
+use rotor_chain::embedded::EmbeddedError;
 use rotor_chain::statics::walls::Charge;
 use rotor_chain::{ChainModel, RuntimeChain};
 
@@ -212,4 +213,64 @@ fn a_non_finite_state_or_step_is_an_error_with_the_numbers() {
     assert_eq!(error.to_string(), "omega[3] = NaN is not finite after step 0");
     theta[5] = f64::INFINITY;
     assert!(Verlet::new(&Chain16, theta, omega, 1e-3).is_err());
+}
+
+#[test]
+fn an_unstable_step_is_caught_by_the_energy_check_before_any_number_overflows() {
+    let launched = |dt: f64| {
+        let start = embedded_check::launched_kink::<f64, _, 16>(&Chain16, &Scenario::FIRMWARE).unwrap();
+        Verlet::new(&Chain16, *start.theta(), *start.omega(), dt).unwrap()
+    };
+    let reference = launched(Scenario::FIRMWARE.dt).check_energy(&Chain16, 0.0, f64::INFINITY).unwrap();
+    let tolerance = 0.05 * reference;
+    // The firmware's step (omega_max dt <= 0.2) stays within 5 % over the whole run.
+    let mut stable = launched(Scenario::FIRMWARE.dt);
+    for _ in 0..Scenario::FIRMWARE.steps {
+        stable.step(&Chain16).unwrap();
+        stable.check_energy(&Chain16, reference, tolerance).unwrap();
+    }
+    // Past the stability limit (Gershgorin: omega_max <= 101.5 / t on this kink, so dt = 0.05
+    // is omega_max dt ~ 5; dt = 10 far beyond), `step` keeps returning Ok with a finite state
+    // while the energy runs away; the check says so with the numbers.
+    for dt in [0.05, 10.0] {
+        let mut stepper = launched(dt);
+        let mut caught = None;
+        for _ in 0..1000 {
+            stepper.step(&Chain16).unwrap();
+            if let Err(e) = stepper.check_energy(&Chain16, reference, tolerance) {
+                caught = Some(e);
+                break;
+            }
+        }
+        let Some(EmbeddedError::EnergyDrift { step, energy, reference: r, tolerance: t, dt: d }) = caught
+        else {
+            panic!("dt = {dt}: no energy drift found in 1000 steps: {caught:?}");
+        };
+        assert!(step < 1000 && (energy - r).abs() > t && (r, t, d) == (reference, tolerance, dt));
+        assert!(stepper.theta().iter().chain(stepper.omega()).all(|x| x.is_finite()), "dt = {dt}");
+        let message = caught.unwrap().to_string();
+        assert!(message.contains(&format!("dt = {dt} within the stability limit")), "{message}");
+    }
+    // A NaN tolerance or reference never passes.
+    assert!(stable.check_energy(&Chain16, reference, f64::NAN).is_err());
+    assert!(stable.check_energy(&Chain16, f64::NAN, tolerance).is_err());
+}
+
+#[test]
+fn a_negative_launch_speed_sends_the_kink_the_other_way() {
+    let mut theta = [0.0; 16];
+    kink_into(&Chain16, 7.5, &mut theta).unwrap();
+    let right = launch_velocities(&Chain16, &theta, 2.0).unwrap();
+    let left = launch_velocities(&Chain16, &theta, -2.0).unwrap();
+    assert!(right.iter().zip(&left).all(|(r, l)| *l == -*r));
+    // Followed for t = 0.5, the two walls move by the same distance in opposite directions.
+    let walk = |omega: [f64; 16]| {
+        let mut stepper = Verlet::new(&Chain16, theta, omega, Scenario::FIRMWARE.dt).unwrap();
+        for _ in 0..256 {
+            stepper.step(&Chain16).unwrap();
+        }
+        domain_walls(stepper.theta()).next().unwrap().position - 7.5
+    };
+    let (to_the_right, to_the_left) = (walk(right), walk(left));
+    assert!(to_the_right > 1.0 && to_the_left < -1.0, "{to_the_right}, {to_the_left}");
 }
