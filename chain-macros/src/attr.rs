@@ -147,11 +147,19 @@ fn unwrap_invisible(mut tokens: Vec<TokenTree>) -> Vec<TokenTree> {
     tokens
 }
 
+/// Why a literal with a type suffix (`0.8f32`, `1u8`) is refused: the suffix would be ignored
+/// (the value is the chain's float type whatever it says), so it is more likely a mistake than a
+/// choice.
+pub const SUFFIX: &str = "write the number without a type suffix (`0.8`, not `0.8f32`): every parameter is in \
+                          the chain's float type, its `float` key (`f64` by default)";
+
 /// A float literal (integers accepted), a negated one, or an identifier naming a field.
 fn parse_value(cx: &Ctxt, tokens: &[TokenTree]) -> Option<Value> {
     let tokens = unwrap_invisible(tokens.to_vec());
     let literal = |lit: &proc_macro2::Literal, negate: bool| -> Option<Result<f64, &'static str>> {
         let value = match syn::Lit::new(lit.clone()) {
+            syn::Lit::Float(f) if !f.suffix().is_empty() => return Some(Err(SUFFIX)),
+            syn::Lit::Int(i) if !i.suffix().is_empty() => return Some(Err(SUFFIX)),
             syn::Lit::Float(f) => f.base10_parse::<f64>().ok()?,
             syn::Lit::Int(i) => i.base10_parse::<f64>().ok()?,
             _ => return None,
@@ -248,14 +256,18 @@ fn compact_path(names: &[&str]) -> String {
 
 fn parse_usize(cx: &Ctxt, tokens: &[TokenTree], what: &str) -> Option<usize> {
     let tokens = unwrap_invisible(tokens.to_vec());
+    let mut message = format!("{what} must be a non-negative integer literal");
     if let [TokenTree::Literal(lit)] = tokens.as_slice()
         && let syn::Lit::Int(i) = syn::Lit::new(lit.clone())
-        && let Ok(v) = i.base10_parse::<usize>()
     {
-        return Some(v);
+        match i.base10_parse::<usize>() {
+            Ok(v) if i.suffix().is_empty() => return Some(v),
+            Ok(_) => message = format!("{what} is written without a type suffix (`60`, not `60usize`)"),
+            Err(_) => {}
+        }
     }
     let stream: TokenStream = tokens.into_iter().collect();
-    cx.error_spanned_by(stream, format!("{what} must be a non-negative integer literal"));
+    cx.error_spanned_by(stream, message);
     None
 }
 

@@ -186,6 +186,8 @@ fn precedence(op: Op) -> u8 {
 /// The numeric value of a literal token, if it is a float or integer literal that fits an `f64`.
 pub fn numeric_literal(lit: &Literal) -> Result<f64, &'static str> {
     let value = match syn::Lit::new(lit.clone()) {
+        syn::Lit::Float(f) if !f.suffix().is_empty() => return Err(crate::attr::SUFFIX),
+        syn::Lit::Int(i) if !i.suffix().is_empty() => return Err(crate::attr::SUFFIX),
         syn::Lit::Float(f) => f.base10_parse::<f64>().ok(),
         syn::Lit::Int(i) => i.base10_parse::<f64>().ok(),
         _ => return Err("a spring law uses numeric literals only"),

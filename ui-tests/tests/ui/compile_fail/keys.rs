@@ -50,6 +50,17 @@ mod malformed_items {
     #[rotor_chain(n: 10, r = 0.8, theta_bar = 0.58, k = 1.0e4)]
     pub struct Colon;
 
+    // A type suffix would be ignored (every value is in the chain's float type): refused, on a
+    // value, a negated value, an integer, a spring override and `n`.
+    #[rotor_chain(n = 10, r = 0.8f32, theta_bar = 0.58, k = 1.0e4)]
+    pub struct SuffixF32;
+
+    #[rotor_chain(n = 10, r = 0.8, theta_bar = 0.58f64, k = 10000u32, spring(3, k = -2.0f64))]
+    pub struct Suffixes;
+
+    #[rotor_chain(n = 10usize, r = 0.8, theta_bar = 0.58, k = 1.0e4)]
+    pub struct SuffixN;
+
     pub fn main() {}
 }
 

@@ -26,6 +26,9 @@ mod malformed_laws {
     #[rotor_chain(n = 4, r = 0.8, theta_bar = 0.58, k = 1.0e4, law = 1e400 * k * (l - l0).powi(2))]
     pub struct LiteralOutOfRange;
 
+    #[rotor_chain(n = 4, r = 0.8, theta_bar = 0.58, k = 1.0e4, law = 0.5f32 * k * (l - l0).powi(2))]
+    pub struct LiteralWithSuffix;
+
     #[rotor_chain(n = 4, r = 0.8, theta_bar = 0.58, k = 1.0e4, law = k * (((((((((((((((((((((((((((((((((((((((((((((((((((((((((((((((((l - l0))))))))))))))))))))))))))))))))))))))))))))))))))))))))))))))))))]
     pub struct TooDeep;
 
