@@ -92,6 +92,7 @@ pub trait ChainModel {
     ///
     /// # Panics
     /// If `thetas` is not a whole number of configurations or `out` is not as long.
+    #[track_caller]
     fn batch_gradient_into(&self, thetas: &[f64], out: &mut [f64]) {
         let n = self.rotor_count();
         batch_count(n, thetas, out, None);
@@ -109,6 +110,7 @@ pub trait ChainModel {
     /// # Panics
     /// As [`ChainModel::batch_gradient_into`], or if `energies` does not have one entry per
     /// configuration.
+    #[track_caller]
     fn batch_energy_and_gradient_into(&self, thetas: &[f64], energies: &mut [f64], out: &mut [f64]) {
         let n = self.rotor_count();
         batch_count(n, thetas, out, Some(energies));
@@ -174,12 +176,29 @@ pub trait ChainModel {
 /// The number of configurations of `n` rotors in a batch, checking the slices' lengths as the
 /// batch methods of [`ChainModel`] document (panics: a programming error; `crate::batch` returns
 /// typed errors first).
+#[track_caller]
 pub(crate) fn batch_count(n: usize, thetas: &[f64], out: &[f64], energies: Option<&[f64]>) -> usize {
-    assert!(n > 0 && thetas.len().is_multiple_of(n), "whole configurations");
-    assert_eq!(out.len(), thetas.len(), "one gradient entry per angle");
+    use chain_geometry::Counted;
+    assert!(
+        n > 0 && thetas.len().is_multiple_of(n),
+        "thetas has {}, not a whole number of configurations of {}",
+        Counted(thetas.len(), "angle"),
+        Counted(n, "rotor")
+    );
+    assert!(
+        out.len() == thetas.len(),
+        "out has {}, thetas {}: one gradient entry per angle",
+        Counted(out.len(), "value"),
+        Counted(thetas.len(), "angle")
+    );
     let count = thetas.len() / n;
     if let Some(e) = energies {
-        assert_eq!(e.len(), count, "one energy per configuration");
+        assert!(
+            e.len() == count,
+            "energies has {}, the batch {}: one energy per configuration",
+            Counted(e.len(), "value"),
+            Counted(count, "configuration")
+        );
     }
     count
 }

@@ -3,5 +3,6 @@
 
 mod builder_rules;
 mod linkage_law;
+mod output_lengths;
 mod stack;
 mod statics_inputs;
