@@ -26,6 +26,34 @@ use crate::record::{ParseError, Record, expect_fields, format_f64, parse_field};
 /// own types, with their names (`transmitted`, ...) as the `outcome` and `later` columns.
 pub use rotor_chain::dynamics::scatter::{LaterEvent, Outcome, UnknownOutcome};
 
+/// A name that none of a setting's values has (`"kinks"` for a [`Defect`]), with the names it
+/// could have been: the error of the settings' `FromStr`, whose names are their `name()`s, so the
+/// command line, the results file and Python spell them alike.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[error("{what} must be one of {}, got '{got}'", names.iter().map(|n| format!("'{n}'")).collect::<Vec<_>>().join(", "))]
+pub struct UnknownName {
+    /// The setting (`defect`, `ends`, `integrator`).
+    pub what: &'static str,
+    /// The name given.
+    pub got: String,
+    /// Every name it may have.
+    pub names: Vec<&'static str>,
+}
+
+/// The value of `all` whose `name` is `s`.
+fn by_name<T: Copy>(
+    what: &'static str,
+    s: &str,
+    all: &[T],
+    name: fn(T) -> &'static str,
+) -> Result<T, UnknownName> {
+    all.iter().copied().find(|&t| name(t) == s).ok_or_else(|| UnknownName {
+        what,
+        got: s.to_owned(),
+        names: all.iter().map(|&t| name(t)).collect(),
+    })
+}
+
 /// The defect launched at the impurity.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Defect {
@@ -36,6 +64,9 @@ pub enum Defect {
 }
 
 impl Defect {
+    /// Every defect, in the order of the docs.
+    pub const ALL: [Defect; 2] = [Defect::Kink, Defect::Antikink];
+
     /// The name used on the command line and in the results file.
     pub fn name(self) -> &'static str {
         match self {
@@ -71,6 +102,9 @@ pub enum Ends {
 }
 
 impl Ends {
+    /// Both kinds of ends, the default first.
+    pub const ALL: [Ends; 2] = [Ends::Free, Ends::Absorbing];
+
     /// The name used on the command line and in the results file.
     pub fn name(self) -> &'static str {
         match self {
@@ -90,12 +124,39 @@ pub enum Integrator {
 }
 
 impl Integrator {
+    /// Both integrators, the default first.
+    pub const ALL: [Integrator; 2] = [Integrator::Verlet, Integrator::Dop853];
+
     /// The name used on the command line and in the results file.
     pub fn name(self) -> &'static str {
         match self {
             Integrator::Verlet => "verlet",
             Integrator::Dop853 => "dop853",
         }
+    }
+}
+
+impl FromStr for Defect {
+    type Err = UnknownName;
+    /// The defect of [`Defect::name`]: `kink` or `antikink`.
+    fn from_str(s: &str) -> Result<Self, UnknownName> {
+        by_name("defect", s, &Self::ALL, Self::name)
+    }
+}
+
+impl FromStr for Ends {
+    type Err = UnknownName;
+    /// The ends of [`Ends::name`]: `free` or `absorbing`.
+    fn from_str(s: &str) -> Result<Self, UnknownName> {
+        by_name("ends", s, &Self::ALL, Self::name)
+    }
+}
+
+impl FromStr for Integrator {
+    type Err = UnknownName;
+    /// The integrator of [`Integrator::name`]: `verlet` or `dop853`.
+    fn from_str(s: &str) -> Result<Self, UnknownName> {
+        by_name("integrator", s, &Self::ALL, Self::name)
     }
 }
 
@@ -566,6 +627,28 @@ pub fn fake_point(ki_ratio: f64, v0: f64) -> PointRecord {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn every_setting_parses_back_from_its_name_and_an_unknown_name_lists_them() {
+        for d in Defect::ALL {
+            assert_eq!(d.name().parse::<Defect>(), Ok(d));
+        }
+        for e in Ends::ALL {
+            assert_eq!(e.name().parse::<Ends>(), Ok(e));
+        }
+        for i in Integrator::ALL {
+            assert_eq!(i.name().parse::<Integrator>(), Ok(i));
+        }
+        // The names, as the docs and the command line's --help list them.
+        let names = |all: &[&str]| all.join(" ");
+        assert_eq!(names(&Defect::ALL.map(Defect::name)), "kink antikink");
+        assert_eq!(names(&Ends::ALL.map(Ends::name)), "free absorbing");
+        assert_eq!(names(&Integrator::ALL.map(Integrator::name)), "verlet dop853");
+        let e = "Kink".parse::<Defect>().unwrap_err();
+        assert_eq!(e.to_string(), "defect must be one of 'kink', 'antikink', got 'Kink'");
+        assert_eq!("rk4".parse::<Integrator>().unwrap_err().names, ["verlet", "dop853"]);
+        assert_eq!("".parse::<Ends>().unwrap_err().what, "ends");
+    }
 
     /// The shortest chains: every length that passes `check` runs a point of either defect, and
     /// every shorter one is refused by `check`, with the setup's reason, before any point runs.

@@ -19,7 +19,7 @@ use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyString, PyTuple};
 use rayon::prelude::*;
 
-use crate::args::{self, choice};
+use crate::args;
 use crate::errors::{self, value_error};
 
 /// One phase diagram's settings, checked (chain-sweep's ``PhaseDiagram``): the chain of paper
@@ -32,10 +32,6 @@ pub struct PhaseDiagram {
 
 /// `(i, j, ki, v0)`: a grid point with its coordinates.
 type GridPoint = (usize, usize, f64, f64);
-
-const DEFECTS: &[(&str, Defect)] = &[("kink", Defect::Kink), ("antikink", Defect::Antikink)];
-const ENDS: &[(&str, Ends)] = &[("free", Ends::Free), ("absorbing", Ends::Absorbing)];
-const INTEGRATORS: &[(&str, Integrator)] = &[("verlet", Integrator::Verlet), ("dop853", Integrator::Dop853)];
 
 #[pymethods]
 impl PhaseDiagram {
@@ -59,9 +55,12 @@ impl PhaseDiagram {
         recompute: bool,
         t_max: f64,
     ) -> PyResult<Self> {
-        let defect = choice("defect", defect, DEFECTS)?;
-        let ends = choice("ends", ends, ENDS)?;
-        let integrator = choice("integrator", integrator, INTEGRATORS)?;
+        // chain-sweep's own names (its `FromStr`), as the command line and the results file
+        // spell them.
+        let unknown = |e: chain_sweep::scattering::UnknownName| value_error(e.to_string());
+        let defect: Defect = defect.parse().map_err(unknown)?;
+        let ends: Ends = ends.parse().map_err(unknown)?;
+        let integrator: Integrator = integrator.parse().map_err(unknown)?;
         let mut d = Diagram::new(n, r, k, theta_bar, defect).map_err(|e| errors::config(py, &e))?;
         d.mass = mass;
         d.ends = ends;
