@@ -18,7 +18,7 @@ use core::fmt;
 #[non_exhaustive]
 pub enum ParameterError {
     /// Fewer than two rotors: there is no spring.
-    #[error("`n` must be at least 2 (a chain needs two rotors and one spring), got {n}")]
+    #[error("{}", CountText::TooFew(n))]
     TooFewRotors {
         /// The number of rotors given.
         n: usize,
@@ -61,7 +61,7 @@ pub enum ParameterError {
         max: f64,
     },
     /// A spring or rotor index past the end of the chain.
-    #[error("{kind} index {index} is out of range: the chain has {}, numbered 0 to {}", Counted(*count, kind), count.saturating_sub(1))]
+    #[error("{}", CountText::OutOfRange { kind: *kind, index, count: *count })]
     IndexOutOfRange {
         /// Spring or rotor.
         kind: IndexKind,
@@ -71,7 +71,7 @@ pub enum ParameterError {
         count: usize,
     },
     /// More rotors than [`MAX_ROTORS`].
-    #[error("`n` = {n} is more rotors than a chain may have: at most {max}")]
+    #[error("{}", CountText::TooMany { n, max: *max })]
     TooManyRotors {
         /// The number of rotors asked for.
         n: usize,
@@ -122,6 +122,51 @@ pub struct Counted<T>(pub usize, pub T);
 impl<T: fmt::Display> fmt::Display for Counted<T> {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         write!(f, "{} {}{}", self.0, self.1, if self.0 == 1 { "" } else { "s" })
+    }
+}
+
+/// The texts of [`ParameterError::TooFewRotors`], [`ParameterError::TooManyRotors`] and
+/// [`ParameterError::IndexOutOfRange`] for a number `N` of any integer type: the variants show
+/// them with their `usize`, and a binding whose integers are unbounded (Python's `-1` or `10**20`,
+/// which no `usize` holds) shows the same words with its own number.
+#[derive(Clone, Copy, Debug)]
+pub enum CountText<N> {
+    /// `n` below 2.
+    TooFew(N),
+    /// `n` above `max`.
+    TooMany {
+        /// The rotors asked for.
+        n: N,
+        /// The most allowed.
+        max: usize,
+    },
+    /// An index outside `0..count`.
+    OutOfRange {
+        /// Spring or rotor.
+        kind: IndexKind,
+        /// The index given.
+        index: N,
+        /// How many springs or rotors the chain has.
+        count: usize,
+    },
+}
+
+impl<N: fmt::Display> fmt::Display for CountText<N> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Self::TooFew(n) => {
+                write!(f, "`n` must be at least 2 (a chain needs two rotors and one spring), got {n}")
+            }
+            Self::TooMany { n, max } => {
+                write!(f, "`n` = {n} is more rotors than a chain may have: at most {max}")
+            }
+            Self::OutOfRange { kind, index, count } => write!(
+                f,
+                "{kind} index {index} is out of range: the chain has {}, numbered 0 to {}",
+                Counted(*count, kind),
+                count.saturating_sub(1)
+            ),
+        }
     }
 }
 

@@ -6,7 +6,9 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use rotor_chain::statics::walls::Charge;
 
-use crate::errors::value_error;
+use rotor_chain::geometry::{CountText, IndexKind, MAX_ROTORS, check_index};
+
+use crate::errors::{self, value_error};
 
 /// A float64 array-like of length `n` (angles, velocities), copied, every entry finite.
 pub fn vector(x: &Bound<'_, PyAny>, what: &str, n: usize) -> PyResult<Vec<f64>> {
@@ -61,15 +63,90 @@ fn floats(x: &Bound<'_, PyAny>, what: &str) -> PyResult<Vec<f64>> {
     }
 }
 
-/// A Python int (or an object with `__index__`, such as numpy's integers) as an `i64`: `None` for
-/// an int beyond `i64` (`10**20`), so that callers can give the documented error rather than
-/// Python's `OverflowError`; `TypeError` for anything else, as Python's own conversion gives.
-pub fn int(x: &Bound<'_, PyAny>) -> PyResult<Option<i64>> {
+/// A Python int (or an object with `__index__`, such as numpy's integers), however large.
+pub enum Int {
+    /// An `i64` holds it.
+    Fits(i64),
+    /// Above `i64::MAX` (`10**20`).
+    Above,
+    /// Below `i64::MIN`.
+    Below,
+}
+
+/// `x` as an [`Int`], so that an int beyond `i64` gets the documented error rather than
+/// Python's `OverflowError`; what is not an int is Python's own `TypeError`.
+pub fn int(x: &Bound<'_, PyAny>) -> PyResult<Int> {
     match x.extract::<i64>() {
-        Ok(i) => Ok(Some(i)),
-        Err(e) if e.is_instance_of::<pyo3::exceptions::PyOverflowError>(x.py()) => Ok(None),
+        Ok(i) => Ok(Int::Fits(i)),
+        Err(e) if e.is_instance_of::<pyo3::exceptions::PyOverflowError>(x.py()) => {
+            Ok(if x.lt(0)? { Int::Below } else { Int::Above })
+        }
         Err(e) => Err(e),
     }
+}
+
+/// A rotor count `n`, for the Rust checks to judge (`TooFewRotors` below 2, `TooManyRotors`
+/// past `MAX_ROTORS`); an int no `usize` holds gets the same error here, with its own number.
+pub fn rotor_count(n: &Bound<'_, PyAny>) -> PyResult<usize> {
+    let text = match int(n)? {
+        Int::Fits(i) => match usize::try_from(i) {
+            Ok(count) => return Ok(count),
+            Err(_) if i < 0 => CountText::TooFew(n),
+            Err(_) => CountText::TooMany { n, max: MAX_ROTORS },
+        },
+        Int::Below => CountText::TooFew(n),
+        Int::Above => CountText::TooMany { n, max: MAX_ROTORS },
+    };
+    Err(errors::unbounded(n.py(), text))
+}
+
+/// A rotor count as Python gave it (any int, however large, default arguments too), checked as
+/// [`rotor_count`] checks it. The result is kept rather than raised, so that each caller raises
+/// it in its own family: `ParameterError`, or `ConfigError` for a phase diagram's settings.
+pub struct RotorCount(pub PyResult<usize>);
+
+impl<'a, 'py> FromPyObject<'a, 'py> for RotorCount {
+    type Error = PyErr;
+    fn extract(n: Borrowed<'a, 'py, PyAny>) -> PyResult<Self> {
+        Ok(Self(rotor_count(&n)))
+    }
+}
+
+/// An upper bound on how many things to return (`modes(count=...)`): any int that is not
+/// negative, however large (past the number there are, it means all of them).
+pub struct AtMost(pub usize);
+
+impl<'a, 'py> FromPyObject<'a, 'py> for AtMost {
+    type Error = PyErr;
+    fn extract(x: Borrowed<'a, 'py, PyAny>) -> PyResult<Self> {
+        match int(&x)? {
+            Int::Fits(i) if i >= 0 => Ok(Self(usize::try_from(i).unwrap_or(usize::MAX))),
+            Int::Above => Ok(Self(usize::MAX)),
+            Int::Fits(_) | Int::Below => Err(value_error(format!("a count must be >= 0, got {}", *x))),
+        }
+    }
+}
+
+/// A spring or rotor index that is not negative and fits a `usize`, else `IndexOutOfRange` with
+/// Python's own int. The upper end is left to the caller: the constructor's overrides are
+/// checked by the builder, after its checks of `n`; [`index`] checks it.
+pub fn unsigned_index(x: &Bound<'_, PyAny>, kind: IndexKind, count: usize) -> PyResult<usize> {
+    if let Int::Fits(i) = int(x)?
+        && let Ok(i) = usize::try_from(i)
+    {
+        return Ok(i);
+    }
+    Err(errors::unbounded(x.py(), CountText::OutOfRange { kind, index: x, count }))
+}
+
+/// A spring or rotor index of a chain with `count` of them. Out of range either way (negative,
+/// past the end, or beyond any machine integer), it is the builder's
+/// `ParameterError::IndexOutOfRange`, whichever method was given it (the Rust methods that take an
+/// index report one past the end in their own error families, `BranchError::NoSuchSpring` and
+/// `DynamicsError::NoSuchSpring`).
+pub fn index(x: &Bound<'_, PyAny>, kind: IndexKind, count: usize) -> PyResult<usize> {
+    let i = unsigned_index(x, kind, count)?;
+    check_index(kind, i, count).map_err(|e| errors::parameter(x.py(), &e))
 }
 
 /// The entry `key` of `dict` (a record, a pickled object's state), or a `ValueError` that names

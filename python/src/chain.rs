@@ -1,14 +1,14 @@
 //! `Chain`: a `RuntimeChain`, its evaluation methods, and the entry points of its statics and
 //! dynamics; `Continuum`: the continuum theory of the same chain.
 
-use chain_core::geometry::{Counted, IndexKind, MAX_ROTORS, check_index};
+use chain_core::geometry::IndexKind;
 use numpy::{PyArray1, PyArray2};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyTuple};
 use rotor_chain::statics::continuum::ContinuumChain;
 use rotor_chain::{ChainModel, Law, RuntimeChain};
 
-use crate::args::{self, array, choice, matrix, vector};
+use crate::args::{self, AtMost, RotorCount, array, choice, matrix, vector};
 use crate::errors::{self, value_error};
 use crate::pickle::{self, Pickle};
 
@@ -60,55 +60,6 @@ pub struct Chain {
     spec: Spec,
 }
 
-/// `IndexOutOfRange` for an index that no `usize` holds (negative, or a Python int as large as
-/// `10**20`), so the Rust error cannot carry it: the builder's message, with Python's own int in
-/// the text and in `index`.
-fn index_out_of_range(py: Python<'_>, kind: IndexKind, index: &Bound<'_, PyAny>, count: usize) -> PyErr {
-    let message = format!(
-        "{kind} index {index} is out of range: the chain has {}, numbered 0 to {}",
-        Counted(count, kind),
-        count.saturating_sub(1)
-    );
-    let fields = PyDict::new(py);
-    let _ = fields.set_item("kind", kind.to_string());
-    let _ = fields.set_item("index", index);
-    let _ = fields.set_item("count", count);
-    raise_parameter(py, message, "IndexOutOfRange", fields)
-}
-
-fn raise_parameter(py: Python<'_>, message: String, variant: &str, fields: Bound<'_, PyDict>) -> PyErr {
-    let build = || -> PyResult<PyErr> {
-        let class = py.import("rotor_chain.errors")?.getattr("ParameterError")?;
-        Ok(PyErr::from_value(class.call1((message, variant, fields))?))
-    };
-    build().unwrap_or_else(|e| e)
-}
-
-/// An index that is not negative and fits a `usize` (the constructor's overrides: the builder
-/// checks the upper end, after its checks of `n`). Any Python int (or object with `__index__`) is
-/// taken; one that is not an int is Python's `TypeError`.
-fn unsigned_index(
-    py: Python<'_>,
-    kind: IndexKind,
-    index: &Bound<'_, PyAny>,
-    count: usize,
-) -> PyResult<usize> {
-    match args::int(index)?.and_then(|i| usize::try_from(i).ok()) {
-        Some(i) => Ok(i),
-        None => Err(index_out_of_range(py, kind, index, count)),
-    }
-}
-
-/// A spring or rotor index of a chain with `count` of them. Out of range either way (negative,
-/// past the end, or beyond any machine integer), it is the builder's
-/// `ParameterError::IndexOutOfRange`, whichever method was given it (the Rust methods that take an
-/// index report one past the end in their own error families, `BranchError::NoSuchSpring` and
-/// `DynamicsError::NoSuchSpring`).
-fn index(py: Python<'_>, kind: IndexKind, index: &Bound<'_, PyAny>, count: usize) -> PyResult<usize> {
-    let i = unsigned_index(py, kind, index, count)?;
-    check_index(kind, i, count).map_err(|e| errors::parameter(py, &e))
-}
-
 impl Chain {
     pub fn n(&self) -> usize {
         self.chain.rotor_count()
@@ -130,7 +81,7 @@ impl Chain {
     #[allow(clippy::too_many_arguments)]
     fn new(
         py: Python<'_>,
-        n: &Bound<'_, PyAny>,
+        n: RotorCount,
         r: f64,
         k: f64,
         theta_bar: f64,
@@ -145,32 +96,11 @@ impl Chain {
             law,
             &[("harmonic", ("harmonic", Law::Harmonic)), ("quartic", ("quartic", Law::Quartic))],
         )?;
-        let n = match args::int(n)?.map(usize::try_from) {
-            Some(Ok(n)) => n,
-            // A Python int no `usize` holds: the builder's TooFewRotors or TooManyRotors, whose
-            // `n` field (a `usize`) could not carry it.
-            _ => {
-                let fields = PyDict::new(py);
-                let _ = fields.set_item("n", n);
-                let (variant, message) = if n.lt(0)? {
-                    (
-                        "TooFewRotors",
-                        format!("`n` must be at least 2 (a chain needs two rotors and one spring), got {n}"),
-                    )
-                } else {
-                    let _ = fields.set_item("max", MAX_ROTORS);
-                    (
-                        "TooManyRotors",
-                        format!("`n` = {n} is more rotors than a chain may have: at most {MAX_ROTORS}"),
-                    )
-                };
-                return Err(raise_parameter(py, message, variant, fields));
-            }
-        };
+        let n = n.0?;
         let mut spring_list = Vec::new();
         if let Some(springs) = springs {
             for (p, spec) in springs.iter() {
-                let p = unsigned_index(py, IndexKind::Spring, &p, n.saturating_sub(1))?;
+                let p = args::unsigned_index(&p, IndexKind::Spring, n.saturating_sub(1))?;
                 let spec = spec.cast_into::<PyDict>().map_err(|_| {
                     value_error(format!("springs[{p}] must be a dict with the keys 'k' and/or 'l0'"))
                 })?;
@@ -192,7 +122,7 @@ impl Chain {
         let mut rotor_list = Vec::new();
         if let Some(rotors) = rotors {
             for (i, ri) in rotors.iter() {
-                let i = unsigned_index(py, IndexKind::Rotor, &i, n)?;
+                let i = args::unsigned_index(&i, IndexKind::Rotor, n)?;
                 rotor_list.push((i, ri.extract::<f64>()?));
             }
         }
@@ -390,7 +320,7 @@ impl Chain {
     ///     BranchError: no real root (``variant == "NoRealRoot"``, with ``distance``, ``min``,
     ///         ``max``, ...), or a non-finite ``theta_p``.
     fn next_angles(&self, py: Python<'_>, p: &Bound<'_, PyAny>, theta_p: f64) -> PyResult<(f64, f64)> {
-        let p = index(py, IndexKind::Spring, p, self.chain.spring_count())?;
+        let p = args::index(p, IndexKind::Spring, self.chain.spring_count())?;
         let [a, b] = self.chain.next_angles(p, theta_p).map_err(|e| errors::branch(py, &e))?;
         Ok((a, b))
     }
@@ -398,7 +328,7 @@ impl Chain {
     /// Both ``theta_p`` that put spring ``p`` at its rest length given ``theta_{p+1}``: the inverse
     /// map. Raises as ``next_angles``.
     fn previous_angles(&self, py: Python<'_>, p: &Bound<'_, PyAny>, theta_next: f64) -> PyResult<(f64, f64)> {
-        let p = index(py, IndexKind::Spring, p, self.chain.spring_count())?;
+        let p = args::index(p, IndexKind::Spring, self.chain.spring_count())?;
         let [a, b] = self.chain.previous_angles(p, theta_next).map_err(|e| errors::branch(py, &e))?;
         Ok((a, b))
     }
@@ -462,12 +392,12 @@ impl Chain {
 
     /// The lowest ``count`` vibrational modes about ``theta`` (``K v = omega^2 I v``, paper
     /// Sec. IV), ascending; ``count=None`` gives all ``n``. Frequencies in ``1/t``.
-    #[pyo3(signature = (theta, count = Some(12), *, hold_ends = false))]
+    #[pyo3(signature = (theta, count = Some(AtMost(12)), *, hold_ends = false))]
     fn modes(
         &self,
         py: Python<'_>,
         theta: &Bound<'_, PyAny>,
-        count: Option<usize>,
+        count: Option<AtMost>,
         hold_ends: bool,
     ) -> PyResult<crate::statics::Modes> {
         crate::statics::modes(self, py, theta, count, hold_ends)
@@ -582,7 +512,7 @@ impl Chain {
     ) -> PyResult<crate::dynamics::Scattering> {
         let springs = self.chain.spring_count();
         let impurity = match impurity {
-            Some(p) => index(py, IndexKind::Spring, p, springs)?,
+            Some(p) => args::index(p, IndexKind::Spring, springs)?,
             None => (self.n() - 1) / 2,
         };
         let options = crate::dynamics::run_options(
@@ -795,8 +725,15 @@ impl Continuum {
     ///     ParameterError: ``n`` not a chain's rotor count (``variant == "TooFewRotors"`` below 2,
     ///         ``"TooManyRotors"`` past ``MAX_ROTORS``).
     ///     ValueError: ``x0`` is not finite.
-    fn angle_profile(&self, py: Python<'_>, defect: &str, n: usize, x0: f64) -> PyResult<Py<PyArray1<f64>>> {
+    fn angle_profile(
+        &self,
+        py: Python<'_>,
+        defect: &str,
+        n: RotorCount,
+        x0: f64,
+    ) -> PyResult<Py<PyArray1<f64>>> {
         let charge = args::charge(defect)?;
+        let n = n.0?;
         if !x0.is_finite() {
             return Err(value_error(format!("x0 = {x0} is not finite")));
         }

@@ -11,6 +11,7 @@ use pyo3::sync::PyOnceLock;
 use pyo3::types::{PyDict, PyModule};
 use rotor_chain::dynamics::DynamicsError;
 use rotor_chain::dynamics::integrate::IntegrateError;
+use rotor_chain::geometry::CountText;
 use rotor_chain::linalg::LinalgError;
 use rotor_chain::statics::StaticsError;
 use rotor_chain::{BranchError, ParameterError};
@@ -62,6 +63,22 @@ impl<'py> Details<'py> {
 fn errors_module(py: Python<'_>) -> PyResult<&Bound<'_, PyModule>> {
     static MODULE: PyOnceLock<Py<PyModule>> = PyOnceLock::new();
     MODULE.get_or_try_init(py, || py.import("rotor_chain.errors").map(Bound::unbind)).map(|m| m.bind(py))
+}
+
+/// `ParameterError` for a rotor count or an index that no `usize` holds (Python's ints are
+/// unbounded: `-1`, `10**20`), so the Rust error cannot carry it: chain-geometry's text of the
+/// same variant with Python's own int, which is also the `n` or `index` field.
+pub fn unbounded(py: Python<'_>, text: CountText<&Bound<'_, PyAny>>) -> PyErr {
+    let d = Details::new(py, "");
+    let d = match text {
+        CountText::TooFew(n) => Details { variant: "TooFewRotors", ..d }.f("n", n),
+        CountText::TooMany { n, max } => Details { variant: "TooManyRotors", ..d }.f("n", n).f("max", max),
+        CountText::OutOfRange { kind, index, count } => Details { variant: "IndexOutOfRange", ..d }
+            .f("kind", kind.to_string())
+            .f("index", index)
+            .f("count", count),
+    };
+    d.raise("ParameterError", text.to_string())
 }
 
 pub fn parameter(py: Python<'_>, e: &ParameterError) -> PyErr {
@@ -287,6 +304,13 @@ pub fn config(py: Python<'_>, e: &ConfigError) -> PyErr {
         _ => Details { variant: "Other", ..d },
     };
     d.raise("ConfigError", e.to_string())
+}
+
+/// chain-sweep's `ConfigError::Chain` (worded as its `Display`, "invalid chain: ...") around a
+/// `ParameterError` raised here, for a rotor count that no `usize` holds ([`unbounded`]).
+pub fn config_chain(py: Python<'_>, cause: PyErr) -> PyErr {
+    let message = format!("invalid chain: {}", cause.value(py));
+    Details { variant: "Chain", ..Details::new(py, "") }.source(cause).raise("ConfigError", message)
 }
 
 pub fn point(py: Python<'_>, e: &PointError) -> PyErr {

@@ -10,7 +10,7 @@ use rotor_chain::statics::counting;
 use rotor_chain::statics::modes::{self as md, ModeKind, ModeOptions};
 use rotor_chain::statics::walls;
 
-use crate::args::{array, charge_name, choice, rows};
+use crate::args::{AtMost, array, charge_name, choice, rows};
 use crate::chain::Chain;
 use crate::errors;
 use crate::pickle::{self, pickle_fields};
@@ -240,11 +240,11 @@ pub fn modes(
     chain: &Chain,
     py: Python<'_>,
     theta: &Bound<'_, PyAny>,
-    count: Option<usize>,
+    count: Option<AtMost>,
     hold_ends: bool,
 ) -> PyResult<Modes> {
     let theta = chain.theta(theta)?;
-    let options = ModeOptions { count, hold_ends, ..ModeOptions::default() };
+    let options = ModeOptions { count: count.map(|c| c.0), hold_ends, ..ModeOptions::default() };
     let found =
         py.detach(|| md::modes(&chain.chain, &theta, &options)).map_err(|e| errors::statics(py, &e))?;
     let n = chain.n();

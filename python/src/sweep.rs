@@ -19,7 +19,7 @@ use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyString, PyTuple};
 use rayon::prelude::*;
 
-use crate::args;
+use crate::args::{self, RotorCount};
 use crate::errors::{self, value_error};
 
 /// One phase diagram's settings, checked (chain-sweep's ``PhaseDiagram``): the chain of paper
@@ -36,14 +36,14 @@ type GridPoint = (usize, usize, f64, f64);
 #[pymethods]
 impl PhaseDiagram {
     #[new]
-    #[pyo3(signature = (defect, *, n = 60, r = 0.8, k = 1.0e4, theta_bar = 0.28, mass = 1.0, ends = "free",
+    #[pyo3(signature = (defect, *, n = RotorCount(Ok(60)), r = 0.8, k = 1.0e4, theta_bar = 0.28, mass = 1.0, ends = "free",
                         integrator = "verlet", dt = None, energy_tolerance = chain_sweep::scattering::DEFAULT_ENERGY_TOLERANCE,
                         recompute = true, t_max = 20.0))]
     #[allow(clippy::too_many_arguments)]
     fn new(
         py: Python<'_>,
         defect: &str,
-        n: usize,
+        n: RotorCount,
         r: f64,
         k: f64,
         theta_bar: f64,
@@ -61,6 +61,7 @@ impl PhaseDiagram {
         let defect: Defect = defect.parse().map_err(unknown)?;
         let ends: Ends = ends.parse().map_err(unknown)?;
         let integrator: Integrator = integrator.parse().map_err(unknown)?;
+        let n = n.0.map_err(|cause| errors::config_chain(py, cause))?;
         let mut d = Diagram::new(n, r, k, theta_bar, defect).map_err(|e| errors::config(py, &e))?;
         d.mass = mass;
         d.ends = ends;
