@@ -141,8 +141,8 @@ where
     let outcome = pool.install(|| {
         todo.par_iter().try_for_each(|&(i, j)| {
             if stopped() {
-                // The error ends the loop; points already started finish and are written.
-                return Err(SweepError::Stopped { path: path.clone(), done: 0, total: 0, computed: 0 });
+                // No point starts after a stop; those already started finish and are written.
+                return Ok(());
             }
             let coords = (grid.xs()[i], grid.ys()[j]);
             let result = compute_one(&compute, coords);
@@ -160,18 +160,15 @@ where
     });
     let synced = file.into_inner().unwrap_or_else(|e| e.into_inner()).finish();
     let computed = written.into_inner();
-    match outcome {
-        Err(SweepError::Stopped { .. }) => {
-            bar.abandon();
-            synced?;
-            let (total, done) = (summary.total, summary.skipped + computed);
-            return Err(SweepError::Stopped { path, done, total, computed });
-        }
-        outcome => {
-            bar.finish();
-            outcome?;
-        }
+    if outcome.is_ok() && computed < todo.len() {
+        // Only a stop skips points.
+        bar.abandon();
+        synced?;
+        let done = summary.skipped + computed;
+        return Err(SweepError::Stopped { path, done, total: summary.total, computed });
     }
+    bar.finish();
+    outcome?;
     synced?;
     summary.computed = todo.len();
     summary.failed = failed.into_inner();

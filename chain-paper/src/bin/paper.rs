@@ -191,11 +191,7 @@ fn stop_on_signals() -> std::io::Result<()> {
             if let Some(bar) = BAR.get() {
                 bar.abandon();
             }
-            let name = match signal {
-                SIGINT => "SIGINT",
-                SIGTERM => "SIGTERM",
-                _ => "SIGHUP",
-            };
+            let name = signal_hook::low_level::signal_name(signal).unwrap_or("a signal");
             let state = if finished.is_some() {
                 "the files written so far are complete and no temporary file is left"
             } else {

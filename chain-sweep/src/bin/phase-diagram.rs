@@ -277,19 +277,13 @@ fn stop_on_signals(_stop: Arc<AtomicBool>) -> std::io::Result<()> {
     Ok(())
 }
 
+/// The signal's name (`SIGINT`), from signal-hook's table.
 fn signal_name(signal: i32) -> &'static str {
     #[cfg(unix)]
-    {
-        use signal_hook::consts::{SIGHUP, SIGINT, SIGTERM};
-        match signal {
-            SIGINT => return "SIGINT",
-            SIGTERM => return "SIGTERM",
-            SIGHUP => return "SIGHUP",
-            _ => {}
-        }
-    }
-    let _ = signal;
-    "a signal"
+    let name = signal_hook::low_level::signal_name(signal);
+    #[cfg(not(unix))]
+    let name = None;
+    name.unwrap_or("a signal")
 }
 
 /// The shard of `--shard`, if any.

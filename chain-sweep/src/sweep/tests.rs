@@ -277,3 +277,44 @@ fn an_unwritable_path_is_an_io_error_naming_it() {
     assert!(matches!(&err, SweepError::Io { action: "open", .. }), "{err}");
     assert!(err.to_string().contains("missing/r.csv"), "{err}");
 }
+
+#[test]
+fn a_stop_finishes_the_points_started_and_says_how_many_the_file_holds() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("stopped.csv");
+    let g = grid("0:1:8", "0:1:8");
+    let stop = Arc::new(AtomicBool::new(false));
+    let mut stopping = options();
+    stopping.stop = Some(Arc::clone(&stop));
+    // The 5th point asks for the stop: it and the points already started are written, no later
+    // one starts.
+    let calls = AtomicUsize::new(0);
+    let compute = |x, y| {
+        if calls.fetch_add(1, Ordering::SeqCst) + 1 == 5 {
+            stop.store(true, Ordering::SeqCst);
+        }
+        probe(x, y)
+    };
+    match run_sweep(&g, &path, compute, &stopping) {
+        Err(SweepError::Stopped { path: p, done, total, computed }) => {
+            assert_eq!((p, total, done), (path.clone(), 64, computed));
+            // At most the other thread's point in progress after the 5th.
+            assert!((5..=6).contains(&computed), "{computed} points computed");
+            assert_eq!(computed, calls.load(Ordering::SeqCst));
+            assert_eq!(read_points::<Probe>(&path).unwrap().len(), computed);
+        }
+        other => panic!("{other:?}"),
+    }
+    // A stop set before the run starts no point and leaves the file as it is.
+    let before = fs::read(&path).unwrap();
+    let held = read_points::<Probe>(&path).unwrap().len();
+    match run_sweep(&g, &path, probe, &stopping) {
+        Err(SweepError::Stopped { computed: 0, done, .. }) => assert_eq!(done, held),
+        other => panic!("{other:?}"),
+    }
+    assert_eq!(fs::read(&path).unwrap(), before);
+    // Without the stop the same sweep computes the rest.
+    let summary = run_sweep(&g, &path, probe, &options()).unwrap();
+    assert_eq!(summary.computed + summary.skipped, 64);
+    assert_complete(&g, &path);
+}
