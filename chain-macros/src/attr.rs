@@ -150,28 +150,32 @@ fn unwrap_invisible(mut tokens: Vec<TokenTree>) -> Vec<TokenTree> {
 /// Why a literal with a type suffix (`0.8f32`, `1u8`) is refused: the suffix would be ignored
 /// (the value is the chain's float type whatever it says), so it is more likely a mistake than a
 /// choice.
-pub const SUFFIX: &str = "write the number without a type suffix (`0.8`, not `0.8f32`): every parameter is in \
+const SUFFIX: &str = "write the number without a type suffix (`0.8`, not `0.8f32`): every parameter is in \
                           the chain's float type, its `float` key (`f64` by default)";
+
+/// The value of a float or integer literal token (of a key's value or of a law): `None` if it
+/// is not one (a string, a character), an error if it has a type suffix or does not fit an `f64`.
+pub fn numeric_literal(lit: &proc_macro2::Literal) -> Option<Result<f64, &'static str>> {
+    let (value, suffixed) = match syn::Lit::new(lit.clone()) {
+        syn::Lit::Float(f) => (f.base10_parse::<f64>().ok(), !f.suffix().is_empty()),
+        syn::Lit::Int(i) => (i.base10_parse::<f64>().ok(), !i.suffix().is_empty()),
+        _ => return None,
+    };
+    Some(match value {
+        _ if suffixed => Err(SUFFIX),
+        Some(v) if v.is_finite() => Ok(v),
+        _ => Err("literal out of range for `f64`"),
+    })
+}
 
 /// A float literal (integers accepted), a negated one, or an identifier naming a field.
 fn parse_value(cx: &Ctxt, tokens: &[TokenTree]) -> Option<Value> {
     let tokens = unwrap_invisible(tokens.to_vec());
-    let literal = |lit: &proc_macro2::Literal, negate: bool| -> Option<Result<f64, &'static str>> {
-        let value = match syn::Lit::new(lit.clone()) {
-            syn::Lit::Float(f) if !f.suffix().is_empty() => return Some(Err(SUFFIX)),
-            syn::Lit::Int(i) if !i.suffix().is_empty() => return Some(Err(SUFFIX)),
-            syn::Lit::Float(f) => f.base10_parse::<f64>().ok()?,
-            syn::Lit::Int(i) => i.base10_parse::<f64>().ok()?,
-            _ => return None,
-        };
-        if !value.is_finite() {
-            return Some(Err("literal out of range for `f64`"));
-        }
-        Some(Ok(if negate { -value } else { value }))
-    };
     let parsed = match tokens.as_slice() {
-        [TokenTree::Literal(lit)] => literal(lit, false),
-        [TokenTree::Punct(minus), TokenTree::Literal(lit)] if minus.as_char() == '-' => literal(lit, true),
+        [TokenTree::Literal(lit)] => numeric_literal(lit),
+        [TokenTree::Punct(minus), TokenTree::Literal(lit)] if minus.as_char() == '-' => {
+            numeric_literal(lit).map(|value| value.map(|v| -v))
+        }
         // `syn::Ident`'s parser refuses keywords, which cannot name a field unless raw.
         [TokenTree::Ident(ident)] => match syn::parse2::<Ident>(ident.to_token_stream()) {
             Ok(ident) => return Some(Value::Field(ident)),

@@ -20,6 +20,7 @@ use chain_symbolic::{Graph, Id, SpringLaw};
 use proc_macro2::{Delimiter, Ident, Literal, Spacing, Span, TokenStream, TokenTree};
 use syn::ext::IdentExt;
 
+use crate::attr::numeric_literal;
 use crate::ctxt::Ctxt;
 
 /// The most terms a law may have: literals, symbols and operations (a method call and a unary
@@ -183,21 +184,6 @@ fn precedence(op: Op) -> u8 {
     }
 }
 
-/// The numeric value of a literal token, if it is a float or integer literal that fits an `f64`.
-pub fn numeric_literal(lit: &Literal) -> Result<f64, &'static str> {
-    let value = match syn::Lit::new(lit.clone()) {
-        syn::Lit::Float(f) if !f.suffix().is_empty() => return Err(crate::attr::SUFFIX),
-        syn::Lit::Int(i) if !i.suffix().is_empty() => return Err(crate::attr::SUFFIX),
-        syn::Lit::Float(f) => f.base10_parse::<f64>().ok(),
-        syn::Lit::Int(i) => i.base10_parse::<f64>().ok(),
-        _ => return Err("a spring law uses numeric literals only"),
-    };
-    match value {
-        Some(v) if v.is_finite() => Ok(v),
-        _ => Err("literal out of range for `f64`"),
-    }
-}
-
 fn is_keyword(ident: &Ident) -> bool {
     syn::parse2::<Ident>(TokenTree::Ident(ident.clone()).into()).is_err()
 }
@@ -253,14 +239,16 @@ pub fn parse(cx: &Ctxt, key: &Ident, tokens: TokenStream) -> Option<Law> {
                     i += 1;
                     continue;
                 }
-                Tok::Lit(lit) => match numeric_literal(lit) {
-                    Ok(v) => ops.push(Op::Const(v)),
-                    Err(message) => {
-                        cx.error_at(lit.span(), message);
-                        failed = true;
-                        ops.push(Op::Const(0.0));
+                Tok::Lit(lit) => {
+                    match numeric_literal(lit).unwrap_or(Err("a spring law uses numeric literals only")) {
+                        Ok(v) => ops.push(Op::Const(v)),
+                        Err(message) => {
+                            cx.error_at(lit.span(), message);
+                            failed = true;
+                            ops.push(Op::Const(0.0));
+                        }
                     }
-                },
+                }
                 Tok::Ident(ident) if ident == "true" || ident == "false" => {
                     cx.error_at(ident.span(), "a spring law uses numeric literals only");
                     failed = true;
