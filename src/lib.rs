@@ -137,6 +137,7 @@ pub mod prelude {
 #[doc(hidden)]
 pub mod __private {
     pub use chain_core::embedded::{EmbeddedError, FloatChain, Verlet};
+    pub use chain_core::model::check_lengths;
     pub use chain_core::{
         Bidiagonal, BranchError, ChainModel, ParameterError, Tridiagonal, branch, geometry, kernel, math,
     };

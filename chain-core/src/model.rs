@@ -202,3 +202,37 @@ pub(crate) fn batch_count(n: usize, thetas: &[f64], out: &[f64], energies: Optio
     }
     count
 }
+
+/// Panics unless a chain of `n` rotors gets `theta` (of length `theta`) and slices of one value
+/// per rotor (`rotors`: name and length) and one per spring (`springs`): the check of every
+/// slice method of [`crate::RuntimeChain`] and of the `#[rotor_chain]` chains. A wrong length is
+/// a programming error of the caller, so the message names the slice and both counts ("off has
+/// 60 values, the chain has 59 springs (one value per spring)"), and `#[track_caller]` (here and
+/// on the methods that call it) points it at the call. Inlined, it is a few compares on the hot
+/// path; the message is built out of line.
+#[doc(hidden)]
+#[inline(always)]
+#[track_caller]
+pub fn check_lengths(n: usize, theta: usize, rotors: &[(&str, usize)], springs: &[(&str, usize)]) {
+    if theta != n || rotors.iter().any(|r| r.1 != n) || springs.iter().any(|s| s.1 + 1 != n) {
+        wrong_length(n, theta, rotors, springs);
+    }
+}
+
+/// The panic of [`check_lengths`]: the first slice of the wrong length, by name.
+#[cold]
+#[inline(never)]
+#[track_caller]
+fn wrong_length(n: usize, theta: usize, rotors: &[(&str, usize)], springs: &[(&str, usize)]) -> ! {
+    use chain_geometry::Counted;
+    let theta = [("theta", theta)];
+    let per_rotor = theta.iter().chain(rotors).map(|&(s, l)| (s, l, n, "rotor"));
+    let per_spring = springs.iter().map(|&(s, l)| (s, l, n - 1, "spring"));
+    let (name, len, count, what) =
+        per_rotor.chain(per_spring).find(|&(_, l, c, _)| l != c).unwrap_or(("a slice", 0, n, "rotor"));
+    panic!(
+        "{name} has {}, the chain has {} (one value per {what})",
+        Counted(len, "value"),
+        Counted(count, what)
+    )
+}

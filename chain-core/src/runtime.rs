@@ -7,7 +7,7 @@
 use alloc::collections::BTreeSet;
 use alloc::vec::Vec;
 
-use chain_geometry::{Counted, IndexKind, Key, ParameterError};
+use chain_geometry::{IndexKind, Key, ParameterError};
 
 use crate::kernel;
 use crate::model::ChainModel;
@@ -180,36 +180,12 @@ impl RuntimeChain {
         }
     }
 
-    /// Panics unless `theta` and every slice of `rotors` hold one value per rotor and every slice
-    /// of `springs` one per spring: a programming error of the caller, so the message names the
-    /// slice and both counts, and `#[track_caller]` (here and on the `ChainModel` methods) points
-    /// it at the call. Inlined, it is a few compares on the hot path; the message is built out of
-    /// line.
+    /// [`crate::model::check_lengths`] for this chain (inlined: a few compares on the hot path).
     #[inline(always)]
     #[track_caller]
     fn check_lengths(&self, theta: &[f64], rotors: &[(&str, usize)], springs: &[(&str, usize)]) {
-        let n = self.rotor_lengths.len();
-        if theta.len() != n || rotors.iter().any(|r| r.1 != n) || springs.iter().any(|s| s.1 + 1 != n) {
-            wrong_length(n, theta.len(), rotors, springs);
-        }
+        crate::model::check_lengths(self.rotor_lengths.len(), theta.len(), rotors, springs);
     }
-}
-
-/// The panic of [`RuntimeChain::check_lengths`]: the first slice of the wrong length, by name.
-#[cold]
-#[inline(never)]
-#[track_caller]
-fn wrong_length(n: usize, theta: usize, rotors: &[(&str, usize)], springs: &[(&str, usize)]) -> ! {
-    let theta = [("theta", theta)];
-    let per_rotor = theta.iter().chain(rotors).map(|&(s, l)| (s, l, n, "rotor"));
-    let per_spring = springs.iter().map(|&(s, l)| (s, l, n - 1, "spring"));
-    let (name, len, count, what) =
-        per_rotor.chain(per_spring).find(|&(_, l, c, _)| l != c).unwrap_or(("a slice", 0, n, "rotor"));
-    panic!(
-        "{name} has {}, the chain has {} (one value per {what})",
-        Counted(len, "value"),
-        Counted(count, what)
-    )
 }
 
 /// Runs kernel driver `$driver` on `$theta` with the kernel `$kernel` of the chain's law. Each

@@ -309,33 +309,89 @@ fn unrolled_fused_bodies(n: usize, g: &Graph, out: &ChainOutputs) -> FusedBodies
     }
 }
 
-/// The fused methods of `ChainModel` with the given bodies: one place for their signatures.
-fn fused_trait_items(
-    energy_and_gradient: TokenStream,
-    energy_gradient_stiffness: TokenStream,
-) -> TokenStream {
+/// A slice method of `ChainModel`: its name, the slices after `theta` that hold one value per
+/// rotor, then those that hold one per spring (the parameters in that order), and whether it
+/// returns the energy.
+struct SliceMethod {
+    name: &'static str,
+    per_rotor: &'static [&'static str],
+    per_spring: &'static [&'static str],
+    energy: bool,
+}
+
+/// Every slice method the macro implements, in the order of the trait.
+const SLICE_METHODS: [SliceMethod; 10] = [
+    SliceMethod { name: "energy", per_rotor: &[], per_spring: &[], energy: true },
+    SliceMethod { name: "gradient_into", per_rotor: &["out"], per_spring: &[], energy: false },
+    SliceMethod { name: "tangent_stiffness_into", per_rotor: &["diag"], per_spring: &["off"], energy: false },
+    SliceMethod { name: "energy_and_gradient_into", per_rotor: &["out"], per_spring: &[], energy: true },
+    SliceMethod {
+        name: "energy_gradient_stiffness_into",
+        per_rotor: &["grad", "diag"],
+        per_spring: &["off"],
+        energy: true,
+    },
+    SliceMethod {
+        name: "material_stiffness_into",
+        per_rotor: &["diag"],
+        per_spring: &["off"],
+        energy: false,
+    },
+    SliceMethod { name: "stress_matrix_into", per_rotor: &["diag"], per_spring: &["off"], energy: false },
+    SliceMethod { name: "spring_lengths_into", per_rotor: &[], per_spring: &["out"], energy: false },
+    SliceMethod { name: "tensions_into", per_rotor: &[], per_spring: &["out"], energy: false },
+    SliceMethod { name: "compatibility_into", per_rotor: &[], per_spring: &["left", "right"], energy: false },
+];
+
+/// The slice method `name` of a chain of `n` rotors with `body` (a block): its signature, and
+/// the check that every slice has one value per rotor or per spring, as `RuntimeChain`'s methods
+/// check them (the panic names the slice and the counts, at the caller's line). Like
+/// `RuntimeChain`'s, `energy_and_gradient_into` goes without `#[track_caller]`, the hot path of
+/// the integrators (docs/benchmarks.md).
+fn slice_method(n: usize, name: &str, body: TokenStream) -> TokenStream {
+    let p = private();
+    let method = SLICE_METHODS.iter().find(|m| m.name == name).expect("a slice method of ChainModel");
+    let ident = format_ident!("{name}");
+    let slices: Vec<Ident> =
+        method.per_rotor.iter().chain(method.per_spring).map(|s| format_ident!("{s}")).collect();
+    let (rotors, springs) = (
+        method.per_rotor.iter().map(|s| (*s, format_ident!("{s}"))),
+        method.per_spring.iter().map(|s| (*s, format_ident!("{s}"))),
+    );
+    let (rotor_names, rotor_slices): (Vec<_>, Vec<_>) = rotors.unzip();
+    let (spring_names, spring_slices): (Vec<_>, Vec<_>) = springs.unzip();
+    let returns = method.energy.then(|| quote!(-> f64));
+    let track = (name != "energy_and_gradient_into").then(|| quote!(#[track_caller]));
     quote! {
-        fn energy_and_gradient_into(&self, theta: &[f64], out: &mut [f64]) -> f64 #energy_and_gradient
-        fn energy_gradient_stiffness_into(
-            &self,
-            theta: &[f64],
-            grad: &mut [f64],
-            diag: &mut [f64],
-            off: &mut [f64],
-        ) -> f64 #energy_gradient_stiffness
+        #track
+        fn #ident(&self, theta: &[f64] #(, #slices: &mut [f64])*) #returns {
+            #p::check_lengths(
+                #n,
+                theta.len(),
+                &[#((#rotor_names, #rotor_slices.len())),*],
+                &[#((#spring_names, #spring_slices.len())),*],
+            );
+            #body
+        }
     }
 }
 
 /// The unrolled strategy's fused trait methods: copies of the inherent results.
-fn unrolled_fused_trait_bodies(ident: &Ident) -> TokenStream {
+fn unrolled_fused_trait_bodies(ident: &Ident, n: usize) -> TokenStream {
     let p = private();
     let theta = quote!(#p::as_array(theta));
-    fused_trait_items(
+    let eg = slice_method(
+        n,
+        "energy_and_gradient_into",
         quote!({
             let (energy, grad) = #ident::energy_and_gradient(self, #theta);
             out.copy_from_slice(&grad);
             energy
         }),
+    );
+    let egk = slice_method(
+        n,
+        "energy_gradient_stiffness_into",
         quote!({
             let (energy, g, t) = #ident::energy_gradient_stiffness(self, #theta);
             grad.copy_from_slice(&g);
@@ -343,7 +399,8 @@ fn unrolled_fused_trait_bodies(ident: &Ident) -> TokenStream {
             off.copy_from_slice(&t.off);
             energy
         }),
-    )
+    );
+    quote!(#eg #egk)
 }
 
 /// The looped strategy's fused methods: the trait's slice methods call the fused drivers, the
@@ -354,7 +411,11 @@ fn looped_fused_bodies(model: &Model) -> (FusedBodies, TokenStream) {
     let eg = looped_call(model, "energy_and_gradient", "EnergyGradient", quote!(out));
     let egk =
         looped_call(model, "energy_gradient_stiffness", "EnergyGradientHessian", quote!(grad, diag, off));
-    let trait_bodies = fused_trait_items(eg, egk);
+    let trait_bodies = [
+        slice_method(n, "energy_and_gradient_into", eg),
+        slice_method(n, "energy_gradient_stiffness_into", egk),
+    ];
+    let trait_bodies = quote!(#(#trait_bodies)*);
     let t = quote!(#p::ChainModel);
     let (fits_eg, fits_egk) = fused_fit(n);
     let bodies = FusedBodies {
@@ -493,16 +554,18 @@ fn looped_bodies(model: &Model) -> (Bodies, TokenStream) {
     let length = call("per_spring", "Length", quote!(out));
     let tension = call("per_spring", "Tension", quote!(out));
     let compatibility = call("per_spring_pairs", "Compatibility", quote!(left, right));
-    let trait_bodies = quote! {
-        fn energy(&self, theta: &[f64]) -> f64 #energy
-        fn gradient_into(&self, theta: &[f64], out: &mut [f64]) #gradient
-        fn tangent_stiffness_into(&self, theta: &[f64], diag: &mut [f64], off: &mut [f64]) #hessian
-        fn material_stiffness_into(&self, theta: &[f64], diag: &mut [f64], off: &mut [f64]) #material
-        fn stress_matrix_into(&self, theta: &[f64], diag: &mut [f64], off: &mut [f64]) #stress
-        fn spring_lengths_into(&self, theta: &[f64], out: &mut [f64]) #length
-        fn tensions_into(&self, theta: &[f64], out: &mut [f64]) #tension
-        fn compatibility_into(&self, theta: &[f64], left: &mut [f64], right: &mut [f64]) #compatibility
-    };
+    let trait_bodies = [
+        ("energy", energy),
+        ("gradient_into", gradient),
+        ("tangent_stiffness_into", hessian),
+        ("material_stiffness_into", material),
+        ("stress_matrix_into", stress),
+        ("spring_lengths_into", length),
+        ("tensions_into", tension),
+        ("compatibility_into", compatibility),
+    ]
+    .map(|(name, body)| slice_method(n, name, body));
+    let trait_bodies = quote!(#(#trait_bodies)*);
     let t = quote!(#p::ChainModel);
     // One local, the result itself, filled in place.
     let blocks = |method: TokenStream| {
@@ -550,43 +613,35 @@ fn looped_bodies(model: &Model) -> (Bodies, TokenStream) {
 }
 
 /// The unrolled strategy's trait methods: copies of the inherent (array) results.
-fn unrolled_trait_bodies(ident: &Ident) -> TokenStream {
+fn unrolled_trait_bodies(ident: &Ident, n: usize) -> TokenStream {
     let p = private();
     let theta = quote!(#p::as_array(theta));
-    quote! {
-        fn energy(&self, theta: &[f64]) -> f64 {
-            #ident::energy(self, #theta)
-        }
-        fn gradient_into(&self, theta: &[f64], out: &mut [f64]) {
-            out.copy_from_slice(&#ident::gradient(self, #theta));
-        }
-        fn tangent_stiffness_into(&self, theta: &[f64], diag: &mut [f64], off: &mut [f64]) {
-            let t = #ident::tangent_stiffness(self, #theta);
+    let blocks = |method: TokenStream| {
+        quote!({
+            let t = #ident::#method(self, #theta);
             diag.copy_from_slice(&t.diag);
             off.copy_from_slice(&t.off);
-        }
-        fn material_stiffness_into(&self, theta: &[f64], diag: &mut [f64], off: &mut [f64]) {
-            let t = #ident::material_stiffness(self, #theta);
-            diag.copy_from_slice(&t.diag);
-            off.copy_from_slice(&t.off);
-        }
-        fn stress_matrix_into(&self, theta: &[f64], diag: &mut [f64], off: &mut [f64]) {
-            let t = #ident::stress_matrix(self, #theta);
-            diag.copy_from_slice(&t.diag);
-            off.copy_from_slice(&t.off);
-        }
-        fn spring_lengths_into(&self, theta: &[f64], out: &mut [f64]) {
-            out.copy_from_slice(&#ident::spring_lengths(self, #theta));
-        }
-        fn tensions_into(&self, theta: &[f64], out: &mut [f64]) {
-            out.copy_from_slice(&#ident::tensions(self, #theta));
-        }
-        fn compatibility_into(&self, theta: &[f64], left: &mut [f64], right: &mut [f64]) {
-            let c = #ident::compatibility(self, #theta);
-            left.copy_from_slice(&c.left);
-            right.copy_from_slice(&c.right);
-        }
-    }
+        })
+    };
+    let methods = [
+        ("energy", quote!({ #ident::energy(self, #theta) })),
+        ("gradient_into", quote!({ out.copy_from_slice(&#ident::gradient(self, #theta)); })),
+        ("tangent_stiffness_into", blocks(quote!(tangent_stiffness))),
+        ("material_stiffness_into", blocks(quote!(material_stiffness))),
+        ("stress_matrix_into", blocks(quote!(stress_matrix))),
+        ("spring_lengths_into", quote!({ out.copy_from_slice(&#ident::spring_lengths(self, #theta)); })),
+        ("tensions_into", quote!({ out.copy_from_slice(&#ident::tensions(self, #theta)); })),
+        (
+            "compatibility_into",
+            quote!({
+                let c = #ident::compatibility(self, #theta);
+                left.copy_from_slice(&c.left);
+                right.copy_from_slice(&c.right);
+            }),
+        ),
+    ]
+    .map(|(name, body)| slice_method(n, name, body));
+    quote!(#(#methods)*)
 }
 
 /// The run-time rules of `check()`: `chain-geometry`'s, in `f64` (the values of an `f32` chain
@@ -759,9 +814,9 @@ fn emit(item: &ItemStruct, model: &Model) -> TokenStream {
         let fused = (float == Float::F64).then(|| unrolled_fused_bodies(n, &g, &out));
         (
             unrolled_bodies(model, &g, &out),
-            unrolled_trait_bodies(ident),
+            unrolled_trait_bodies(ident, model.n),
             fused,
-            unrolled_fused_trait_bodies(ident),
+            unrolled_fused_trait_bodies(ident, model.n),
         )
     } else {
         let (bodies, trait_bodies) = looped_bodies(model);

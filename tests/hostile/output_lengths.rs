@@ -1,6 +1,6 @@
-//! A slice of the wrong length given to a `ChainModel` method of `RuntimeChain` is a programming
-//! error, so it panics; the panic names the slice and both counts, and points at the caller's line
-//! (not into the library).
+//! A slice of the wrong length given to a `ChainModel` method of `RuntimeChain` or of a
+//! `#[rotor_chain]` chain is a programming error, so it panics; the panic names the slice and both
+//! counts, and points at the caller's line (not into the library).
 
 use std::panic::{self, AssertUnwindSafe};
 use std::sync::Mutex;
@@ -90,4 +90,99 @@ fn a_wrong_slice_length_names_the_slice_and_points_at_the_caller() {
     let mut gradient = zeros(6);
     chain.gradient_into(&theta, &mut gradient);
     assert!(gradient.iter().all(|g| g.is_finite()) && gradient.iter().any(|&g| g != 0.0));
+}
+
+/// Six rotors in straight-line code (`n <= unroll`).
+#[rotor_chain(n = 6, r = 0.8, theta_bar = 0.58, k = 1.0e4)]
+struct Unrolled;
+
+/// Six rotors through the kernel loop (`unroll = 0`).
+#[rotor_chain(n = 6, r = 0.8, theta_bar = 0.58, k = 1.0e4, unroll = 0)]
+struct Looped;
+
+/// Every slice method of a `#[rotor_chain]` chain checks its slices as `RuntimeChain`'s do, with
+/// the same words, at the caller's line, whichever way its code is generated.
+fn check_macro_chain(chain: &impl ChainModel) {
+    let theta = [0.3; 6];
+    let cases: Vec<Case> = vec![
+        (
+            Box::new(|| {
+                chain.energy(&theta[..5]);
+            }),
+            "theta has 5 values, the chain has 6 rotors (one value per rotor)",
+        ),
+        (
+            Box::new(|| chain.gradient_into(&[0.3; 7], &mut zeros(6))),
+            "theta has 7 values, the chain has 6 rotors (one value per rotor)",
+        ),
+        (
+            Box::new(|| chain.gradient_into(&theta, &mut zeros(5))),
+            "out has 5 values, the chain has 6 rotors (one value per rotor)",
+        ),
+        (
+            Box::new(|| chain.tangent_stiffness_into(&theta, &mut zeros(6), &mut zeros(4))),
+            "off has 4 values, the chain has 5 springs (one value per spring)",
+        ),
+        (
+            Box::new(|| chain.material_stiffness_into(&theta, &mut zeros(7), &mut zeros(5))),
+            "diag has 7 values, the chain has 6 rotors (one value per rotor)",
+        ),
+        (
+            Box::new(|| chain.stress_matrix_into(&theta, &mut zeros(6), &mut zeros(6))),
+            "off has 6 values, the chain has 5 springs (one value per spring)",
+        ),
+        (
+            Box::new(|| chain.spring_lengths_into(&theta, &mut zeros(6))),
+            "out has 6 values, the chain has 5 springs (one value per spring)",
+        ),
+        (
+            Box::new(|| chain.tensions_into(&theta, &mut zeros(1))),
+            "out has 1 value, the chain has 5 springs (one value per spring)",
+        ),
+        (
+            Box::new(|| chain.compatibility_into(&theta, &mut zeros(5), &mut zeros(6))),
+            "right has 6 values, the chain has 5 springs (one value per spring)",
+        ),
+        (
+            Box::new(|| {
+                chain.energy_and_gradient_into(&theta, &mut zeros(60));
+            }),
+            "out has 60 values, the chain has 6 rotors (one value per rotor)",
+        ),
+        (
+            Box::new(|| {
+                chain.energy_gradient_stiffness_into(&theta, &mut zeros(0), &mut zeros(6), &mut zeros(5));
+            }),
+            "grad has 0 values, the chain has 6 rotors (one value per rotor)",
+        ),
+    ];
+    for (call, expected) in cases {
+        let (message, file) = panic_of(call);
+        assert_eq!(message, expected);
+        assert!(file.ends_with("output_lengths.rs"), "{expected}: the panic points at {file}");
+    }
+    // The right lengths give what the chain's array methods give.
+    let (mut g, mut d, mut o) = (zeros(6), zeros(6), zeros(5));
+    let e = chain.energy_gradient_stiffness_into(&theta, &mut g, &mut d, &mut o);
+    assert!(e > 0.0 && g.iter().any(|&x| x != 0.0) && d.iter().all(|x| x.is_finite()));
+}
+
+#[test]
+fn a_macro_chain_names_a_wrong_slice_as_the_runtime_chain_does() {
+    check_macro_chain(&Unrolled);
+    check_macro_chain(&Looped);
+    // The same values from both strategies and the runtime chain, through the trait.
+    let runtime = RuntimeChain::builder(6, 0.8, 1.0e4, 0.58).build().unwrap();
+    let theta = [0.1, 0.5, -0.2, 0.58, 0.3, -0.58];
+    let gradient = |c: &dyn ChainModel| {
+        let mut g = zeros(6);
+        c.gradient_into(&theta, &mut g);
+        g
+    };
+    let reference = gradient(&runtime);
+    for g in [gradient(&Unrolled), gradient(&Looped)] {
+        for (a, b) in g.iter().zip(&reference) {
+            assert!((a - b).abs() <= 1e-9 * b.abs().max(1.0), "{a} vs {b}");
+        }
+    }
 }
