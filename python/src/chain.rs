@@ -355,7 +355,8 @@ impl Chain {
 
     /// The zero-energy kink centred at ``centre`` (a rotor index, fractional allowed, in
     /// ``[0, n - 1]``), built outward from its centre by the branch solve: ``+theta_bar`` on the
-    /// left, ``-theta_bar`` on the right. Returns the angles (radians).
+    /// left, ``-theta_bar`` on the right. Returns the angles (radians). At ``centre = 0`` or
+    /// ``n - 1`` the end rotor stands vertical and the chain is one domain (no wall left inside).
     fn kink(&self, py: Python<'_>, centre: f64) -> PyResult<Py<PyArray1<f64>>> {
         crate::statics::kink(self, py, centre)
     }

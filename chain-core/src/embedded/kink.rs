@@ -21,7 +21,9 @@ use super::{EmbeddedError, FloatChain, Real};
 const BISECTION_STEPS: usize = 200;
 
 /// Writes the zero-energy kink of `model` centred at `centre` (in rotor indices,
-/// `0 <= centre <= n - 1`) into `theta`, which must hold one angle per rotor.
+/// `0 <= centre <= n - 1`) into `theta`, which must hold one angle per rotor. At `centre = 0` or
+/// `n - 1` the wall sits on the end rotor, which stands vertical: the wall has reached the end and
+/// the chain is one domain (as for the statics' `kink`).
 pub fn kink_into<T: Real, M: FloatChain<T> + ?Sized>(
     model: &M,
     centre: T,
