@@ -67,12 +67,10 @@ impl Defect {
     /// Every defect, in the order of the docs.
     pub const ALL: [Defect; 2] = [Defect::Kink, Defect::Antikink];
 
-    /// The name used on the command line and in the results file.
+    /// The name used on the command line and in the results file: its charge's, `kink` or
+    /// `antikink`.
     pub fn name(self) -> &'static str {
-        match self {
-            Defect::Kink => "kink",
-            Defect::Antikink => "antikink",
-        }
+        self.charge().name()
     }
 
     /// The wall charge of this defect.

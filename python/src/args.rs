@@ -186,13 +186,10 @@ pub fn choice<T: Copy>(what: &str, value: &str, choices: &[(&str, T)]) -> PyResu
     })
 }
 
+/// The wall charge of a defect's name (`kink` or `antikink`, chain-sweep's `Defect`).
 pub fn charge(defect: &str) -> PyResult<Charge> {
-    choice("defect", defect, &[("kink", Charge::Kink), ("antikink", Charge::Antikink)])
-}
-
-pub fn charge_name(charge: Charge) -> &'static str {
-    match charge {
-        Charge::Kink => "kink",
-        Charge::Antikink => "antikink",
-    }
+    use core::str::FromStr;
+    chain_sweep::scattering::Defect::from_str(defect)
+        .map(|d| d.charge())
+        .map_err(|e| value_error(e.to_string()))
 }

@@ -8,7 +8,7 @@ use rotor_chain::dynamics::launch::{self as ln, Direction};
 use rotor_chain::dynamics::run::{self as rn, ABSORBING_ENDS, Method, RunOptions};
 use rotor_chain::dynamics::scatter::{self as sc, ScatterSetup};
 
-use crate::args::{array, charge, charge_name, choice, matrix, rows};
+use crate::args::{array, charge, choice, matrix, rows};
 use crate::chain::Chain;
 use crate::errors::{self, value_error};
 use crate::pickle::{self, pickle_fields};
@@ -91,7 +91,7 @@ pub fn launch(
         omega: array(py, l.state.omega),
         mode: array(py, l.mode),
         position: l.position,
-        defect: charge_name(l.charge).to_owned(),
+        defect: l.charge.name().to_owned(),
     })
 }
 
@@ -174,7 +174,7 @@ fn run_of(py: Python<'_>, run: rn::Run) -> Run {
         .collect();
     let walls = snapshots
         .iter()
-        .map(|s| s.walls.iter().map(|w| (w.position, charge_name(w.charge).to_owned())).collect())
+        .map(|s| s.walls.iter().map(|w| (w.position, w.charge.name().to_owned())).collect())
         .collect();
     let n = run.final_state.theta.len();
     let space_time = (!run.space_time.times.is_empty()).then(|| rows(py, &run.space_time.theta, n));

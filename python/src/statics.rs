@@ -10,7 +10,7 @@ use rotor_chain::statics::counting;
 use rotor_chain::statics::modes::{self as md, ModeKind, ModeOptions};
 use rotor_chain::statics::walls;
 
-use crate::args::{AtMost, array, charge_name, choice, rows};
+use crate::args::{AtMost, array, choice, rows};
 use crate::chain::Chain;
 use crate::errors;
 use crate::pickle::{self, pickle_fields};
@@ -356,5 +356,5 @@ pub fn maxwell_calladine(
 #[pyfunction]
 pub fn domain_walls(theta: &Bound<'_, PyAny>) -> PyResult<Vec<(f64, &'static str)>> {
     let theta = crate::args::finite_floats(theta, "theta")?;
-    Ok(walls::domain_walls(&theta).into_iter().map(|w| (w.position, charge_name(w.charge))).collect())
+    Ok(walls::domain_walls(&theta).into_iter().map(|w| (w.position, w.charge.name())).collect())
 }
