@@ -11,8 +11,9 @@
 //! length `n`, slices of spring quantities `n - 1`.
 //!
 //! # Panics
-//! The `*_into` methods panic if a slice has the wrong length: that is a programming error, not
-//! a property of the model.
+//! The slice methods panic if a slice has the wrong length: that is a programming error, not a
+//! property of the model. Both kinds of chain check with [`check_lengths`], whose message names
+//! the slice and both counts; an implementation of your own can call it too.
 
 use crate::branch;
 use crate::error::BranchError;
@@ -210,7 +211,12 @@ pub(crate) fn batch_count(n: usize, thetas: &[f64], out: &[f64], energies: Optio
 /// 60 values, the chain has 59 springs (one value per spring)"), and `#[track_caller]` (here and
 /// on the methods that call it) points it at the call. Inlined, it is a few compares on the hot
 /// path; the message is built out of line.
-#[doc(hidden)]
+///
+/// ```should_panic
+/// // A chain of 6 rotors: `diag` holds one value per rotor, `off` one per spring.
+/// rotor_chain::model::check_lengths(6, 6, &[("diag", 6)], &[("off", 6)]);
+/// // panics: "off has 6 values, the chain has 5 springs (one value per spring)"
+/// ```
 #[inline(always)]
 #[track_caller]
 pub fn check_lengths(n: usize, theta: usize, rotors: &[(&str, usize)], springs: &[(&str, usize)]) {
