@@ -152,6 +152,37 @@ fn runs_too_long_for_their_budgets_are_refused_before_they_start() {
 }
 
 #[test]
+fn a_space_time_image_beyond_its_budget_is_refused_before_the_run() {
+    use chain_core::dynamics::run::MAX_SPACE_TIME_VALUES;
+    // 2 000 rotors and 100 001 outputs: 2.0e8 angles, past 2^27 = 1.34e8 (1.6 GB of f64).
+    let long = RuntimeChain::builder(2000, 0.8, 1.0e4, 0.28).build().unwrap();
+    let options =
+        RunOptions { t_max: 100.0, output_interval: 1e-3, space_time: true, ..RunOptions::default() };
+    match quickly("space-time budget", || run(&long, options)) {
+        Err(DynamicsError::Integrate(IntegrateError::SpaceTimeBudget {
+            outputs,
+            rotors,
+            values,
+            budget,
+        })) => {
+            assert_eq!((outputs, rotors, budget), (100_001, 2000, 1 << 27));
+            assert_eq!(values, 100_001.0 * 2000.0);
+            assert!(values > MAX_SPACE_TIME_VALUES as f64);
+        }
+        other => panic!("{other:?}"),
+    }
+    // Without the image the same outputs are within every budget (the run is cut short here).
+    let options = RunOptions { space_time: false, ..options };
+    let mut outputs = 0;
+    propagate(&long, at_rest(&long), &options, &mut |_| {
+        outputs += 1;
+        outputs == 3
+    })
+    .unwrap();
+    assert_eq!(outputs, 3);
+}
+
+#[test]
 fn bad_times_are_refused() {
     let model = paper();
     for (t_max, interval) in

@@ -437,21 +437,30 @@ impl Chain {
 
     /// Integrate ``M r_i^2 thetadd_i = -dV/dtheta_i - gamma M r_i^2 thetadot_i`` from ``(theta,
     /// omega)`` at time 0 to ``t_max``, recording at every ``output_interval`` the time, the
-    /// kinetic energy and the domain walls (Appendix C).
+    /// kinetic energy and the domain walls (Appendix C). The outputs are evenly spaced, so the
+    /// run ends at the first output at or past ``t_max`` (``t_max = 1``, ``output_interval =
+    /// 0.3`` ends at 1.2; ``Run.time`` says where). Ctrl-C stops the run at its next output and
+    /// raises ``KeyboardInterrupt``.
     ///
     /// Args:
-    ///     method: ``"verlet"`` (velocity Verlet, step ``dt``; default a tenth of the stability
-    ///         limit) or ``"dop853"`` (adaptive, tolerances ``rtol``, ``atol``).
+    ///     method: ``"verlet"`` (velocity Verlet) or ``"dop853"`` (adaptive, tolerances ``rtol``
+    ///         (default 1e-10) and ``atol`` (1e-11)). Options of the other method are refused
+    ///         (``ValueError``), so a setting never goes unused unnoticed.
+    ///     dt: Verlet's largest step (default a tenth of the stability limit). Each output
+    ///         interval is cut into a whole number of equal steps, each at most ``dt``:
+    ///         ``dt = 0.03`` with ``output_interval = 0.01`` steps at 0.01.
     ///     damping: viscous rate ``gamma`` (``1/t``), >= 0.
     ///     absorbing_ends: a damping sponge on the last 10 rotors at each end.
-    ///     space_time: keep the angles at every output (``Run.space_time``).
+    ///     space_time: keep the angles at every output (``Run.space_time``; at most 2**27 angles,
+    ///         outputs times rotors).
     ///     energy_limit: the run stops with ``IntegrateError`` if the energy changes by more than
     ///         this fraction.
     ///
     /// Raises:
-    ///     IntegrateError: a bad option, a non-finite state, a broken energy limit or budget.
+    ///     IntegrateError: a bad option, a non-finite state, a broken energy limit or budget
+    ///         (``OutputBudget``, ``StepBudget``, ``SpaceTimeBudget``).
     #[pyo3(signature = (theta, omega, *, t_max = 20.0, output_interval = 0.01, method = "verlet", dt = None,
-                        rtol = 1e-10, atol = 1e-11, damping = 0.0, absorbing_ends = false, space_time = false,
+                        rtol = None, atol = None, damping = 0.0, absorbing_ends = false, space_time = false,
                         energy_limit = 0.1))]
     #[allow(clippy::too_many_arguments)]
     fn propagate(
@@ -463,8 +472,8 @@ impl Chain {
         output_interval: f64,
         method: &str,
         dt: Option<f64>,
-        rtol: f64,
-        atol: f64,
+        rtol: Option<f64>,
+        atol: Option<f64>,
         damping: f64,
         absorbing_ends: bool,
         space_time: bool,
@@ -521,7 +530,7 @@ impl Chain {
             0.01,
             method,
             dt,
-            (1e-10, 1e-11),
+            (None, None),
             0.0,
             absorbing_ends,
             space_time,

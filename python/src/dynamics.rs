@@ -18,21 +18,39 @@ fn direction(name: &str) -> PyResult<Direction> {
 }
 
 /// The run options of `Chain.propagate` and `Chain.scatter`; the Rust run checks each by name
-/// (a non-finite `t_max` is `InvalidOption`, a negative one `EndBeforeStart`).
+/// (a non-finite `t_max` is `InvalidOption`, a negative one `EndBeforeStart`). An option of the
+/// other method (`dt` with `"dop853"`, `rtol` or `atol` with `"verlet"`) is a `ValueError`: it
+/// would go unused.
 #[allow(clippy::too_many_arguments)]
 pub fn run_options(
     t_max: f64,
     output_interval: f64,
     method: &str,
     dt: Option<f64>,
-    (rtol, atol): (f64, f64),
+    (rtol, atol): (Option<f64>, Option<f64>),
     damping: f64,
     absorbing_ends: bool,
     space_time: bool,
     energy_limit: f64,
 ) -> PyResult<RunOptions> {
     let adaptive = choice("method", method, &[("verlet", false), ("dop853", true)])?;
-    let method = if adaptive { Method::Dop853 { rtol, atol } } else { Method::Verlet };
+    let method = if adaptive {
+        if let Some(dt) = dt {
+            return Err(value_error(format!(
+                "dt = {dt:?} applies to method='verlet' only (dop853 chooses its steps by rtol and atol)"
+            )));
+        }
+        Method::Dop853 { rtol: rtol.unwrap_or(DEFAULT_RTOL), atol: atol.unwrap_or(DEFAULT_ATOL) }
+    } else {
+        if let Some((name, value)) =
+            [("rtol", rtol), ("atol", atol)].into_iter().find_map(|(n, v)| Some((n, v?)))
+        {
+            return Err(value_error(format!(
+                "{name} = {value:?} applies to method='dop853' only (verlet takes steps of at most dt)"
+            )));
+        }
+        Method::Verlet
+    };
     Ok(RunOptions {
         t_max,
         output_interval,
@@ -45,6 +63,10 @@ pub fn run_options(
         ..RunOptions::default()
     })
 }
+
+/// DOP853's tolerances when `rtol` / `atol` are not given.
+const DEFAULT_RTOL: f64 = 1e-10;
+const DEFAULT_ATOL: f64 = 1e-11;
 
 /// A defect set in motion (``Chain.launch``).
 #[pyclass(frozen, get_all, module = "rotor_chain._native")]
@@ -206,10 +228,39 @@ pub fn propagate(
     options: RunOptions,
 ) -> PyResult<Run> {
     let state = State { time: 0.0, theta, omega };
+    let mut interrupt = Interrupt::default();
     let run = py
-        .detach(|| rn::propagate(&chain.chain, state, &options, &mut |_| false))
+        .detach(|| rn::propagate(&chain.chain, state, &options, &mut |_| interrupt.pending()))
         .map_err(|e| errors::dynamics(py, &e))?;
+    interrupt.raise()?;
     Ok(run_of(py, run))
+}
+
+/// Python's signals (Ctrl-C) seen from a run without the GIL: at an output, at most every
+/// 50 ms, the GIL is taken to run the signal handlers; a `KeyboardInterrupt` (or any error they
+/// raise) stops the run and is raised when it returns.
+#[derive(Default)]
+struct Interrupt {
+    last: Option<std::time::Instant>,
+    error: Option<PyErr>,
+}
+
+impl Interrupt {
+    /// Whether a signal handler raised: the run's stop question.
+    fn pending(&mut self) -> bool {
+        let now = std::time::Instant::now();
+        if self.last.is_some_and(|t| now.duration_since(t) < std::time::Duration::from_millis(50)) {
+            return false;
+        }
+        self.last = Some(now);
+        self.error = Python::attach(|py| py.check_signals()).err();
+        self.error.is_some()
+    }
+
+    /// The signal handler's error, if one stopped the run.
+    fn raise(self) -> PyResult<()> {
+        self.error.map_or(Ok(()), Err)
+    }
 }
 
 /// The outcome of ``Chain.scatter`` (paper Sec. VI).

@@ -236,6 +236,13 @@ pub fn integrate(py: Python<'_>, e: &IntegrateError) -> PyErr {
         IntegrateError::OutputBudget { outputs, budget } => {
             Details { variant: "OutputBudget", ..d }.f("outputs", outputs).f("budget", budget)
         }
+        IntegrateError::SpaceTimeBudget { outputs, rotors, values, budget } => {
+            Details { variant: "SpaceTimeBudget", ..d }
+                .f("outputs", outputs)
+                .f("rotors", rotors)
+                .f("values", values)
+                .f("budget", budget)
+        }
         IntegrateError::EnergyNotConserved { time, energy, initial, relative, limit } => {
             Details { variant: "EnergyNotConserved", ..d }
                 .f("time", time)

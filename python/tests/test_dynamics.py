@@ -112,6 +112,71 @@ def test_dynamics_errors_carry_the_numbers():
     assert (info.value.variant, info.value.kind, info.value.index, info.value.count) == ("IndexOutOfRange", "spring", 60, 59)
 
 
+def test_options_of_the_other_method_are_refused():
+    c = rc.Chain(30, 0.8, 1.0e4, 0.28)
+    theta, omega = c.kink(15.0), np.zeros(30)
+    with pytest.raises(ValueError, match="dt = 0.001 applies to method='verlet' only"):
+        c.propagate(theta, omega, t_max=0.1, method="dop853", dt=1e-3)
+    for name in ("rtol", "atol"):
+        with pytest.raises(ValueError, match=f"{name} = -5.0 applies to method='dop853' only"):
+            c.propagate(theta, omega, t_max=0.1, **{name: -5.0})
+    # Each with its own method runs, and a bad tolerance is DOP853's InvalidOption.
+    assert c.propagate(theta, omega, t_max=0.1, method="dop853", rtol=1e-8, atol=1e-9).time >= 0.1
+    assert c.propagate(theta, omega, t_max=0.1, dt=1e-3).time >= 0.1
+    with pytest.raises(rc.IntegrateError) as info:
+        c.propagate(theta, omega, t_max=0.1, method="dop853", atol=-1.0)
+    assert (info.value.variant, info.value.name) == ("InvalidOption", "atol")
+
+
+def test_a_run_ends_at_the_first_output_at_or_past_t_max_with_steps_of_at_most_dt():
+    c = rc.Chain(30, 0.8, 1.0e4, 0.28)
+    theta, omega = c.kink(15.0), np.zeros(30)
+    run = c.propagate(theta, omega, t_max=1.0, output_interval=0.3)
+    assert run.times[-1] == pytest.approx(1.2) and run.time == pytest.approx(1.2)
+    assert np.allclose(np.diff(run.times), 0.3)
+    # dt = 0.03 over intervals of 0.01: one step of 0.01 per output (100 for t = 1); dt = 0.004:
+    # three steps of 1/300 per output.
+    assert c.propagate(theta, omega, t_max=1.0, dt=0.03).steps == 100
+    assert c.propagate(theta, omega, t_max=1.0, dt=0.004).steps == 300
+
+
+def test_a_space_time_image_beyond_its_budget_is_an_error_before_the_run():
+    c = rc.Chain(2000, 0.8, 1.0e4, 0.28)
+    with pytest.raises(rc.IntegrateError) as info:
+        c.propagate(c.kink(1000.0), np.zeros(2000), t_max=100.0, output_interval=1e-3, space_time=True)
+    e = info.value
+    assert (e.variant, e.outputs, e.rotors, e.budget) == ("SpaceTimeBudget", 100_001, 2000, 2**27)
+    assert e.values == 100_001 * 2000 and "leave space_time off" in str(e)
+
+
+def test_ctrl_c_stops_a_run_at_its_next_output():
+    import os
+    import signal
+    import threading
+    import time
+
+    class Stopped(Exception):
+        pass
+
+    def handler(signum, frame):
+        raise Stopped()
+
+    c = rc.Chain(20000, 0.8, 1.0e4, 0.28)
+    theta, omega = c.kink(10000.0), np.zeros(20000)
+    previous = signal.signal(signal.SIGINT, handler)
+    try:
+        timer = threading.Timer(0.3, lambda: os.kill(os.getpid(), signal.SIGINT))
+        start = time.monotonic()
+        timer.start()
+        with pytest.raises(Stopped):
+            # About a minute of work at ~1e5 steps per second of 20 000 rotors.
+            c.propagate(theta, omega, t_max=1e3, output_interval=0.01)
+        assert time.monotonic() - start < 10.0
+    finally:
+        timer.cancel()
+        signal.signal(signal.SIGINT, previous)
+
+
 @pytest.mark.parametrize("t_max", [float("nan"), float("inf"), -1.0])
 def test_a_bad_t_max_is_named_as_the_user_passed_it(t_max):
     c = rc.Chain(60, 0.8, 1.0e4, 0.28)

@@ -3,7 +3,8 @@
 //!
 //! Every run is bounded by its inputs: the number of outputs by [`RunOptions::max_outputs`], the
 //! number of steps by [`RunOptions::max_steps`] (Verlet) or [`AdaptiveOptions::max_steps`]
-//! (DOP853), and a run whose energy leaves [`RunOptions::energy_limit`] stops with an error.
+//! (DOP853), a space-time image by [`MAX_SPACE_TIME_VALUES`], and a run whose energy leaves
+//! [`RunOptions::energy_limit`] stops with an error.
 
 use alloc::vec::Vec;
 
@@ -14,6 +15,11 @@ use super::integrate::{
 };
 use super::track::{Snapshot, SpaceTime, Tracker};
 use crate::model::ChainModel;
+
+/// The most angles a space-time image ([`RunOptions::space_time`]) may hold: 2^27, 1 GiB of
+/// `f64`. Checked before the run starts ([`IntegrateError::SpaceTimeBudget`]), so a run of a long
+/// chain with many outputs fails at once instead of exhausting the memory after hours.
+pub const MAX_SPACE_TIME_VALUES: usize = 1 << 27;
 
 /// Which integrator a run uses.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -217,6 +223,19 @@ pub fn propagate_with<M: ChainModel + ?Sized, I: Integrator + ?Sized>(
     state.check(model)?;
     let schedule =
         Schedule::covering(state.time, options.t_max, options.output_interval, options.max_outputs)?;
+    if options.space_time {
+        let (outputs, rotors) = (schedule.count + 1, state.theta.len());
+        let values = outputs as f64 * rotors as f64;
+        if values > MAX_SPACE_TIME_VALUES as f64 {
+            return Err(IntegrateError::SpaceTimeBudget {
+                outputs,
+                rotors,
+                values,
+                budget: MAX_SPACE_TIME_VALUES,
+            }
+            .into());
+        }
+    }
     let mut tracker = Tracker::new(&state.theta);
     let mut kinetic = Vec::with_capacity(schedule.count.min(1 << 16) + 1);
     let mut space_time = SpaceTime::default();

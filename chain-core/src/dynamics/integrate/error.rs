@@ -72,6 +72,22 @@ pub enum IntegrateError {
         /// The most outputs allowed (`max_outputs`).
         budget: usize,
     },
+    /// A run asked for a space-time image (the angles at every output) larger than
+    /// [`crate::dynamics::run::MAX_SPACE_TIME_VALUES`].
+    #[error(
+        "the space-time image needs {outputs} outputs x {rotors} rotors = {values:e} angles, more than \
+         the budget of {budget}: lengthen the output interval, shorten the run or leave space_time off"
+    )]
+    SpaceTimeBudget {
+        /// The outputs of the run, its start included.
+        outputs: usize,
+        /// The rotors of the chain.
+        rotors: usize,
+        /// `outputs * rotors`.
+        values: f64,
+        /// The most angles allowed.
+        budget: usize,
+    },
     /// The energy left its limit: `|E - E0|` (or, with damping, the rise `E - E0`) exceeded
     /// `limit * |E0|`. A fixed step past the stability limit, or forces that are not the
     /// energy's gradient; the state is the one that broke the limit.
