@@ -297,4 +297,34 @@ fn impossible_scattering_setups_are_refused() {
         let e = quickly(what, || scatter(&model, &setup));
         assert!(e.is_err(), "{what}: {:?}", e.map(|s| s.outcome));
     }
+    // Set-ups whose outcome would mean nothing are refused by name, before any run: a defect
+    // launched at the impurity (29.5) or from its far side, and an impurity whose range (reach 4)
+    // meets an end zone (edge_margin 3), where no wall can pass it. They were run and labelled
+    // "reflected" and "trapped".
+    let refused: Vec<(&str, f64, ScatterSetup)> = vec![
+        ("start", 29.5, ScatterSetup { start: 29.5, ..good }),
+        ("start", 32.0, ScatterSetup { start: 32.0, ..good }),
+        ("start", 20.0, ScatterSetup { start: 20.0, ..good }),
+        ("start", 40.0, ScatterSetup { start: 40.0, direction: Direction::Right, ..good }),
+        ("impurity", 0.0, ScatterSetup { impurity: 0, start: 15.5, ..good }),
+        ("impurity", 6.0, ScatterSetup { impurity: 6, start: 21.5, ..good }),
+        ("impurity", 52.0, ScatterSetup { impurity: 52, start: 40.0, direction: Direction::Right, ..good }),
+    ];
+    for (name, value, setup) in refused {
+        match quickly(name, || scatter(&model, &setup)) {
+            Err(DynamicsError::InvalidSetup { name: got, value: v, .. }) => {
+                assert_eq!((got, v), (name, value), "{setup:?}");
+            }
+            other => panic!("{name} = {value}: {:?}", other.map(|s| s.outcome)),
+        }
+    }
+    // The nearest set-ups that keep the rules are accepted: an impurity at spring 7 (range 3.5 ..
+    // 11.5), a start just beyond reach, launched right.
+    for setup in [
+        ScatterSetup { impurity: 7, start: 22.5, ..good },
+        ScatterSetup { start: 33.6, ..good },
+        ScatterSetup { start: 25.4, direction: Direction::Right, ..good },
+    ] {
+        assert!(setup.check(60).is_ok(), "{setup:?}");
+    }
 }

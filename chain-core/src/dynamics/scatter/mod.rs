@@ -139,10 +139,12 @@ pub struct ScatterSetup {
     pub charge: Charge,
     /// Launch speed amplitude (Appendix B).
     pub v0: f64,
-    /// The impurity spring `p`.
+    /// The impurity spring `p`, centred at `p + 0.5`; its range (`reach`) must lie clear of the
+    /// end zones (`edge_margin`), so that a transmitted wall has room on the far side.
     pub impurity: usize,
     /// Where the defect starts (rotor index, fractional allowed), farther than `edge_margin`
-    /// from either end.
+    /// from either end, and farther than `reach` from the impurity's centre on the side it is
+    /// launched from.
     pub start: f64,
     /// Which way it is launched.
     pub direction: Direction,
@@ -273,6 +275,28 @@ impl ScatterSetup {
                 name: "start",
                 value: self.start,
                 rule: "a position on the chain, farther than edge_margin from either end",
+            });
+        }
+        // The outcomes need room: the impurity's range clear of the end zones (a transmitted
+        // wall must be able to leave it on the far side), and the defect coming from outside that
+        // range, on the side it is launched from.
+        let centre = self.impurity as f64 + 0.5;
+        if !(centre - self.reach > self.edge_margin && centre + self.reach < last - self.edge_margin) {
+            return Err(DynamicsError::InvalidSetup {
+                name: "impurity",
+                value: self.impurity as f64,
+                rule: "a spring whose range (reach) lies clear of the end zones (edge_margin)",
+            });
+        }
+        let ahead = match self.direction {
+            Direction::Left => self.start - centre,
+            Direction::Right => centre - self.start,
+        };
+        if !(ahead > self.reach) {
+            return Err(DynamicsError::InvalidSetup {
+                name: "start",
+                value: self.start,
+                rule: "farther than reach from the impurity, on the side the defect is launched from",
             });
         }
         Ok(())
