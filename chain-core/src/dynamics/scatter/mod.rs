@@ -292,7 +292,7 @@ impl ScatterSetup {
             Direction::Left => self.start - centre,
             Direction::Right => centre - self.start,
         };
-        if !(ahead > self.reach) {
+        if ahead.is_nan() || ahead <= self.reach {
             return Err(DynamicsError::InvalidSetup {
                 name: "start",
                 value: self.start,
