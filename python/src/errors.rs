@@ -187,21 +187,6 @@ pub fn statics(py: Python<'_>, e: &StaticsError) -> PyErr {
             .f("expected", expected)
             .f("kinks", kinks)
             .f("antikinks", antikinks),
-        &StaticsError::FixedCentring { centre, found, force, tolerance } => {
-            Details { variant: "FixedCentring", ..d }
-                .f("centre", centre)
-                .f("found", found)
-                .f("force", force)
-                .f("tolerance", tolerance)
-        }
-        &StaticsError::NoMinimum { start, reached, index, force, tolerance } => {
-            Details { variant: "NoMinimum", ..d }
-                .f("start", start)
-                .f("reached", reached)
-                .f("index", index)
-                .f("force", force)
-                .f("tolerance", tolerance)
-        }
         &StaticsError::NoZeroEnergyState { spring, rest_length, min, max } => {
             Details { variant: "NoZeroEnergyState", ..d }
                 .f("spring", spring)
