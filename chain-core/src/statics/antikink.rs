@@ -111,26 +111,11 @@ pub struct Antikink {
     pub relax_steps: usize,
     /// `max |dV/dtheta| / ||K||` at the end, near-null directions held ([`super::equilibrium`]).
     pub residual: f64,
-    /// The force the boundary carries, relative to `||K||`: with [`Ends::Held`] the end rotors'
-    /// reaction torques, with [`Ends::Free`] the force along the held near-null edge modes (the
-    /// tails reaching the free ends) ([`super::equilibrium::Solution::edge_force`]). Not the
-    /// force on the moving rotors, which is [`Antikink::residual`].
+    /// The force left on the held near-null directions (the tails reaching the free ends).
     pub edge_force: f64,
-    /// The force on the moving rotors with only the near-null edge modes projected out, relative
-    /// to `||K||` ([`super::equilibrium::Solution::constraint_force`]): the force a held
-    /// translation still carries.
-    pub constraint_force: f64,
-    /// Whether [`Antikink::constraint_force`] is above the Newton tolerance: the point is then the
-    /// equilibrium at fixed centring (a point of the adiabatic trajectory of Sec. V), not an
-    /// equilibrium, and its classification is that of the tangent stiffness there, not of an
-    /// equilibrium. [`antikink_at`] and [`antikink_relaxed`] never return such a point (it is an
-    /// error: [`StaticsError::FixedCentring`], [`StaticsError::NoMinimum`]); [`peierls_nabarro`]
-    /// does, for a wide antikink pulled by the ends of a short chain (`theta_bar = 0.1`, n = 60;
-    /// `theta_bar = 0.3`, n = 16), where its barrier is the difference along that trajectory.
-    pub fixed_centring: bool,
-    /// How many soft directions Newton's method held ([`super::equilibrium::Solution::held`]):
-    /// near-null edge modes with [`Ends::Free`]; 0 with [`Ends::Held`] unless a translation had
-    /// to be held and carries no force (a translation below the null tolerance).
+    /// How many soft directions Newton's method held ([`super::equilibrium::Solution::held`]).
+    /// With a held translation the result is the equilibrium at fixed centring, a point of the
+    /// adiabatic trajectory, not a free equilibrium.
     pub held: usize,
 }
 
@@ -141,14 +126,8 @@ impl Antikink {
         relax_steps: usize,
         options: &AntikinkOptions,
     ) -> Result<Self, StaticsError> {
-        let super::equilibrium::Solution {
-            theta,
-            iterations: newton_iterations,
-            residual,
-            edge_force,
-            constraint_force,
-            held,
-        } = solution;
+        let super::equilibrium::Solution { theta, iterations: newton_iterations, residual, edge_force, held } =
+            solution;
         let walls = domain_walls(&theta);
         let antikinks: Vec<f64> =
             walls.iter().filter(|w| w.charge == Charge::Antikink).map(|w| w.position).collect();
@@ -172,8 +151,6 @@ impl Antikink {
             relax_steps,
             residual,
             edge_force,
-            constraint_force,
-            fixed_centring: constraint_force > options.newton.tolerance,
             held,
         })
     }
@@ -187,48 +164,7 @@ impl Antikink {
 /// The antikink equilibrium centred at `centre` (an integer: on a rotor; a half-integer: on a
 /// spring), by Newton's method from the symmetric reflected kink. Minimum or saddle, as the
 /// classification says.
-///
-/// # Errors
-/// - A `centre` that is neither an integer nor a half-integer ([`StaticsError::InvalidValue`]):
-///   only those centrings can be equilibria (the profile must be locally symmetric);
-///   [`antikink_relaxed`] takes any starting centre.
-/// - No equilibrium at that centring ([`StaticsError::FixedCentring`], with the force left): near
-///   an end, or for a wide antikink off the middle of a short chain, the pull of the ends beats
-///   the Peierls-Nabarro restoring force, and Newton's method could only hold the translation.
-/// - A centre outside the chain, a lost antikink, or a Newton failure.
 pub fn antikink_at<M: ChainModel + ?Sized>(
-    model: &M,
-    centre: f64,
-    options: &AntikinkOptions,
-) -> Result<Antikink, StaticsError> {
-    let doubled = 2.0 * centre;
-    if centre.is_finite() && (doubled - libm::round(doubled)).abs() > CENTRING_TOLERANCE {
-        return Err(StaticsError::InvalidValue {
-            what: "antikink_at centre",
-            value: centre,
-            expected: "an integer (rotor-centred) or a half-integer (spring-centred): only those \
-                       centrings are equilibria (antikink_relaxed takes any centre)",
-        });
-    }
-    let at = solve_at(model, centre, options)?;
-    let tolerance = options.newton.tolerance;
-    if at.fixed_centring {
-        return Err(StaticsError::FixedCentring {
-            centre,
-            found: at.centre,
-            force: at.constraint_force,
-            tolerance,
-        });
-    }
-    Ok(at)
-}
-
-/// How far from an integer or half-integer a centre given to [`antikink_at`] may be.
-const CENTRING_TOLERANCE: f64 = 1e-9;
-
-/// Newton's method from the reflected kink centred at `centre`: an equilibrium, or the point at
-/// fixed centring where the translation had to be held ([`Antikink::constraint_force`] says).
-fn solve_at<M: ChainModel + ?Sized>(
     model: &M,
     centre: f64,
     options: &AntikinkOptions,
@@ -241,22 +177,13 @@ fn solve_at<M: ChainModel + ?Sized>(
 
 /// The paper's construction: the reflected kink centred at `centre`, relaxed by dissipative
 /// Newtonian dynamics, then polished by Newton's method; the result is a Peierls-Nabarro
-/// **minimum**: an equilibrium (no force left on any held direction) of Morse index 0.
+/// **minimum**.
 ///
 /// The relaxation slides the antikink into a minimum only where the Peierls-Nabarro force beats
 /// the relaxation's tolerance (measured: `theta_bar >= 0.45` at n = 60); a wider antikink, or one
 /// started on a saddle, stops where it is, and the polish then returns the saddle or a
-/// fixed-centring point. In those cases the rotor- and spring-centred points (centres on the
-/// half-integer lattice) are solved from the nearest one to where the relaxation stopped, and the
-/// construction steps to the lower neighbour while the energy falls: near an end, where the pull
-/// of the ends beats the Peierls-Nabarro barrier and neither centring is an equilibrium, this
-/// walks the antikink inward to the first true minimum.
-///
-/// # Errors
-/// [`StaticsError::NoMinimum`] when the descent ends on a point that is not an equilibrium of
-/// index 0 (the antikink slides to an end, or the barrier is below rounding and a saddle cannot
-/// be told from a minimum), with where it stopped, the index and the force; the errors of
-/// [`antikink_at`] otherwise.
+/// fixed-centring point. In those cases both centrings next to where the relaxation stopped are
+/// solved ([`antikink_at`]) and the lower one is returned, so the answer is always the minimum.
 /// # Example
 ///
 /// ```
@@ -281,59 +208,16 @@ pub fn antikink_relaxed<M: ChainModel + ?Sized>(
         relax(model, &guess, &RelaxOptions { hold_ends: options.hold(), ..options.relax })?;
     let solution = newton(model, &relaxed, &NewtonOptions { hold_ends: options.hold(), ..options.newton })?;
     let polished = Antikink::from_solution(model, solution, steps, options)?;
-    let tolerance = options.newton.tolerance;
-    let is_minimum = |a: &Antikink| a.classification.index == 0 && !a.fixed_centring;
-    if is_minimum(&polished) {
+    if polished.classification.index == 0 && polished.held == 0 {
         return Ok(polished);
     }
-    // Descend the energies of the points at fixed centring on the half-integer lattice. The
-    // energy falls strictly at every step, so the walk ends, after at most 2 n steps.
     let n = model.rotor_count() as f64;
-    let (lo, hi) = (1.0f64.min(n - 1.0), (n - 2.0).max(1.0).min(n - 1.0));
-    let mut here_centre = (libm::round(2.0 * polished.centre) / 2.0).clamp(lo, hi);
-    let mut here = solve_at(model, here_centre, options)?;
-    loop {
-        let mut best: Option<(f64, Antikink)> = None;
-        for next in [here_centre - 0.5, here_centre + 0.5] {
-            if !(lo..=hi).contains(&next) {
-                continue;
-            }
-            // A neighbour that cannot be solved (the antikink lost at an end) is not a way down.
-            if let Ok(a) = solve_at(model, next, options)
-                && a.energy < here.energy
-                && best.as_ref().is_none_or(|(_, b)| a.energy < b.energy)
-            {
-                best = Some((next, a));
-            }
-        }
-        match best {
-            Some((next, a)) => (here_centre, here) = (next, a),
-            None => break,
-        }
-    }
-    if !is_minimum(&here) && here.classification.index == 0 {
-        // The lowest centring still feels a small pull (the end tilts the landscape): the
-        // minimum is the nearby asymmetric equilibrium; Newton's method without holding the
-        // translation reaches it from the constrained point.
-        let free = NewtonOptions { hold_ends: options.hold(), max_held: 0, ..options.newton };
-        if let Ok(solution) = newton(model, &here.theta, &free)
-            && let Ok(polished) = Antikink::from_solution(model, solution, steps, options)
-            && is_minimum(&polished)
-        {
-            here = polished;
-        }
-    }
-    if !is_minimum(&here) {
-        return Err(StaticsError::NoMinimum {
-            start: centre,
-            reached: here.centre,
-            index: here.classification.index,
-            force: here.constraint_force,
-            tolerance,
-        });
-    }
-    here.relax_steps = steps;
-    Ok(here)
+    let rotor = libm::round(polished.centre).clamp(1.0, (n - 2.0).max(1.0));
+    let spring = if polished.centre >= rotor { rotor + 0.5 } else { rotor - 0.5 };
+    let (a, b) = (antikink_at(model, rotor, options)?, antikink_at(model, spring, options)?);
+    let mut best = if a.energy <= b.energy { a } else { b };
+    best.relax_steps = steps;
+    Ok(best)
 }
 
 /// Both antikink equilibria in the middle of the chain and the barrier between them.
@@ -372,9 +256,7 @@ impl PeierlsNabarro {
 }
 
 /// The Peierls-Nabarro barrier of `model` (paper Sec. V): the antikink centred on the middle
-/// rotor and on the neighbouring spring, and their energy difference. Where the ends pull a wide
-/// antikink harder than its Peierls-Nabarro force, a centring is the equilibrium at fixed
-/// centring ([`Antikink::fixed_centring`]), not an error.
+/// rotor and on the neighbouring spring, and their energy difference.
 /// # Example
 ///
 /// ```
@@ -399,10 +281,8 @@ pub fn peierls_nabarro<M: ChainModel + ?Sized>(
 ) -> Result<PeierlsNabarro, StaticsError> {
     let n = model.rotor_count();
     let middle = ((n - 1) / 2) as f64;
-    // Fixed-centring points are kept (their `fixed_centring` says so): for a wide antikink in a
-    // short chain the barrier is the energy difference along the adiabatic trajectory.
-    let rotor_centred = solve_at(model, middle, options)?;
-    let spring_centred = solve_at(model, middle + 0.5, options)?;
+    let rotor_centred = antikink_at(model, middle, options)?;
+    let spring_centred = antikink_at(model, middle + 0.5, options)?;
     let barrier = (rotor_centred.energy - spring_centred.energy).abs();
     let (a, b) = (rotor_centred.classification.index, spring_centred.classification.index);
     let resolved = (a == 0 && b == 1) || (a == 1 && b == 0);

@@ -15,7 +15,7 @@
 //! works in the complement of the eigenvectors whose eigenvalues lie within
 //! `null_tolerance * ||K||` of zero (found in O(n) by bisection and inverse iteration), and
 //! convergence is judged on the force in that complement. The force left along the near-null
-//! modes (and on held end rotors) is reported separately ([`Solution::edge_force`]); it is the tail tension reaching the
+//! modes is reported separately ([`Solution::edge_force`]); it is the tail tension reaching the
 //! ends, `~ e^{-d / decay length}` for an antikink at distance `d` from them. This is our
 //! boundary treatment: the ends are held along their soft modes, the rest of the chain is in
 //! exact force balance. A symmetric starting guess has no component along the (antisymmetric)
@@ -25,8 +25,7 @@
 //! its own restoring force (a wide antikink in a short chain), no exact equilibrium exists at that
 //! centring; the iteration then stagnates, and the softest free direction (the translation) is
 //! held as well. The result is the equilibrium at fixed centring, a point on the adiabatic
-//! trajectory of paper Sec. V, and [`Solution::held`] and [`Solution::constraint_force`] (the
-//! force the held translation still carries) say so: [`Solution::is_equilibrium`] is false.
+//! trajectory of paper Sec. V, and [`Solution::held`] and [`Solution::edge_force`] say so.
 //!
 //! The tiny shift `mu = 1e-13 ||K||` keeps the linear solve regular, and a backtracking line
 //! search on the projected force makes the iteration globally convergent from a reasonable guess.
@@ -110,29 +109,11 @@ pub struct Solution {
     pub iterations: usize,
     /// `max_i |(P dV/dtheta)_i| / ||K||` at the end, `P` projecting out the near-null modes.
     pub residual: f64,
-    /// The force the boundary carries, relative to `||K||`: the larger of the held end rotors'
-    /// reaction torques `|dV/dtheta_0|`, `|dV/dtheta_{n-1}|` (with [`NewtonOptions::hold_ends`])
-    /// and the largest component of the force along the near-null (edge) directions at the end.
-    /// It does not include the force on the moving rotors ([`Solution::residual`],
-    /// [`Solution::constraint_force`]); it is zero when nothing is held.
+    /// `max_i |dV/dtheta_i| / ||K||` including the held directions and end rotors: the force
+    /// they carry (rounding level when nothing had to be held).
     pub edge_force: f64,
-    /// `max_i |(P' dV/dtheta)_i| / ||K||` over the moving rotors, `P'` projecting out only the
-    /// near-null directions at the end: the force on everything but the boundary. It equals
-    /// [`Solution::residual`] unless the iteration stagnated and held a soft direction that is not
-    /// near-null (a translation pulled by the ends); then it is the force that direction still
-    /// carries, and a value above [`NewtonOptions::tolerance`] says the result is a constrained
-    /// point (the equilibrium at fixed centring), not an equilibrium.
-    pub constraint_force: f64,
     /// How many soft directions were held (near-null edge modes, a stagnating translation).
     pub held: usize,
-}
-
-impl Solution {
-    /// Whether the result is an equilibrium: no held direction other than the near-null edge
-    /// modes carries a force above `tolerance` ([`Solution::constraint_force`]).
-    pub fn is_equilibrium(&self, tolerance: f64) -> bool {
-        self.constraint_force <= tolerance
-    }
 }
 
 /// The rotors that move: all of them, or all but the two ends.
@@ -327,19 +308,9 @@ pub fn newton<M: ChainModel + ?Sized>(
             alpha *= 0.5;
         }
     }
+    let edge_force = max_abs(&g) / scale;
     validate::finite("the equilibrium found by Newton's method", &theta)?;
-    // Split the final force: along the near-null (edge) directions and on the held ends (the
-    // boundary), and on everything else (zero at an equilibrium, the pull on a held translation
-    // at a constrained point).
-    let (rd, ro) = restricted(&diag, &off, options.hold_ends);
-    let edges = near_null(&rd, &ro, options.null_tolerance * scale)?;
-    let mut free = g[range.clone()].to_vec();
-    project_out(&mut free, &edges);
-    let along_edges = g[range.clone()].iter().zip(&free).fold(0.0, |m, (x, f)| nan_max(m, (x - f).abs()));
-    let ends = (0..n).filter(|i| !range.contains(i)).fold(0.0, |m, i| nan_max(m, g[i].abs()));
-    let edge_force = nan_max(along_edges, ends) / scale;
-    let constraint_force = max_abs(&free) / scale;
-    Ok(Solution { theta, iterations, residual, edge_force, constraint_force, held: held.len() })
+    Ok(Solution { theta, iterations, residual, edge_force, held: held.len() })
 }
 
 /// Dissipative Newtonian dynamics from rest at `theta` (paper Sec. II), until the forces fall

@@ -54,44 +54,6 @@ pub enum StaticsError {
         /// Antikinks found.
         antikinks: usize,
     },
-    /// No antikink equilibrium at the centring asked for: Newton's method had to hold the
-    /// translation, and the force it still carries is above the tolerance (the pull of the ends,
-    /// or of an asymmetric start, beats the Peierls-Nabarro restoring force there). The point
-    /// found is the equilibrium at fixed centring, not an equilibrium.
-    #[error(
-        "no antikink equilibrium is centred at {centre}: held at that centring (the antikink sits at \
-         {found}), it still feels a force {force:e} ||K|| along its translation (tolerance {tolerance:e})"
-    )]
-    FixedCentring {
-        /// The centre asked for, in rotor indices.
-        centre: f64,
-        /// Where the antikink of the constrained point sits (Appendix C wall coordinate).
-        found: f64,
-        /// `max |dV/dtheta| / ||K||` on the moving rotors, edge modes projected out.
-        force: f64,
-        /// The Newton tolerance it had to meet.
-        tolerance: f64,
-    },
-    /// The relaxed antikink construction found no minimum: descending the energies of the
-    /// rotor- and spring-centred points from where the relaxation stopped, it ended on a point
-    /// that is not an equilibrium of index 0 (the antikink slid to an end, or the barrier is
-    /// below rounding).
-    #[error(
-        "no antikink minimum found from centre {start}: the descent stopped at {reached} with Morse index \
-         {index} and a force {force:e} ||K|| along its translation (tolerance {tolerance:e})"
-    )]
-    NoMinimum {
-        /// The centre the construction started from.
-        start: f64,
-        /// Where the descent stopped (Appendix C wall coordinate).
-        reached: f64,
-        /// The Morse index there.
-        index: usize,
-        /// `max |dV/dtheta| / ||K||` on the moving rotors there, edge modes projected out.
-        force: f64,
-        /// The Newton tolerance.
-        tolerance: f64,
-    },
     /// A spring-length impurity with no symmetric zero-energy state: beyond `l_critical` (paper
     /// Sec. VII-A), or shorter than the spring between rotors leaning at `+theta_bar`, `-theta_bar`.
     #[error(
