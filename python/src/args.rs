@@ -173,6 +173,32 @@ pub fn matrix(py: Python<'_>, rows: usize, cols: usize, values: Vec<f64>) -> Py<
     a.into_pyarray(py).unbind()
 }
 
+/// A zeroed row-major buffer for a dense `rows x cols` result, allocated fallibly: memory that
+/// cannot be had is [`Unallocated`] (raised by [`Unallocated::raise`] as a `MemoryError` with the
+/// bytes), never an abort. Needs no interpreter, so it can run detached.
+pub fn zeroed(rows: usize, cols: usize) -> Result<Vec<f64>, Unallocated> {
+    let len = rows.saturating_mul(cols);
+    let mut values = Vec::new();
+    values.try_reserve_exact(len).map_err(|_| Unallocated { rows, cols })?;
+    values.resize(len, 0.0);
+    Ok(values)
+}
+
+/// A dense `rows x cols` float64 result that could not be allocated ([`zeroed`]).
+#[derive(Debug, Clone, Copy)]
+pub struct Unallocated {
+    pub rows: usize,
+    pub cols: usize,
+}
+
+impl Unallocated {
+    /// The `MemoryError` of the result of `what` (`hessian`, ...), with its bytes.
+    pub fn raise(self, py: Python<'_>, what: &str) -> PyErr {
+        let bytes = self.rows.saturating_mul(self.cols).saturating_mul(core::mem::size_of::<f64>());
+        errors::allocation(py, what, self.rows, self.cols, bytes)
+    }
+}
+
 /// Rows of equal length as a 2-D array (`rows x cols`; `0 x cols` when empty).
 pub fn rows(py: Python<'_>, rows: &[Vec<f64>], cols: usize) -> Py<PyArray2<f64>> {
     matrix(py, rows.len(), cols, rows.iter().flatten().copied().collect())

@@ -252,13 +252,17 @@ impl Chain {
     }
 
     /// The tangent stiffness as a dense symmetric ``n x n`` array.
+    ///
+    /// Raises:
+    ///     MemoryError: the ``8 n^2`` bytes cannot be allocated (``variant ==
+    ///         "AllocationFailed"``, with ``what``, ``rows``, ``cols`` and ``bytes``).
     fn hessian(&self, py: Python<'_>, theta: &Bound<'_, PyAny>) -> PyResult<Py<PyArray2<f64>>> {
         let theta = self.theta(theta)?;
         let n = theta.len();
         let dense = py.detach(|| {
+            let mut dense = args::zeroed(n, n)?;
             let (mut diag, mut off) = (vec![0.0; n], vec![0.0; n - 1]);
             self.chain.tangent_stiffness_into(&theta, &mut diag, &mut off);
-            let mut dense = vec![0.0; n * n];
             for i in 0..n {
                 dense[i * n + i] = diag[i];
             }
@@ -266,8 +270,9 @@ impl Chain {
                 dense[p * n + p + 1] = off[p];
                 dense[(p + 1) * n + p] = off[p];
             }
-            dense
+            Ok(dense)
         });
+        let dense = dense.map_err(|e: args::Unallocated| e.raise(py, "hessian"))?;
         Ok(matrix(py, n, n, dense))
     }
 
@@ -285,6 +290,10 @@ impl Chain {
     /// The compatibility matrix ``C[p][i] = dl_p / d(r_i theta_i)`` (paper Sec. VII-A): its two
     /// bands ``(left, right)`` with ``left[p] = C[p][p]``, ``right[p] = C[p][p + 1]``, or with
     /// ``dense=True`` the ``(n - 1) x n`` array. Dimensionless.
+    ///
+    /// Raises:
+    ///     MemoryError: with ``dense=True``, the ``8 n (n - 1)`` bytes cannot be allocated
+    ///         (``variant == "AllocationFailed"``, with ``what``, ``rows``, ``cols`` and ``bytes``).
     #[pyo3(signature = (theta, *, dense = false))]
     fn compatibility<'py>(
         &self,
@@ -300,7 +309,7 @@ impl Chain {
             (left, right)
         });
         if dense {
-            let mut c = vec![0.0; m * n];
+            let mut c = py.detach(|| args::zeroed(m, n)).map_err(|e| e.raise(py, "compatibility"))?;
             for p in 0..m {
                 c[p * n + p] = left[p];
                 c[p * n + p + 1] = right[p];

@@ -241,3 +241,29 @@ def test_an_index_out_of_range_is_a_parameter_error_in_every_method(reference):
     assert len(chain.next_angles(58, 0.1)) == len(chain.previous_angles(58, 0.1)) == 2
     with pytest.raises(rc.BranchError):
         chain.next_angles(58, 1.5)
+
+
+def test_a_dense_result_too_large_to_allocate_is_a_memory_error_with_its_bytes_not_an_abort():
+    # 5 000 001 rotors: the chain and its angles are a few tens of MB, the dense n x n array
+    # 8 * 5 000 001**2 = 2e14 bytes, more than any address space holds, so the allocation fails
+    # at once, whatever the overcommit policy.
+    n = 5_000_001
+    chain = rc.Chain(n, 0.8, 1.0e4, 0.58)
+    theta = chain.uniform()
+    with pytest.raises(MemoryError) as info:
+        chain.hessian(theta)
+    e = info.value
+    assert e.variant == "AllocationFailed"
+    assert (e.what, e.rows, e.cols, e.bytes) == ("hessian", n, n, 200_000_080_000_008)
+    assert e.details == {"what": "hessian", "rows": n, "cols": n, "bytes": 200_000_080_000_008}
+    assert str(e) == (
+        "hessian: a 5000001 x 5000001 float64 array needs 200000080000008 bytes, which could not be allocated"
+    )
+    with pytest.raises(MemoryError) as info:
+        chain.compatibility(theta, dense=True)
+    e = info.value
+    assert e.variant == "AllocationFailed"
+    assert (e.what, e.rows, e.cols, e.bytes) == ("compatibility", n - 1, n, 200_000_040_000_000)
+    # The banded form of the same chain still works.
+    left, right = chain.compatibility(theta)
+    assert left.shape == right.shape == (n - 1,)
