@@ -27,6 +27,7 @@ and this function resume each other's files.
 from __future__ import annotations
 
 import math
+import operator
 import os
 import sys
 import uuid
@@ -101,6 +102,17 @@ def _check_v0(v0: float) -> None:
             "Value",
             {"name": "v0", "value": v0, "rule": ">= 0 and finite"},
         )
+
+
+def _count(name: str, value: Any, minimum: int) -> int:
+    """``value`` as an int >= ``minimum``: a ``TypeError`` naming ``name`` for what is not an int
+    (a float, a string, a bool), a ``ValueError`` below ``minimum``."""
+    if isinstance(value, bool) or not hasattr(type(value), "__index__"):
+        raise TypeError(f"{name} must be an int, got {value!r} ({type(value).__name__})")
+    value = operator.index(value)
+    if value < minimum:
+        raise ValueError(f"{name} must be at least {minimum}, got {value}")
+    return value
 
 
 def point(
@@ -194,15 +206,16 @@ def phase_diagram(
         client: a ``dask.distributed.Client``: the points are computed in chunks on its workers
             and gathered here (and appended to ``out`` here). A chunk whose worker dies is computed
             again; the others are kept.
-        threads: without ``client``, the threads computing points (default: every core).
-        chunk_size: points per chunk (default: about 8 chunks per worker thread with ``client``,
-            ``8 x threads`` without).
+        threads: without ``client``, the threads computing points (an int >= 1, default: every
+            core; never more are started than a chunk has points).
+        chunk_size: points per chunk (an int >= 1; default: about 8 chunks per worker thread with
+            ``client``, ``8 x threads`` without).
         retry_failed: compute again the points ``out`` records as failed.
         progress: ``True`` prints ``done/total`` on stderr, ``False`` nothing, a callable is
             called as ``progress(done, total)``; ``None`` (default) prints only to a terminal.
         max_resubmits: how often a chunk is submitted again after Dask gave up on it
             (``KilledWorker``: it killed its worker each time it ran); after that its points are
-            recorded as failed with the reason.
+            recorded as failed with the reason (an int >= 0).
 
     Raises:
         ConfigError, GridError: invalid settings or axes, or a grid of more than
@@ -211,6 +224,10 @@ def phase_diagram(
             allocated per point, computed or written.
         SweepError: ``out`` belongs to another sweep (another grid or settings), is locked by a
             running sweep, or cannot be written.
+        TypeError, ValueError: ``threads``, ``chunk_size`` or ``max_resubmits`` not an int (a
+            bool, a float, a string) or below its minimum; ``client`` not a Dask client; a
+            setting of the wrong type (``n`` a float or a bool, ``"0.28"`` for a number). Each
+            names the argument.
     """
     settings: Dict[str, Any] = dict(
         defect=defect,
@@ -233,10 +250,11 @@ def phase_diagram(
         d.check_ki(x)
     for y in ys:
         _check_v0(y)
-    if threads is not None and threads < 1:
-        raise ValueError(f"threads must be at least 1, got {threads}")
-    if chunk_size is not None and chunk_size < 1:
-        raise ValueError(f"chunk_size must be at least 1, got {chunk_size}")
+    threads = None if threads is None else _count("threads", threads, 1)
+    chunk_size = None if chunk_size is None else _count("chunk_size", chunk_size, 1)
+    max_resubmits = _count("max_resubmits", max_resubmits, 0)
+    if client is not None and not all(callable(getattr(client, m, None)) for m in ("submit", "nthreads")):
+        raise TypeError(f"client must be a dask.distributed.Client (or None), got {type(client).__name__}")
 
     file = None
     if out is not None:
@@ -347,7 +365,9 @@ def _run_local(
     done = 0
     for start in range(0, len(points), size):
         chunk = points[start : start + size]
-        for record in d.compute_points(chunk, threads):
+        # More threads than points would have nothing to do (and no machine integer holds 10**20).
+        used = None if threads is None else min(threads, len(chunk))
+        for record in d.compute_points(chunk, used):
             sink(record)
         done += len(chunk)
         report(done)

@@ -34,32 +34,78 @@ fn finite(values: Vec<f64>, what: &str) -> PyResult<Vec<f64>> {
 
 /// A one-dimensional float64 array-like, copied (numpy converts lists and integer arrays). An
 /// array of another dimension is a `ValueError` that gives its shape, like a wrong length; what
-/// numpy cannot read as numbers at all stays a `TypeError` that names the argument.
+/// numpy does not read as real numbers (`None`, strings, complex values, which numpy would cast
+/// to their real part) is a `TypeError` that names the argument.
 fn floats(x: &Bound<'_, PyAny>, what: &str) -> PyResult<Vec<f64>> {
-    match x.extract::<PyArrayLike1<'_, f64, AllowTypeChange>>() {
+    let not_real = |got: String| {
+        pyo3::exceptions::PyTypeError::new_err(format!("{what} must be an array of real numbers, got {got}"))
+    };
+    if x.is_none() {
+        return Err(not_real("None".to_owned()));
+    }
+    // numpy's reading of `x` (free for a numpy array): its kind of values and its shape.
+    let array = match x.py().import("numpy")?.getattr("asarray")?.call1((x,)) {
+        Ok(array) => array,
+        Err(e) => return Err(not_real(format!("{} ({e})", type_name(x)))),
+    };
+    let dtype = array.getattr("dtype")?;
+    let kind: String = dtype.getattr("kind")?.extract()?;
+    if !matches!(kind.as_str(), "b" | "i" | "u" | "f") {
+        return Err(not_real(format!("{} of dtype {}", type_name(x), dtype.str()?)));
+    }
+    let shape: Vec<usize> = array.getattr("shape")?.extract()?;
+    if shape.len() != 1 {
+        let shape: Vec<String> = shape.iter().map(usize::to_string).collect();
+        return Err(value_error(format!(
+            "{what} must be a one-dimensional array, got one of shape ({})",
+            shape.join(", ")
+        )));
+    }
+    match array.extract::<PyArrayLike1<'_, f64, AllowTypeChange>>() {
         Ok(array) => Ok(array.as_array().to_vec()),
-        Err(e) => {
-            // numpy's reading of `x`: its shape, if its values are real numbers.
-            let numbers = |array: Bound<'_, PyAny>| -> PyResult<Option<Vec<usize>>> {
-                let kind: String = array.getattr("dtype")?.getattr("kind")?.extract()?;
-                Ok(if "biuf".contains(kind.as_str()) {
-                    Some(array.getattr("shape")?.extract()?)
-                } else {
-                    None
-                })
-            };
-            let array = x.py().import("numpy")?.getattr("asarray")?.call1((x,));
-            match array.and_then(numbers) {
-                Ok(Some(shape)) if shape.len() != 1 => {
-                    let shape: Vec<String> = shape.iter().map(usize::to_string).collect();
-                    Err(value_error(format!(
-                        "{what} must be a one-dimensional array, got one of shape ({})",
-                        shape.join(", ")
-                    )))
-                }
-                _ => Err(pyo3::exceptions::PyTypeError::new_err(format!("argument '{what}': {e}"))),
-            }
-        }
+        Err(e) => Err(not_real(format!("{} ({})", type_name(x), e))),
+    }
+}
+
+/// The name of `x`'s type, for messages (`str`, `NoneType`, `ndarray`).
+fn type_name(x: &Bound<'_, PyAny>) -> String {
+    x.get_type().name().map(|n| n.to_string()).unwrap_or_else(|_| "object".to_owned())
+}
+
+/// `x` for a message: its repr (cut at 60 characters) and its type, `'0.58' (str)`.
+pub fn described(x: &Bound<'_, PyAny>) -> String {
+    let repr = x.repr().map(|r| r.to_string()).unwrap_or_default();
+    let repr = match repr.char_indices().nth(60) {
+        Some((cut, _)) => format!("{}...", &repr[..cut]),
+        None => repr,
+    };
+    format!("{repr} ({})", type_name(x))
+}
+
+/// A real-number argument as Python gave it: the value, or the type that is not one, kept so
+/// that [`Real::get`] raises a `TypeError` that names the argument (pyo3's own conversion says
+/// only `must be real number, not str`).
+#[derive(Clone)]
+pub struct Real(Result<f64, String>);
+
+impl Real {
+    /// A default value.
+    pub const fn of(value: f64) -> Self {
+        Self(Ok(value))
+    }
+
+    /// The value, or the `TypeError` of argument `what`.
+    pub fn get(self, what: &str) -> PyResult<f64> {
+        self.0.map_err(|got| {
+            pyo3::exceptions::PyTypeError::new_err(format!("`{what}` must be a real number, got {got}"))
+        })
+    }
+}
+
+impl<'a, 'py> FromPyObject<'a, 'py> for Real {
+    type Error = PyErr;
+    fn extract(x: Borrowed<'a, 'py, PyAny>) -> PyResult<Self> {
+        Ok(Self(x.extract::<f64>().map_err(|_| described(&x))))
     }
 }
 
@@ -87,8 +133,17 @@ pub fn int(x: &Bound<'_, PyAny>) -> PyResult<Int> {
 
 /// A rotor count `n`, for the Rust checks to judge (`TooFewRotors` below 2, `TooManyRotors`
 /// past `MAX_ROTORS`); an int no `usize` holds gets the same error here, with its own number.
+/// A bool (`True` is an int to Python) or a value that is not an int (`60.0`, `"60"`) is a
+/// `TypeError` that names `n`.
 pub fn rotor_count(n: &Bound<'_, PyAny>) -> PyResult<usize> {
-    let text = match int(n)? {
+    let whole = if n.is_instance_of::<pyo3::types::PyBool>() { None } else { int(n).ok() };
+    let Some(whole) = whole else {
+        return Err(pyo3::exceptions::PyTypeError::new_err(format!(
+            "`n` must be an int (a number of rotors), got {}",
+            described(n)
+        )));
+    };
+    let text = match whole {
         Int::Fits(i) => match usize::try_from(i) {
             Ok(count) => return Ok(count),
             Err(_) if i < 0 => CountText::TooFew(n),

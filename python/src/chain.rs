@@ -8,7 +8,7 @@ use pyo3::types::{PyDict, PyTuple};
 use rotor_chain::statics::continuum::ContinuumChain;
 use rotor_chain::{ChainModel, Law, RuntimeChain};
 
-use crate::args::{self, AtMost, RotorCount, array, choice, matrix, vector};
+use crate::args::{self, AtMost, Real, RotorCount, array, choice, matrix, vector};
 use crate::errors::{self, value_error};
 use crate::pickle::{self, Pickle};
 
@@ -77,26 +77,30 @@ impl Chain {
 #[pymethods]
 impl Chain {
     #[new]
-    #[pyo3(signature = (n, r, k, theta_bar, *, a = 1.0, mass = 1.0, law = "harmonic", springs = None, rotors = None))]
+    #[pyo3(signature = (n, r, k, theta_bar, *, a = Real::of(1.0), mass = Real::of(1.0), law = "harmonic",
+                        springs = None, rotors = None),
+           text_signature = "(n, r, k, theta_bar, *, a=1.0, mass=1.0, law='harmonic', springs=None, rotors=None)")]
     #[allow(clippy::too_many_arguments)]
     fn new(
         py: Python<'_>,
         n: RotorCount,
-        r: f64,
-        k: f64,
-        theta_bar: f64,
-        a: f64,
-        mass: f64,
+        r: Real,
+        k: Real,
+        theta_bar: Real,
+        a: Real,
+        mass: Real,
         law: &str,
         springs: Option<&Bound<'_, PyDict>>,
         rotors: Option<&Bound<'_, PyDict>>,
     ) -> PyResult<Self> {
+        let n = n.0?;
+        let (r, k, theta_bar) = (r.get("r")?, k.get("k")?, theta_bar.get("theta_bar")?);
+        let (a, mass) = (a.get("a")?, mass.get("mass")?);
         let (law_name, law) = choice(
             "law",
             law,
             &[("harmonic", ("harmonic", Law::Harmonic)), ("quartic", ("quartic", Law::Quartic))],
         )?;
-        let n = n.0?;
         let mut spring_list = Vec::new();
         if let Some(springs) = springs {
             for (p, spec) in springs.iter() {
@@ -366,8 +370,8 @@ impl Chain {
     /// ``[0, n - 1]``), built outward from its centre by the branch solve: ``+theta_bar`` on the
     /// left, ``-theta_bar`` on the right. Returns the angles (radians). At ``centre = 0`` or
     /// ``n - 1`` the end rotor stands vertical and the chain is one domain (no wall left inside).
-    fn kink(&self, py: Python<'_>, centre: f64) -> PyResult<Py<PyArray1<f64>>> {
-        crate::statics::kink(self, py, centre)
+    fn kink(&self, py: Python<'_>, centre: Real) -> PyResult<Py<PyArray1<f64>>> {
+        crate::statics::kink(self, py, centre.get("centre")?)
     }
 
     /// An antikink equilibrium (``-theta_bar`` on the left, ``+theta_bar`` on the right).
@@ -437,10 +441,11 @@ impl Chain {
         &self,
         py: Python<'_>,
         defect: &str,
-        position: f64,
-        v0: f64,
+        position: Real,
+        v0: Real,
         direction: &str,
     ) -> PyResult<crate::dynamics::Launch> {
+        let (position, v0) = (position.get("position")?, v0.get("v0")?);
         crate::dynamics::launch(self, py, defect, position, v0, direction)
     }
 

@@ -19,7 +19,7 @@ use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyString, PyTuple};
 use rayon::prelude::*;
 
-use crate::args::{self, RotorCount};
+use crate::args::{self, Real, RotorCount};
 use crate::errors::{self, value_error};
 
 /// One phase diagram's settings, checked (chain-sweep's ``PhaseDiagram``): the chain of paper
@@ -36,32 +36,47 @@ type GridPoint = (usize, usize, f64, f64);
 #[pymethods]
 impl PhaseDiagram {
     #[new]
-    #[pyo3(signature = (defect, *, n = RotorCount(Ok(60)), r = 0.8, k = 1.0e4, theta_bar = 0.28, mass = 1.0, ends = "free",
-                        integrator = "verlet", dt = None, energy_tolerance = chain_sweep::scattering::DEFAULT_ENERGY_TOLERANCE,
-                        recompute = true, t_max = 20.0))]
+    #[pyo3(signature = (defect, *, n = RotorCount(Ok(60)), r = Real::of(0.8), k = Real::of(1.0e4), theta_bar = Real::of(0.28),
+                        mass = Real::of(1.0), ends = "free", integrator = "verlet", dt = None,
+                        energy_tolerance = Real::of(chain_sweep::scattering::DEFAULT_ENERGY_TOLERANCE),
+                        recompute = true, t_max = Real::of(20.0)),
+           text_signature = "(defect, *, n=60, r=0.8, k=1e4, theta_bar=0.28, mass=1.0, ends='free', \
+                             integrator='verlet', dt=None, energy_tolerance=DEFAULT_ENERGY_TOLERANCE, recompute=True, \
+                             t_max=20.0)")]
     #[allow(clippy::too_many_arguments)]
     fn new(
         py: Python<'_>,
         defect: &str,
         n: RotorCount,
-        r: f64,
-        k: f64,
-        theta_bar: f64,
-        mass: f64,
+        r: Real,
+        k: Real,
+        theta_bar: Real,
+        mass: Real,
         ends: &str,
         integrator: &str,
-        dt: Option<f64>,
-        energy_tolerance: f64,
+        dt: Option<Real>,
+        energy_tolerance: Real,
         recompute: bool,
-        t_max: f64,
+        t_max: Real,
     ) -> PyResult<Self> {
+        let (r, k, theta_bar, mass) =
+            (r.get("r")?, k.get("k")?, theta_bar.get("theta_bar")?, mass.get("mass")?);
+        let dt = dt.map(|dt| dt.get("dt")).transpose()?;
+        let (energy_tolerance, t_max) = (energy_tolerance.get("energy_tolerance")?, t_max.get("t_max")?);
         // chain-sweep's own names (its `FromStr`), as the command line and the results file
         // spell them.
         let unknown = |e: chain_sweep::scattering::UnknownName| value_error(e.to_string());
         let defect: Defect = defect.parse().map_err(unknown)?;
         let ends: Ends = ends.parse().map_err(unknown)?;
         let integrator: Integrator = integrator.parse().map_err(unknown)?;
-        let n = n.0.map_err(|cause| errors::config_chain(py, cause))?;
+        // A wrong type stays the TypeError that names `n`; a wrong count is a setting's error.
+        let n = n.0.map_err(|cause| {
+            if cause.is_instance_of::<pyo3::exceptions::PyTypeError>(py) {
+                cause
+            } else {
+                errors::config_chain(py, cause)
+            }
+        })?;
         let mut d = Diagram::new(n, r, k, theta_bar, defect).map_err(|e| errors::config(py, &e))?;
         d.mass = mass;
         d.ends = ends;

@@ -174,7 +174,7 @@ def test_python_side_misuse_is_a_clear_value_error():
         chain.propagate(np.zeros(60), 0.0, t_max=0.1)
     with pytest.raises(ValueError, match=r"got one of shape \(1, 60\)"):
         rc.domain_walls([[0.3] * 60])
-    with pytest.raises(TypeError, match="argument 'theta'"):
+    with pytest.raises(TypeError, match="theta must be an array of real numbers, got str"):
         chain.gradient("sixty angles")
 
 
@@ -267,3 +267,41 @@ def test_a_dense_result_too_large_to_allocate_is_a_memory_error_with_its_bytes_n
     # The banded form of the same chain still works.
     left, right = chain.compatibility(theta)
     assert left.shape == right.shape == (n - 1,)
+
+
+@pytest.mark.parametrize(
+    "call, message",
+    [
+        (lambda: rc.Chain(60, 0.8, 1e4, "0.58"), "`theta_bar` must be a real number, got '0.58' (str)"),
+        (lambda: rc.Chain(60, 0.8, 1e4, 0.58, mass=None), "`mass` must be a real number, got None (NoneType)"),
+        (lambda: rc.Chain(60.0, 0.8, 1e4, 0.58), "`n` must be an int (a number of rotors), got 60.0 (float)"),
+        (lambda: rc.Chain(True, 0.8, 1e4, 0.58), "`n` must be an int (a number of rotors), got True (bool)"),
+        (lambda: rc.Chain(60, 0.8, 1e4, 0.58).launch("kink", "45", 1.0), "`position` must be a real number, got '45' (str)"),
+        (lambda: rc.Chain(60, 0.8, 1e4, 0.58).energy(None), "theta must be an array of real numbers, got None"),
+        (
+            lambda: rc.Chain(60, 0.8, 1e4, 0.58).energy(np.full(60, 0.58) + 1j),
+            "theta must be an array of real numbers, got ndarray of dtype complex128",
+        ),
+        (
+            lambda: rc.Chain(60, 0.8, 1e4, 0.58).gradient([0.58 + 0j] * 60),
+            "theta must be an array of real numbers, got list of dtype complex128",
+        ),
+    ],
+)
+def test_an_argument_of_the_wrong_type_is_a_type_error_that_names_it(call, message):
+    with pytest.raises(TypeError) as info:
+        call()
+    assert str(info.value) == message
+    assert not isinstance(info.value, rc.RotorChainError)
+
+
+def test_a_complex_array_is_refused_not_cast_to_its_real_part():
+    import warnings
+
+    chain = rc.Chain(60, 0.8, 1e4, 0.58)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # numpy's ComplexWarning of a silent cast would fail here
+        with pytest.raises(TypeError, match="theta must be an array of real numbers"):
+            chain.energy(chain.kink(29.5) + 0j)
+    # Integer arrays are still read as numbers.
+    assert chain.energy(np.zeros(60, dtype=np.int64)) == chain.energy(np.zeros(60))

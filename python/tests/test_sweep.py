@@ -241,3 +241,32 @@ def test_long_computations_release_the_gil(what):
     assert elapsed > 0.05, f"{what} took only {elapsed:.3f} s: too short to tell"
     # The main thread ran its loop throughout (millions of iterations per second when free).
     assert count > 10_000 * elapsed, f"{what}: {count} iterations in {elapsed:.2f} s"
+
+
+@pytest.mark.parametrize(
+    "kwargs, error, message",
+    [
+        (dict(threads="2"), TypeError, "threads must be an int, got '2' (str)"),
+        (dict(threads=True), TypeError, "threads must be an int, got True (bool)"),
+        (dict(threads=0), ValueError, "threads must be at least 1, got 0"),
+        (dict(chunk_size="3"), TypeError, "chunk_size must be an int, got '3' (str)"),
+        (dict(chunk_size=2.0), TypeError, "chunk_size must be an int, got 2.0 (float)"),
+        (dict(max_resubmits=-1), ValueError, "max_resubmits must be at least 0, got -1"),
+        (dict(client="x"), TypeError, "client must be a dask.distributed.Client (or None), got str"),
+        (dict(n=60.0), TypeError, "`n` must be an int (a number of rotors), got 60.0 (float)"),
+        (dict(n=True), TypeError, "`n` must be an int (a number of rotors), got True (bool)"),
+        (dict(theta_bar="0.28"), TypeError, "`theta_bar` must be a real number, got '0.28' (str)"),
+    ],
+)
+def test_a_setting_of_the_wrong_type_or_range_is_refused_by_name_before_any_point(kwargs, error, message, tmp_path):
+    out = tmp_path / "never.csv"
+    with pytest.raises(error) as info:
+        sweep.phase_diagram("antikink", [0.5], [1.0], out=out, **kwargs)
+    assert str(info.value) == message
+    assert not isinstance(info.value, rc.RotorChainError)
+    assert not out.exists()
+
+
+def test_a_thread_count_beyond_any_machine_integer_runs_on_as_many_threads_as_there_are_points():
+    records = sweep.phase_diagram("antikink", [0.5], [1.0], threads=10**20)
+    assert [(r["i"], r["j"], r["error"]) for r in records] == [(0, 0, None)]
