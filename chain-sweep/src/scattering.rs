@@ -15,6 +15,7 @@ use std::fmt;
 use std::str::FromStr;
 
 use rotor_chain::dynamics::DynamicsError;
+use rotor_chain::dynamics::integrate::{IntegrateError, Schedule};
 use rotor_chain::dynamics::run::{ABSORBING_ENDS, Method, RunOptions};
 use rotor_chain::dynamics::scatter::{ScatterSetup, Scattering, scatter};
 use rotor_chain::statics::walls::Charge;
@@ -181,6 +182,22 @@ pub enum ConfigError {
         /// The rule it breaks.
         rule: &'static str,
     },
+    #[error(
+        "t_max = {t_max} needs {outputs:e} outputs of the run every {output_interval}, more than its budget of \
+         {budget}: shorten t_max"
+    )]
+    /// `t_max` asks every point's run for more output times than a run allows
+    /// ([`RunOptions::max_outputs`]): refused with the settings, not at every point.
+    OutputBudget {
+        /// The end of each run.
+        t_max: f64,
+        /// The run's output interval (`t`).
+        output_interval: f64,
+        /// The outputs it would need.
+        outputs: f64,
+        /// The most outputs a run allows.
+        budget: usize,
+    },
     #[error("a chain of {n} rotors cannot hold the experiment: {source}")]
     /// The experiment of [`PhaseDiagram::setup`] does not fit on the chain (too short for the
     /// defect's start 15.5 sites right of the middle spring).
@@ -280,6 +297,18 @@ impl PhaseDiagram {
         positive("t_max", self.t_max)?;
         if let Some(dt) = self.dt {
             positive("dt", dt)?;
+        }
+        // The output budget every point's run would meet (the run's own check, at its start).
+        let run = self.setup(1.0, self.integrator).run;
+        if let Err(IntegrateError::OutputBudget { outputs, budget }) =
+            Schedule::covering(0.0, self.t_max, run.output_interval, run.max_outputs)
+        {
+            return Err(ConfigError::OutputBudget {
+                t_max: self.t_max,
+                output_interval: run.output_interval,
+                outputs,
+                budget,
+            });
         }
         // The experiment itself (the defect starts 15.5 sites right of the middle spring, more
         // than `edge_margin` from the end): refused here, not at every point of the grid.
@@ -650,6 +679,22 @@ mod tests {
 
     /// The shortest chains: every length that passes `check` runs a point of either defect, and
     /// every shorter one is refused by `check`, with the setup's reason, before any point runs.
+    #[test]
+    fn check_refuses_a_t_max_past_the_runs_output_budget_with_its_numbers() {
+        let mut d = PhaseDiagram::new(60, 0.8, 1.0e4, 0.28, Defect::Antikink).unwrap();
+        d.t_max = 1.0e9;
+        // 1e9 / 0.01 = 1e11 outputs against the run's budget of 1 000 000.
+        match d.check() {
+            Err(ConfigError::OutputBudget { t_max, output_interval, outputs, budget }) => {
+                assert_eq!((t_max, output_interval, budget), (1.0e9, 0.01, 1_000_000));
+                assert!((outputs / 1.0e11 - 1.0).abs() < 1e-9, "{outputs}");
+            }
+            other => panic!("{other:?}"),
+        }
+        d.t_max = 20.0;
+        assert!(d.check().is_ok());
+    }
+
     #[test]
     fn check_refuses_exactly_the_chains_too_short_for_the_experiment() {
         let mut shortest = None;

@@ -305,6 +305,13 @@ pub fn config(py: Python<'_>, e: &ConfigError) -> PyErr {
         &ConfigError::Value { name, value, rule } => {
             Details { variant: "Value", ..d }.f("name", name).f("value", value).f("rule", rule)
         }
+        &ConfigError::OutputBudget { t_max, output_interval, outputs, budget } => {
+            Details { variant: "OutputBudget", ..d }
+                .f("t_max", t_max)
+                .f("output_interval", output_interval)
+                .f("outputs", outputs)
+                .f("budget", budget)
+        }
         ConfigError::Experiment { n, source } => {
             Details { variant: "Experiment", ..d }.f("n", *n).source(dynamics(py, source))
         }

@@ -270,3 +270,15 @@ def test_a_setting_of_the_wrong_type_or_range_is_refused_by_name_before_any_poin
 def test_a_thread_count_beyond_any_machine_integer_runs_on_as_many_threads_as_there_are_points():
     records = sweep.phase_diagram("antikink", [0.5], [1.0], threads=10**20)
     assert [(r["i"], r["j"], r["error"]) for r in records] == [(0, 0, None)]
+
+
+def test_a_t_max_past_the_output_budget_is_a_config_error_before_any_point(tmp_path):
+    out = tmp_path / "never.csv"
+    with pytest.raises(rc.ConfigError) as info:
+        sweep.phase_diagram("antikink", [0.5], [1.0], t_max=1e9, out=out)
+    e = info.value
+    assert e.variant == "OutputBudget"
+    # 1e9 / 0.01 = 1e11 outputs, against a run's budget of 1 000 000.
+    assert (e.t_max, e.output_interval, e.budget) == (1e9, 0.01, 1_000_000)
+    assert e.outputs == pytest.approx(1e11)
+    assert not out.exists()
