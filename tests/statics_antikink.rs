@@ -5,7 +5,7 @@
 //! values computed by the code under test.
 
 use rotor_chain::RuntimeChain;
-use rotor_chain::statics::antikink::{AntikinkOptions, antikink_relaxed, peierls_nabarro};
+use rotor_chain::statics::antikink::{AntikinkOptions, antikink_at, antikink_relaxed, peierls_nabarro};
 use rotor_chain::statics::classify::EquilibriumKind;
 use rotor_chain::statics::counting::maxwell_calladine;
 use rotor_chain::statics::impurity::{critical_length, impurity_analysis};
@@ -232,6 +232,39 @@ fn failures_are_typed_errors() {
     assert!(kink(&model, f64::NAN).is_err());
     let too_long = RuntimeChain::builder(60, 0.8, K, 0.58).spring(29, None, Some(2.5)).build().unwrap();
     assert!(impurity_analysis(&too_long, 29).is_err(), "no zero-energy state beyond l_critical");
+}
+
+/// `antikink_at` solves the centrings, rotor or spring: a centre between them has no equilibrium
+/// (an audit found 29.25 labelled a minimum with an interior force of 0.65), so it is refused.
+/// Where the translation is held, `held` says so and the force shows in the gradient, checked
+/// here with the chain's gradient rather than the solver's own numbers.
+#[test]
+fn antikink_at_solves_centrings_only_and_says_when_it_held_the_translation() {
+    use rotor_chain::ChainModel;
+    use rotor_chain::statics::StaticsError;
+    let model = chain(60, 0.58);
+    let options = AntikinkOptions::default();
+    for centre in [29.25, 29.4, 30.1, 0.3] {
+        match antikink_at(&model, centre, &options) {
+            Err(StaticsError::InvalidValue { what: "centre", value, .. }) => assert_eq!(value, centre),
+            other => panic!("{centre}: {:?}", other.map(|a| a.centre)),
+        }
+    }
+    let interior_force = |theta: &[f64]| {
+        let mut g = vec![0.0; theta.len()];
+        model.gradient_into(theta, &mut g);
+        g[1..59].iter().fold(0.0f64, |m, x| m.max(x.abs()))
+    };
+    // In the middle: free equilibria, the interior force at rounding level (|g| ~ k = 1e4).
+    for centre in [29.0, 29.5] {
+        let a = antikink_at(&model, centre, &options).unwrap();
+        assert_eq!(a.held, 0, "{centre}");
+        assert!(interior_force(&a.theta) < 1e-6, "{centre}: {}", interior_force(&a.theta));
+    }
+    // At the last spring the ends' pull wins: the translation is held, and a force remains.
+    let a = antikink_at(&model, 58.5, &options).unwrap();
+    assert!(a.held > 0, "held {}", a.held);
+    assert!(interior_force(&a.theta) > 1e-3, "{}", interior_force(&a.theta));
 }
 
 #[test]

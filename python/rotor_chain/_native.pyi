@@ -158,6 +158,7 @@ class Antikink:
     kind: Literal["minimum", "degenerate-minimum", "saddle"]
     residual: float
     edge_force: float
+    held: int
     newton_iterations: int
     relax_steps: int
     @property

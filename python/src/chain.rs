@@ -378,8 +378,12 @@ impl Chain {
     ///
     /// With ``relaxed=True`` (default), the paper's construction: the reflected kink near
     /// ``centre`` relaxed by dissipative dynamics and polished by Newton's method: a
-    /// Peierls-Nabarro **minimum**. With ``relaxed=False``, the equilibrium centred exactly at
-    /// ``centre`` (an integer: on a rotor; a half-integer: on a spring), minimum or saddle.
+    /// Peierls-Nabarro **minimum** in the middle of a chain. Near an end the ends' pull on a wide
+    /// antikink (``theta_bar`` about 0.3 and below at ``n = 60``) can beat the barrier; the result
+    /// is then a saddle or a fixed-centring point, as ``kind`` and ``held`` say. With
+    /// ``relaxed=False``, the equilibrium centred exactly at ``centre`` (an integer: on a rotor; a
+    /// half-integer: on a spring; any other centre is a ``StaticsError``), minimum or saddle, or
+    /// with ``held > 0`` the equilibrium at that fixed centring.
     /// ``centre`` defaults to the middle rotor; ``ends`` is ``"held"`` (end rotors held at
     /// ``-theta_bar``, ``+theta_bar``, the default) or ``"free"``.
     ///

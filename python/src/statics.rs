@@ -38,12 +38,19 @@ pub struct Antikink {
     index: usize,
     /// Eigenvalues within the tolerance of zero.
     nullity: usize,
-    /// ``"minimum"``, ``"degenerate-minimum"`` or ``"saddle"``.
+    /// ``"minimum"``, ``"degenerate-minimum"`` or ``"saddle"``: the tangent stiffness's
+    /// classification (with ``held > 0`` that of a fixed-centring point).
     kind: String,
     /// ``max |dV/dtheta| / ||K||`` at the end (near-null directions held).
     residual: f64,
-    /// The force left on the held near-null directions (tails reaching the free ends).
+    /// ``max |dV/dtheta| / ||K||`` over every rotor, held directions and end rotors included: the
+    /// force they carry (rounding level when nothing was held; equal to ``residual`` when nothing
+    /// held carries more).
     edge_force: f64,
+    /// How many soft directions Newton's method held. ``0``: a free equilibrium. Above 0 the
+    /// translation was held: the equilibrium at fixed centring (a point of the adiabatic
+    /// trajectory), not a free one, ``edge_force`` the force that takes.
+    held: usize,
     /// Newton steps of the polish.
     newton_iterations: usize,
     /// Dissipative-relaxation steps (0 when not relaxed).
@@ -60,8 +67,12 @@ impl Antikink {
 
     fn __repr__(&self) -> String {
         format!(
-            "Antikink(energy={:?}, centre={:?}, kind='{}', index={})",
-            self.energy, self.centre, self.kind, self.index
+            "Antikink(energy={:?}, centre={:?}, kind='{}', index={}{})",
+            self.energy,
+            self.centre,
+            self.kind,
+            self.index,
+            if self.held > 0 { format!(", held={}", self.held) } else { String::new() }
         )
     }
 
@@ -79,6 +90,7 @@ pickle_fields!(Antikink {
     kind,
     residual,
     edge_force,
+    held,
     newton_iterations,
     relax_steps
 });
@@ -98,6 +110,7 @@ fn antikink_of(py: Python<'_>, a: &ak::Antikink) -> Antikink {
         kind: kind.to_owned(),
         residual: a.residual,
         edge_force: a.edge_force,
+        held: a.held,
         newton_iterations: a.newton_iterations,
         relax_steps: a.relax_steps,
     }

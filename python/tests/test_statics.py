@@ -91,6 +91,21 @@ def test_statics_errors_carry_the_numbers():
         c.peierls_nabarro(ends="fixed")
 
 
+def test_an_antikink_at_a_fixed_centre_says_what_it_is():
+    c = rc.Chain(60, 0.8, 1.0e4, 0.58)
+    # Between two centrings there is no equilibrium: refused, with the value.
+    with pytest.raises(rc.StaticsError) as info:
+        c.antikink(29.25, relaxed=False)
+    assert (info.value.variant, info.value.what, info.value.value) == ("InvalidValue", "centre", 29.25)
+    # A centring in the middle is a free equilibrium: nothing held, no interior force.
+    free = c.antikink(29.5, relaxed=False)
+    assert free.held == 0 and np.max(np.abs(c.gradient(free.theta)[1:-1])) < 1e-6
+    # At the last spring the ends' pull wins: the translation is held, the force shows.
+    held = c.antikink(58.5, relaxed=False)
+    assert held.held > 0 and np.max(np.abs(c.gradient(held.theta)[1:-1])) > 1e-3
+    assert f"held={held.held}" in repr(held) and "held" not in repr(free)
+
+
 def test_statics_results_pickle_field_by_field():
     c = chain(PAPER)
     pn = c.peierls_nabarro()

@@ -111,7 +111,9 @@ pub struct Antikink {
     pub relax_steps: usize,
     /// `max |dV/dtheta| / ||K||` at the end, near-null directions held ([`super::equilibrium`]).
     pub residual: f64,
-    /// The force left on the held near-null directions (the tails reaching the free ends).
+    /// `max_i |dV/dtheta_i| / ||K||` over every rotor, the held directions and the end rotors
+    /// included: the force they carry (rounding level when nothing had to be held, and equal to
+    /// `residual` when nothing held carries more than the free rotors' residual).
     pub edge_force: f64,
     /// How many soft directions Newton's method held ([`super::equilibrium::Solution::held`]).
     /// With a held translation the result is the equilibrium at fixed centring, a point of the
@@ -163,12 +165,22 @@ impl Antikink {
 
 /// The antikink equilibrium centred at `centre` (an integer: on a rotor; a half-integer: on a
 /// spring), by Newton's method from the symmetric reflected kink. Minimum or saddle, as the
-/// classification says.
+/// classification says. Where the translation had to be held (`held > 0`: the ends' pull on a
+/// wide antikink beats the Peierls-Nabarro force there) the result is the equilibrium at fixed
+/// centring, a point of the adiabatic trajectory, with `edge_force` the force that takes. Any
+/// other centre is an error (`InvalidValue`): no equilibrium sits between the two centrings.
 pub fn antikink_at<M: ChainModel + ?Sized>(
     model: &M,
     centre: f64,
     options: &AntikinkOptions,
 ) -> Result<Antikink, StaticsError> {
+    if (2.0 * centre).fract() != 0.0 {
+        return Err(StaticsError::InvalidValue {
+            what: "centre",
+            value: centre,
+            expected: "an integer (rotor-centred) or a half-integer (spring-centred) rotor index",
+        });
+    }
     let guess = initial_guess(model, centre, options)?;
     let newton_options = NewtonOptions { hold_ends: options.hold(), ..options.newton };
     let solution = newton(model, &guess, &newton_options)?;
@@ -183,7 +195,12 @@ pub fn antikink_at<M: ChainModel + ?Sized>(
 /// the relaxation's tolerance (measured: `theta_bar >= 0.45` at n = 60); a wider antikink, or one
 /// started on a saddle, stops where it is, and the polish then returns the saddle or a
 /// fixed-centring point. In those cases both centrings next to where the relaxation stopped are
-/// solved ([`antikink_at`]) and the lower one is returned, so the answer is always the minimum.
+/// solved ([`antikink_at`]) and the lower one is returned: the minimum in the middle of a chain.
+/// Near an end, the ends' pull on a wide antikink can beat the Peierls-Nabarro barrier, so that
+/// neither centring is a free minimum; the lower one is then a fixed-centring point (`held > 0`)
+/// or a saddle, as `held` and the classification say (an independent audit found 2 - 4 such
+/// starts among those from 8 to 51 at `theta_bar` 0.25 - 0.3, n = 60, none elsewhere). The
+/// scattering launches start from this state (docs/dynamics.md).
 /// # Example
 ///
 /// ```
