@@ -439,7 +439,9 @@ impl Chain {
     /// A ``defect`` (``"kink"`` or ``"antikink"``) at ``position`` set in motion along its
     /// translation mode with speed amplitude ``v0`` (length per ``t``) towards ``direction``
     /// (``"left"``: rotor 0, or ``"right"``); Appendix B: ``r_i thetadot_i = v0 e_i``, kinetic
-    /// energy ``M v0^2 / 2``.
+    /// energy ``M v0^2 / 2``. An antikink is relaxed from ``position`` (``antikink()``): near an
+    /// end the ends push a wide one inward, possibly far (at ``theta_bar = 0.58``, ``n = 60``, a
+    /// start at 59 ends at 36), so ``Launch.position`` is the centre actually used.
     #[pyo3(signature = (defect, position, v0, direction = "left"))]
     fn launch(
         &self,

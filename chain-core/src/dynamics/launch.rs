@@ -93,8 +93,10 @@ pub fn near_null_count(charge: Charge) -> usize {
     }
 }
 
-/// The static defect of `charge` at `position`: the kink centred there, or the antikink at the
-/// Peierls-Nabarro minimum nearest to it.
+/// The static defect of `charge` at `position`: the kink centred there, or the antikink relaxed
+/// from there ([`antikink_relaxed`]): in the middle of a chain the Peierls-Nabarro minimum nearest
+/// to it; near an end the ends push a wide antikink inward, possibly far (docs/dynamics.md §2), so
+/// the launch's `position` is the centre actually used.
 pub fn static_defect<M: ChainModel + ?Sized>(
     model: &M,
     charge: Charge,
