@@ -234,6 +234,34 @@ fn failures_are_typed_errors() {
     assert!(impurity_analysis(&too_long, 29).is_err(), "no zero-energy state beyond l_critical");
 }
 
+/// A wall far wider than the chain (theta_bar = 1e-8: every angle rounds to zero) is an error
+/// naming it, not a wall-less configuration handed back as a kink; a wide wall that still shows
+/// (theta_bar = 0.05, some 20 sites wide) is built as before.
+#[test]
+fn a_kink_too_wide_to_show_is_an_error() {
+    use rotor_chain::statics::StaticsError;
+    use rotor_chain::statics::kink::reflected_kink;
+    use rotor_chain::statics::walls::{Charge, domain_walls};
+    for theta_bar in [1e-8, 1e-300] {
+        let model = chain(60, theta_bar);
+        match kink(&model, 29.5) {
+            Err(StaticsError::NoWall { expected: "kink", centre, theta_bar: tb, .. }) => {
+                assert_eq!((centre, tb), (29.5, theta_bar));
+            }
+            other => panic!("{theta_bar}: {:?}", other.map(|t| t[0])),
+        }
+        assert!(matches!(
+            reflected_kink(&model, 30.0),
+            Err(StaticsError::NoWall { expected: "antikink", .. })
+        ));
+    }
+    let wide = chain(60, 0.05);
+    let theta = kink(&wide, 29.5).unwrap();
+    let walls = domain_walls(&theta);
+    assert_eq!(walls.len(), 1);
+    assert!(walls[0].charge == Charge::Kink && (walls[0].position - 29.5).abs() < 1e-6);
+}
+
 /// `antikink_at` solves the centrings, rotor or spring: a centre between them has no equilibrium
 /// (an audit found 29.25 labelled a minimum with an interior force of 0.65), so it is refused.
 /// Where the translation is held, `held` says so and the force shows in the gradient, checked

@@ -187,6 +187,14 @@ pub fn statics(py: Python<'_>, e: &StaticsError) -> PyErr {
             .f("expected", expected)
             .f("kinks", kinks)
             .f("antikinks", antikinks),
+        &StaticsError::NoWall { expected, centre, theta_bar, kinks, antikinks } => {
+            Details { variant: "NoWall", ..d }
+                .f("expected", expected)
+                .f("centre", centre)
+                .f("theta_bar", theta_bar)
+                .f("kinks", kinks)
+                .f("antikinks", antikinks)
+        }
         &StaticsError::NoZeroEnergyState { spring, rest_length, min, max } => {
             Details { variant: "NoZeroEnergyState", ..d }
                 .f("spring", spring)

@@ -91,6 +91,16 @@ def test_statics_errors_carry_the_numbers():
         c.peierls_nabarro(ends="fixed")
 
 
+def test_a_kink_wider_than_the_chain_is_an_error_not_a_wall_less_state():
+    c = rc.Chain(60, 0.8, 1.0e4, 1e-8)
+    with pytest.raises(rc.StaticsError) as info:
+        c.kink(29.5)
+    e = info.value
+    assert (e.variant, e.expected, e.centre, e.theta_bar) == ("NoWall", "kink", 29.5, 1e-8)
+    assert "wider than the chain" in str(e)
+    assert rc.domain_walls(rc.Chain(60, 0.8, 1.0e4, 0.05).kink(29.5)) == [(pytest.approx(29.5), "kink")]
+
+
 def test_an_antikink_at_a_fixed_centre_says_what_it_is():
     c = rc.Chain(60, 0.8, 1.0e4, 0.58)
     # Between two centrings there is no equilibrium: refused, with the value.

@@ -41,6 +41,25 @@ pub enum StaticsError {
         /// The tolerance it had to meet.
         tolerance: f64,
     },
+    /// A wall built by the branch solve with its centre inside the chain shows no wall there: at
+    /// so small a `theta_bar` the wall is far wider than the chain, and its angles round to zero.
+    #[error(
+        "the {expected} centred at {centre} has no wall inside the chain: at theta_bar = {theta_bar} it \
+         is far wider than the chain and its angles round to zero (found {kinks} kink(s), {antikinks} \
+         antikink(s))"
+    )]
+    NoWall {
+        /// The wall asked for: `kink` or `antikink` (the reflected kink).
+        expected: &'static str,
+        /// Its centre, in rotor indices.
+        centre: f64,
+        /// The chain's `theta_bar`.
+        theta_bar: f64,
+        /// Kinks found.
+        kinks: usize,
+        /// Antikinks found.
+        antikinks: usize,
+    },
     /// The relaxed configuration no longer holds the defect it started with (for example an
     /// antikink annihilated by a kink entering from a free end).
     #[error(

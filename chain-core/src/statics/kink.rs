@@ -16,13 +16,16 @@ use alloc::vec;
 use alloc::vec::Vec;
 
 use super::error::StaticsError;
+use super::walls::Charge;
 use crate::embedded::{self, EmbeddedError};
 use crate::model::ChainModel;
 
 /// The zero-energy kink of `model` centred at `centre` (in rotor indices, `0 <= centre <= n - 1`).
 /// At `centre = 0` or `n - 1` the wall sits on the end rotor, which stands vertical: the wall has
 /// reached the end, the chain is one domain, and [`domain_walls`](super::walls::domain_walls)
-/// finds no wall (it reports sign changes between two leaning rotors).
+/// finds no wall (it reports sign changes between two leaning rotors). A centre inside the chain
+/// whose profile shows no wall (a `theta_bar` so small that the wall is far wider than the chain
+/// and its angles round to zero) is [`StaticsError::NoWall`].
 /// # Example
 ///
 /// ```
@@ -75,6 +78,23 @@ fn wall_profile<M: ChainModel + ?Sized>(
         Wall::Reflected => embedded::reflected_kink_into(model, centre, &mut theta),
     };
     match built {
+        // A centre inside the chain must leave one wall there. At a `theta_bar` so small that the
+        // wall is far wider than the chain (1e-8 at n = 60), the angles round to zero with no
+        // sign change: that is no kink, and says so.
+        Ok(()) if centre > 0.0 && centre < max => {
+            let walls = super::walls::domain_walls(&theta);
+            let kinks = walls.iter().filter(|w| w.charge == Charge::Kink).count();
+            let (expected, found) = match wall {
+                Wall::Kink => ("kink", (kinks, walls.len() - kinks) == (1, 0)),
+                Wall::Reflected => ("antikink", (kinks, walls.len() - kinks) == (0, 1)),
+            };
+            if found {
+                Ok(theta)
+            } else {
+                let (theta_bar, antikinks) = (model.theta_bar(), walls.len() - kinks);
+                Err(StaticsError::NoWall { expected, centre, theta_bar, kinks, antikinks })
+            }
+        }
         Ok(()) => Ok(theta),
         Err(EmbeddedError::Branch(e)) => Err(StaticsError::Branch(e)),
         // The centre and the length are checked above; a chain of one rotor has no wall.
