@@ -410,7 +410,8 @@ impl Chain {
 
     /// The lowest ``count`` vibrational modes about ``theta`` (``K v = omega^2 I v``, paper
     /// Sec. IV), ascending; ``count=None`` gives all ``n``. Frequencies in ``1/t``.
-    #[pyo3(signature = (theta, count = Some(AtMost(12)), *, hold_ends = false))]
+    #[pyo3(signature = (theta, count = Some(AtMost(12)), *, hold_ends = false),
+           text_signature = "($self, theta, count=12, *, hold_ends=False)")]
     fn modes(
         &self,
         py: Python<'_>,

@@ -55,3 +55,62 @@ def test_the_stubs_match_the_compiled_module():
         runtime = {m for m in dir(getattr(_native, name)) if not m.startswith("_")}
         stub = {m for m in members if not m.startswith("_") or m in ("__len__",)} - {"__len__"}
         assert runtime == stub, f"{name}: only at run time {runtime - stub}, only in the stub {stub - runtime}"
+
+
+def _stub_defaults():
+    """``{(class or None, function): {parameter: default}}`` for every function of the stubs
+    whose defaults are literals (``__init__`` stands for the class)."""
+    tree = ast.parse((Path(rotor_chain.__file__).parent / "_native.pyi").read_text())
+    found = {}
+
+    def defaults(function):
+        args = function.args
+        positional = args.posonlyargs + args.args
+        pairs = list(zip(positional[len(positional) - len(args.defaults) :], args.defaults))
+        pairs += [(a, d) for a, d in zip(args.kwonlyargs, args.kw_defaults) if d is not None]
+        return {a.arg: ast.literal_eval(d) for a, d in pairs}
+
+    for node in tree.body:
+        if isinstance(node, ast.ClassDef):
+            for item in node.body:
+                if isinstance(item, ast.FunctionDef) and not any(
+                    isinstance(d, ast.Name) and d.id in ("property", "staticmethod", "classmethod")
+                    for d in item.decorator_list
+                ):
+                    found[(node.name, item.name)] = defaults(item)
+        elif isinstance(node, ast.FunctionDef):
+            found[(None, node.name)] = defaults(node)
+    return found
+
+
+def test_help_shows_the_stubs_defaults_never_an_ellipsis():
+    """``help`` and ``inspect.signature`` read ``__text_signature__``: a default pyo3 cannot
+    spell (``Some(AtMost(12))``) would show as ``...``."""
+    import inspect
+
+    checked = 0
+    for (owner, name), stub in _stub_defaults().items():
+        if owner is None:
+            target = getattr(_native, name)
+        elif name == "__init__":
+            target = getattr(_native, owner)
+        else:
+            target = getattr(getattr(_native, owner), name, None)
+        if target is None or not callable(target) or name.startswith("__") and name != "__init__":
+            continue
+        try:
+            signature = inspect.signature(target)
+        except (ValueError, TypeError):
+            continue
+        runtime = {
+            p.name: p.default for p in signature.parameters.values() if p.default is not inspect.Parameter.empty
+        }
+        where = f"{owner}.{name}" if owner else name
+        assert Ellipsis not in runtime.values(), f"{where}{signature}"
+        # A stub's ``...`` (a default it leaves to the docstring, e.g. DEFAULT_ENERGY_TOLERANCE)
+        # matches any value that help can show.
+        stub = {p: runtime.get(p, d) if d is Ellipsis else d for p, d in stub.items()}
+        assert runtime == stub, f"{where}: help says {signature}, the stub's defaults are {stub}"
+        checked += 1
+    assert checked >= 15
+    assert str(inspect.signature(_native.Chain.modes)) == "(self, /, theta, count=12, *, hold_ends=False)"
