@@ -18,6 +18,7 @@ import numpy as np
 import numpy.typing as npt
 
 Array = npt.NDArray[np.float64]
+IntArray = npt.NDArray[np.int64]
 ArrayLike = Union[npt.ArrayLike, Sequence[float]]
 Defect = Literal["kink", "antikink"]
 WallCharge = Literal["kink", "antikink"]
@@ -210,7 +211,7 @@ class Run:
     times: Array
     kinetic: Array
     walls: List[List[Wall]]
-    wall_counts: Array
+    wall_counts: IntArray  # (kinks, antikinks) per output, int64
     violations: List[float]
     space_time: Optional[Array]
     time: float

@@ -221,10 +221,16 @@ pub fn array(py: Python<'_>, values: Vec<f64>) -> Py<PyArray1<f64>> {
     values.into_pyarray(py).unbind()
 }
 
-/// A `rows x cols` float64 numpy array from row-major `values`.
-pub fn matrix(py: Python<'_>, rows: usize, cols: usize, values: Vec<f64>) -> Py<PyArray2<f64>> {
+/// A `rows x cols` numpy array (float64 for `f64`, int64 for `i64`) from row-major `values`.
+pub fn matrix<T: numpy::Element + Clone + Default>(
+    py: Python<'_>,
+    rows: usize,
+    cols: usize,
+    values: Vec<T>,
+) -> Py<PyArray2<T>> {
     // The length is rows * cols by construction at every call site.
-    let a = Array2::from_shape_vec((rows, cols), values).unwrap_or_else(|_| Array2::zeros((rows, cols)));
+    let a = Array2::from_shape_vec((rows, cols), values)
+        .unwrap_or_else(|_| Array2::from_elem((rows, cols), T::default()));
     a.into_pyarray(py).unbind()
 }
 

@@ -128,8 +128,8 @@ pub struct Run {
     /// The walls at each output: ``[(position, "kink" | "antikink"), ...]``, interior walls left
     /// to right, then walls that left through an end (kept at ``0`` or ``n - 1``, Appendix C).
     walls: Vec<Vec<(f64, String)>>,
-    /// ``(kinks, antikinks)`` at each output (``T x 2``).
-    wall_counts: Py<PyArray2<f64>>,
+    /// ``(kinks, antikinks)`` at each output (``T x 2``, int64: they are counts).
+    wall_counts: Py<PyArray2<i64>>,
     /// Output times at which the conserved ``N_kink - N_antikink`` was violated (rotors spun
     /// through ``|theta| = pi``).
     violations: Vec<f64>,
@@ -187,11 +187,12 @@ pickle_fields!(Run {
 
 fn run_of(py: Python<'_>, run: rn::Run) -> Run {
     let snapshots = &run.tracker.snapshots;
-    let counts: Vec<f64> = snapshots
+    // A count past i64::MAX is no chain's (MAX_ROTORS is far below it); saturate rather than wrap.
+    let counts: Vec<i64> = snapshots
         .iter()
         .flat_map(|s| {
             let (k, a) = s.counts();
-            [k as f64, a as f64]
+            [k, a].map(|c| i64::try_from(c).unwrap_or(i64::MAX))
         })
         .collect();
     let walls = snapshots
