@@ -223,6 +223,12 @@ impl Grid {
     /// sweep refuses a file of another grid: the readable ranges and counts, plus an FNV-1a hash
     /// of every value's bits (two grids with the same ends and counts but different interior
     /// values differ in the hash).
+    ///
+    /// Deliberately a function of the values only, not of how they were specified: a `:log` axis
+    /// reads `x=0.01:3.0:40` like the even one, and the hash tells the two apart. A spec in the
+    /// signature would break `merge`, which rebuilds the grid from the points' coordinates
+    /// ([`Axis::from_values`], no spec) and compares signatures, and [`signature_dims`], which
+    /// reads the count after the last `:`.
     pub fn signature(&self) -> String {
         let mut hash = Fnv1a::new();
         for axis in [&self.xs, &self.ys] {
@@ -358,5 +364,15 @@ mod tests {
         let uneven = Axis::from_values(vec![0.01, 0.02, 0.03, 0.04, 0.05, 1.0]).unwrap();
         let b = Grid::new(uneven, "0.5:12:6".parse().unwrap()).unwrap();
         assert_ne!(a.signature(), b.signature());
+        // A log axis: the same label as the even one (no `:log`), told apart by the hash; the
+        // signature of its values, rebuilt without a spec (as `merge` does), is the same.
+        let log = grid("0.01:1:6:log", "0.5:12:6");
+        let label = |g: &Grid| g.signature().split(" fnv1a=").next().unwrap().to_owned();
+        assert_eq!(label(&log), label(&a));
+        assert_ne!(log.signature(), a.signature());
+        let rebuilt =
+            Grid::new(Axis::from_values(log.xs.clone()).unwrap(), "0.5:12:6".parse().unwrap()).unwrap();
+        assert_eq!(rebuilt.signature(), log.signature());
+        assert_eq!(signature_dims(&log.signature()), Some((6, 6)));
     }
 }

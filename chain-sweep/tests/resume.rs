@@ -177,6 +177,9 @@ fn a_file_of_another_grid_or_chain_is_refused() {
 
     let refused = [
         (phase_diagram(&out, "0.1:1:7", &args), "belongs to another grid"),
+        // The header's `x=0.1:1.0:6` is the same for the log axis (it carries no `:log`); the
+        // hash of the values tells them apart.
+        (phase_diagram(&out, "0.1:1:6:log", &args), "belongs to another grid"),
         (phase_diagram(&out, KI, &["--fake-delay-ms", "0", "--theta-bar", "0.3"]), "belongs to another run"),
         (phase_diagram(&out, KI, &[]), "belongs to another run"),
     ];
