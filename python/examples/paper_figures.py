@@ -42,7 +42,12 @@ def akenergy(out: Path, quick: bool) -> Path:
 def phasediagram(out: Path, quick: bool, client=None) -> Path:
     count = 8 if quick else 30
     records = sweep.phase_diagram(
-        "antikink", f"0.01:3:{count}:log", f"0.5:12:{count}", out=out / "antikink.csv", client=client
+        "antikink",
+        f"0.01:3:{count}:log",
+        f"0.5:12:{count}",
+        # One file per grid: --quick and the full run in the same folder must not share one.
+        out=out / f"antikink-{count}x{count}.csv",
+        client=client,
     )
     ki, v0, outcomes = sweep.outcome_grid(records)
     names = [o for o in sweep.OUTCOMES if (outcomes == o).any()] + (["failed"] if (outcomes == "failed").any() else [])

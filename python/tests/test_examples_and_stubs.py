@@ -23,7 +23,7 @@ def test_the_example_draws_fig_akenergy_and_a_phase_diagram(tmp_path):
     for name in ("akenergy.png", "phasediagram.png"):
         png = (tmp_path / name).read_bytes()
         assert png[:8] == b"\x89PNG\r\n\x1a\n" and len(png) > 10_000, name
-    assert (tmp_path / "antikink.csv").read_text().count("\n") == 2 + 64
+    assert (tmp_path / "antikink-8x8.csv").read_text().count("\n") == 2 + 64
 
 
 def _stubbed():
