@@ -677,8 +677,6 @@ mod tests {
         assert_eq!("".parse::<Ends>().unwrap_err().what, "ends");
     }
 
-    /// The shortest chains: every length that passes `check` runs a point of either defect, and
-    /// every shorter one is refused by `check`, with the setup's reason, before any point runs.
     #[test]
     fn check_refuses_a_t_max_past_the_runs_output_budget_with_its_numbers() {
         let mut d = PhaseDiagram::new(60, 0.8, 1.0e4, 0.28, Defect::Antikink).unwrap();
@@ -695,6 +693,8 @@ mod tests {
         assert!(d.check().is_ok());
     }
 
+    /// The shortest chains: every length that passes `check` runs a point of either defect, and
+    /// every shorter one is refused by `check`, with the setup's reason, before any point runs.
     #[test]
     fn check_refuses_exactly_the_chains_too_short_for_the_experiment() {
         let mut shortest = None;

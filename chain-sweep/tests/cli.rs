@@ -93,6 +93,26 @@ fn bad_arguments_exit_2_before_anything_is_written() {
 }
 
 #[test]
+fn a_t_max_past_the_runs_output_budget_exits_2_with_its_numbers() {
+    // ConfigError::OutputBudget: 1e9 / 0.01 = 1e11 outputs per run, against 1 000 000; refused
+    // by the settings' check before the file is touched, not at every point.
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("r.csv");
+    let (code, stderr) = phase_diagram(out.to_str().unwrap(), &[("--t-max", "1e9")]);
+    assert_eq!(code, Some(2), "{stderr}");
+    for expected in [
+        "t_max = 1000000000 needs 1",
+        "e11 outputs of the run every 0.01, more than its budget of 1000000: shorten t_max",
+    ] {
+        assert!(stderr.contains(expected), "expected `{expected}` in:\n{stderr}");
+    }
+    assert!(!out.exists(), "a refused sweep wrote the file");
+    // A t_max within the budget (1e4: 1e6 outputs every 0.01) is accepted.
+    let (code, stderr) = phase_diagram(out.to_str().unwrap(), &[("--t-max", "1e4")]);
+    assert_eq!(code, Some(0), "{stderr}");
+}
+
+#[test]
 fn an_output_that_is_not_a_regular_file_is_refused_at_once() {
     let dir = tempfile::tempdir().unwrap();
     // A directory.

@@ -221,7 +221,10 @@ def phase_diagram(
         ConfigError, GridError: invalid settings or axes, or a grid of more than
             ``MAX_GRID_POINTS`` points (``GridError`` with ``variant == "TooLarge"``, ``nx``,
             ``ny``), the ``phase-diagram`` command's limit: refused before anything is
-            allocated per point, computed or written.
+            allocated per point, computed or written. A ``t_max`` whose runs would need more
+            outputs than a run allows (``t_max=1e9``: 1e11 outputs every 0.01 against 1e6) is
+            ``ConfigError`` with ``variant == "OutputBudget"``, ``t_max``, ``output_interval``,
+            ``outputs`` and ``budget``.
         SweepError: ``out`` belongs to another sweep (another grid or settings), is locked by a
             running sweep, or cannot be written.
         TypeError, ValueError: ``threads``, ``chunk_size`` or ``max_resubmits`` not an int (a
