@@ -227,7 +227,7 @@ impl Grid {
     /// Deliberately a function of the values only, not of how they were specified: a `:log` axis
     /// reads `x=0.01:3.0:40` like the even one, and the hash tells the two apart. A spec in the
     /// signature would break `merge`, which rebuilds the grid from the points' coordinates
-    /// ([`Axis::from_values`], no spec) and compares signatures, and [`signature_dims`], which
+    /// ([`Axis::from_values`], no spec) and compares signatures, and `signature_dims`, which
     /// reads the count after the last `:`.
     pub fn signature(&self) -> String {
         let mut hash = Fnv1a::new();
