@@ -40,6 +40,12 @@ fn floats(x: &Bound<'_, PyAny>, what: &str) -> PyResult<Vec<f64>> {
     let not_real = |got: String| {
         pyo3::exceptions::PyTypeError::new_err(format!("{what} must be an array of real numbers, got {got}"))
     };
+    // The common case, a float64 vector, is read directly, without the numpy calls below.
+    if let Ok(array) = x.cast::<PyArray1<f64>>()
+        && let Ok(values) = numpy::PyArrayMethods::try_readonly(array)
+    {
+        return Ok(values.as_array().to_vec());
+    }
     if x.is_none() {
         return Err(not_real("None".to_owned()));
     }
