@@ -174,7 +174,7 @@ pub fn antikink_at<M: ChainModel + ?Sized>(
     centre: f64,
     options: &AntikinkOptions,
 ) -> Result<Antikink, StaticsError> {
-    if centre.is_finite() && (2.0 * centre).fract() != 0.0 {
+    if centre.is_finite() && 2.0 * centre != libm::round(2.0 * centre) {
         return Err(StaticsError::InvalidValue {
             what: "centre",
             value: centre,
