@@ -332,16 +332,23 @@ impl Chain {
     ///         ``count``).
     ///     BranchError: no real root (``variant == "NoRealRoot"``, with ``distance``, ``min``,
     ///         ``max``, ...), or a non-finite ``theta_p``.
-    fn next_angles(&self, py: Python<'_>, p: &Bound<'_, PyAny>, theta_p: f64) -> PyResult<(f64, f64)> {
+    fn next_angles(&self, py: Python<'_>, p: &Bound<'_, PyAny>, theta_p: Real) -> PyResult<(f64, f64)> {
         let p = args::index(p, IndexKind::Spring, self.chain.spring_count())?;
+        let theta_p = theta_p.get("theta_p")?;
         let [a, b] = self.chain.next_angles(p, theta_p).map_err(|e| errors::branch(py, &e))?;
         Ok((a, b))
     }
 
     /// Both ``theta_p`` that put spring ``p`` at its rest length given ``theta_{p+1}``: the inverse
     /// map. Raises as ``next_angles``.
-    fn previous_angles(&self, py: Python<'_>, p: &Bound<'_, PyAny>, theta_next: f64) -> PyResult<(f64, f64)> {
+    fn previous_angles(
+        &self,
+        py: Python<'_>,
+        p: &Bound<'_, PyAny>,
+        theta_next: Real,
+    ) -> PyResult<(f64, f64)> {
         let p = args::index(p, IndexKind::Spring, self.chain.spring_count())?;
+        let theta_next = theta_next.get("theta_next")?;
         let [a, b] = self.chain.previous_angles(p, theta_next).map_err(|e| errors::branch(py, &e))?;
         Ok((a, b))
     }
@@ -480,26 +487,34 @@ impl Chain {
     /// Raises:
     ///     IntegrateError: a bad option, a non-finite state, a broken energy limit or budget
     ///         (``OutputBudget``, ``StepBudget``, ``SpaceTimeBudget``).
-    #[pyo3(signature = (theta, omega, *, t_max = 20.0, output_interval = 0.01, method = "verlet", dt = None,
-                        rtol = None, atol = None, damping = 0.0, absorbing_ends = false, space_time = false,
-                        energy_limit = 0.1))]
+    #[pyo3(signature = (theta, omega, *, t_max = Real::of(20.0), output_interval = Real::of(0.01),
+                        method = "verlet", dt = None, rtol = None, atol = None, damping = Real::of(0.0),
+                        absorbing_ends = false, space_time = false, energy_limit = Real::of(0.1)),
+           text_signature = "($self, theta, omega, *, t_max=20.0, output_interval=0.01, method='verlet', \
+                             dt=None, rtol=None, atol=None, damping=0.0, absorbing_ends=False, \
+                             space_time=False, energy_limit=0.1)")]
     #[allow(clippy::too_many_arguments)]
     fn propagate(
         &self,
         py: Python<'_>,
         theta: &Bound<'_, PyAny>,
         omega: &Bound<'_, PyAny>,
-        t_max: f64,
-        output_interval: f64,
+        t_max: Real,
+        output_interval: Real,
         method: &str,
-        dt: Option<f64>,
-        rtol: Option<f64>,
-        atol: Option<f64>,
-        damping: f64,
+        dt: Option<Real>,
+        rtol: Option<Real>,
+        atol: Option<Real>,
+        damping: Real,
         absorbing_ends: bool,
         space_time: bool,
-        energy_limit: f64,
+        energy_limit: Real,
     ) -> PyResult<crate::dynamics::Run> {
+        let (t_max, output_interval) = (t_max.get("t_max")?, output_interval.get("output_interval")?);
+        let (damping, energy_limit) = (damping.get("damping")?, energy_limit.get("energy_limit")?);
+        let dt = dt.map(|dt| dt.get("dt")).transpose()?;
+        let (rtol, atol) =
+            (rtol.map(|r| r.get("rtol")).transpose()?, atol.map(|a| a.get("atol")).transpose()?);
         let theta = self.theta(theta)?;
         let omega = vector(omega, "omega", self.n())?;
         let options = crate::dynamics::run_options(
@@ -523,24 +538,30 @@ impl Chain {
     ///
     /// ``impurity`` defaults to the middle spring ``(n - 1) // 2``; ``direction="left"`` (the
     /// paper's, from the right) or ``"right"``.
-    #[pyo3(signature = (defect, v0, impurity = None, *, start = None, direction = "left", t_max = 20.0,
-                        method = "verlet", dt = None, absorbing_ends = false, space_time = false, watch = 0.0))]
+    #[pyo3(signature = (defect, v0, impurity = None, *, start = None, direction = "left", t_max = Real::of(20.0),
+                        method = "verlet", dt = None, absorbing_ends = false, space_time = false,
+                        watch = Real::of(0.0)),
+           text_signature = "($self, defect, v0, impurity=None, *, start=None, direction='left', t_max=20.0, \
+                             method='verlet', dt=None, absorbing_ends=False, space_time=False, watch=0.0)")]
     #[allow(clippy::too_many_arguments)]
     fn scatter(
         &self,
         py: Python<'_>,
         defect: &str,
-        v0: f64,
+        v0: Real,
         impurity: Option<&Bound<'_, PyAny>>,
-        start: Option<f64>,
+        start: Option<Real>,
         direction: &str,
-        t_max: f64,
+        t_max: Real,
         method: &str,
-        dt: Option<f64>,
+        dt: Option<Real>,
         absorbing_ends: bool,
         space_time: bool,
-        watch: f64,
+        watch: Real,
     ) -> PyResult<crate::dynamics::Scattering> {
+        let (v0, t_max, watch) = (v0.get("v0")?, t_max.get("t_max")?, watch.get("watch")?);
+        let start = start.map(|s| s.get("start")).transpose()?;
+        let dt = dt.map(|dt| dt.get("dt")).transpose()?;
         let springs = self.chain.spring_count();
         let impurity = match impurity {
             Some(p) => args::index(p, IndexKind::Spring, springs)?,

@@ -286,6 +286,21 @@ def test_a_dense_result_too_large_to_allocate_is_a_memory_error_with_its_bytes_n
             lambda: rc.Chain(60, 0.8, 1e4, 0.58).gradient([0.58 + 0j] * 60),
             "theta must be an array of real numbers, got list of dtype complex128",
         ),
+        (lambda: rc.Chain(60, 0.8, 1e4, 0.58).next_angles(3, "0.5"), "`theta_p` must be a real number, got '0.5' (str)"),
+        (lambda: rc.Chain(60, 0.8, 1e4, 0.58).previous_angles(3, None), "`theta_next` must be a real number, got None (NoneType)"),
+        (
+            lambda: rc.Chain(60, 0.8, 1e4, 0.58).propagate(np.full(60, 0.58), np.zeros(60), t_max="1"),
+            "`t_max` must be a real number, got '1' (str)",
+        ),
+        (
+            lambda: rc.Chain(60, 0.8, 1e4, 0.58).propagate(np.full(60, 0.58), np.zeros(60), dt=[0.01]),
+            "`dt` must be a real number, got [0.01] (list)",
+        ),
+        (lambda: rc.Chain(60, 0.8, 1e4, 0.58).scatter("kink", "4"), "`v0` must be a real number, got '4' (str)"),
+        (
+            lambda: rc.Chain(60, 0.8, 1e4, 0.58).scatter("kink", 4.0, start="44.5"),
+            "`start` must be a real number, got '44.5' (str)",
+        ),
     ],
 )
 def test_an_argument_of_the_wrong_type_is_a_type_error_that_names_it(call, message):
