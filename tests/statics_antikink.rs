@@ -254,6 +254,13 @@ fn a_kink_too_wide_to_show_is_an_error() {
             reflected_kink(&model, 30.0),
             Err(StaticsError::NoWall { expected: "antikink", .. })
         ));
+        // The no-alloc builder both share says so itself (firmware builds its kinks with it).
+        let mut theta = [0.0; 60];
+        let e = rotor_chain::embedded::kink_into(&model, 29.5, &mut theta);
+        assert!(
+            matches!(e, Err(rotor_chain::embedded::EmbeddedError::NoWall { expected: "kink", .. })),
+            "{e:?}"
+        );
     }
     let wide = chain(60, 0.05);
     let theta = kink(&wide, 29.5).unwrap();

@@ -33,6 +33,22 @@ pub enum EmbeddedError {
         /// The largest allowed centre.
         max: f64,
     },
+    /// A wall built with its centre inside the chain shows no wall there (or more than one): at
+    /// so small a `theta_bar` the wall is far wider than the chain, and its angles round to zero.
+    #[error(
+        "the {expected} centred at {centre} has no wall inside the chain: it is far wider than the \
+         chain and its angles round to zero (found {kinks} kink(s), {antikinks} antikink(s))"
+    )]
+    NoWall {
+        /// The wall asked for: `kink` or `antikink` (the reflected kink).
+        expected: &'static str,
+        /// Its centre, in rotor indices.
+        centre: f64,
+        /// Kinks found.
+        kinks: usize,
+        /// Antikinks found.
+        antikinks: usize,
+    },
     /// The branch solve found no angle that puts a spring at rest length.
     #[error("branch solve: {0}")]
     Branch(#[from] BranchError),

@@ -13,6 +13,7 @@
 //! vertical; for `c = i + f` the angles of rotors `i` and `i + 1` are chosen on the spring-`i`
 //! constraint, by bisection, so that the interpolated sign change sits at `i + f`.
 
+use super::walls::{Charge, domain_walls};
 use super::{EmbeddedError, FloatChain, Real};
 
 /// The most bisection steps for a fractional centre: each halves the bracket, so 200 reach the
@@ -23,7 +24,9 @@ const BISECTION_STEPS: usize = 200;
 /// Writes the zero-energy kink of `model` centred at `centre` (in rotor indices,
 /// `0 <= centre <= n - 1`) into `theta`, which must hold one angle per rotor. At `centre = 0` or
 /// `n - 1` the wall sits on the end rotor, which stands vertical: the wall has reached the end and
-/// the chain is one domain (as for the statics' `kink`).
+/// the chain is one domain (as for the statics' `kink`). A centre inside the chain whose profile
+/// shows no wall (a `theta_bar` so small that the wall is far wider than the chain and its angles
+/// round to zero) is [`EmbeddedError::NoWall`].
 pub fn kink_into<T: Real, M: FloatChain<T> + ?Sized>(
     model: &M,
     centre: T,
@@ -109,6 +112,26 @@ fn wall_into<T: Real, M: FloatChain<T> + ?Sized>(
     }
     for p in (0..i).rev() {
         theta[p] = left(p, theta[p + 1])?;
+    }
+    // A centre inside the chain leaves one wall of the asked charge there. At a `theta_bar` so
+    // small that the wall is far wider than the chain (1e-8 at n = 60) the angles round to zero
+    // with no sign change: that is no kink, and says so.
+    if centre > T::ZERO && centre < max {
+        let (expected, charge) = match wall {
+            Wall::Kink => ("kink", Charge::Kink),
+            Wall::Reflected => ("antikink", Charge::Antikink),
+        };
+        let (mut kinks, mut antikinks) = (0, 0);
+        for w in domain_walls(theta) {
+            match w.charge {
+                Charge::Kink => kinks += 1,
+                Charge::Antikink => antikinks += 1,
+            }
+        }
+        let found = if charge == Charge::Kink { (kinks, antikinks) } else { (antikinks, kinks) };
+        if found != (1, 0) {
+            return Err(EmbeddedError::NoWall { expected, centre: centre.widen(), kinks, antikinks });
+        }
     }
     Ok(())
 }

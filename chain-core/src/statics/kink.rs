@@ -16,7 +16,6 @@ use alloc::vec;
 use alloc::vec::Vec;
 
 use super::error::StaticsError;
-use super::walls::Charge;
 use crate::embedded::{self, EmbeddedError};
 use crate::model::ChainModel;
 
@@ -78,25 +77,11 @@ fn wall_profile<M: ChainModel + ?Sized>(
         Wall::Reflected => embedded::reflected_kink_into(model, centre, &mut theta),
     };
     match built {
-        // A centre inside the chain must leave one wall there. At a `theta_bar` so small that the
-        // wall is far wider than the chain (1e-8 at n = 60), the angles round to zero with no
-        // sign change: that is no kink, and says so.
-        Ok(()) if centre > 0.0 && centre < max => {
-            let walls = super::walls::domain_walls(&theta);
-            let kinks = walls.iter().filter(|w| w.charge == Charge::Kink).count();
-            let (expected, found) = match wall {
-                Wall::Kink => ("kink", (kinks, walls.len() - kinks) == (1, 0)),
-                Wall::Reflected => ("antikink", (kinks, walls.len() - kinks) == (0, 1)),
-            };
-            if found {
-                Ok(theta)
-            } else {
-                let (theta_bar, antikinks) = (model.theta_bar(), walls.len() - kinks);
-                Err(StaticsError::NoWall { expected, centre, theta_bar, kinks, antikinks })
-            }
-        }
         Ok(()) => Ok(theta),
         Err(EmbeddedError::Branch(e)) => Err(StaticsError::Branch(e)),
+        Err(EmbeddedError::NoWall { expected, centre, kinks, antikinks }) => {
+            Err(StaticsError::NoWall { expected, centre, theta_bar: model.theta_bar(), kinks, antikinks })
+        }
         // The centre and the length are checked above; a chain of one rotor has no wall.
         Err(_) => Err(StaticsError::CentreOutOfRange { centre, n, max }),
     }
