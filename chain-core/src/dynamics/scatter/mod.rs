@@ -236,8 +236,10 @@ impl ScatterSetup {
 
     /// Whether the setup describes an experiment on a chain of `n` rotors (what [`scatter`]
     /// checks first): the impurity one of its springs, every window and distance finite and of
-    /// its sign, and the start on the chain, farther than `edge_margin` from either end (nearer,
-    /// the launched wall would count as having reached that end at once).
+    /// its sign, the start on the chain, farther than `edge_margin` from either end (nearer, the
+    /// launched wall would count as having reached that end at once), the impurity's range
+    /// (`reach`) clear of the end zones, and the start beyond that range on the side the defect
+    /// is launched from (otherwise no outcome would mean anything).
     pub fn check(&self, n: usize) -> Result<(), DynamicsError> {
         if self.impurity >= n.saturating_sub(1) {
             return Err(DynamicsError::NoSuchSpring { spring: self.impurity, springs: n.saturating_sub(1) });
@@ -292,7 +294,8 @@ impl ScatterSetup {
             Direction::Left => self.start - centre,
             Direction::Right => centre - self.start,
         };
-        if ahead.is_nan() || ahead <= self.reach {
+        // `start` and `reach` are finite here (checked above), so `ahead` is a number.
+        if ahead <= self.reach {
             return Err(DynamicsError::InvalidSetup {
                 name: "start",
                 value: self.start,
