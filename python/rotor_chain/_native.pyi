@@ -78,15 +78,15 @@ class Chain:
     def hessian(self, theta: ArrayLike) -> Array:
         """The tangent stiffness as a dense ``n x n`` array.
 
-        Raises ``MemoryError`` (``variant == "AllocationFailed"``, with ``what``, ``rows``,
-        ``cols`` and ``bytes``) when its ``8 n^2`` bytes cannot be allocated."""
+        Raises ``StaticsError`` (``variant == "TooLarge"``, with ``what``, ``value``, ``max``)
+        when ``n^2`` passes the bound on dense results, 2**26 values."""
     def spring_lengths(self, theta: ArrayLike) -> Array: ...
     def tensions(self, theta: ArrayLike) -> Array: ...
     def compatibility(self, theta: ArrayLike, *, dense: bool = False) -> Any:
         """``(left, right)`` bands, or with ``dense=True`` the ``(n - 1) x n`` array.
 
-        Raises ``MemoryError`` (``variant == "AllocationFailed"``, with ``what``, ``rows``,
-        ``cols`` and ``bytes``) when the dense array cannot be allocated."""
+        Raises ``StaticsError`` (``variant == "TooLarge"``) when the dense array's ``n (n - 1)``
+        values pass the bound on dense results, 2**26."""
     def next_angles(self, p: int, theta_p: float) -> Tuple[float, float]: ...
     def previous_angles(self, p: int, theta_next: float) -> Tuple[float, float]: ...
     def uniform(self, sign: int = 1) -> Array: ...

@@ -106,6 +106,10 @@ impl Real {
             pyo3::exceptions::PyTypeError::new_err(format!("`{what}` must be a real number, got {got}"))
         })
     }
+    /// [`Real::get`] of an optional argument (`None`: not given).
+    pub fn optional(x: Option<Self>, what: &str) -> PyResult<Option<f64>> {
+        x.map(|x| x.get(what)).transpose()
+    }
 }
 
 impl<'a, 'py> FromPyObject<'a, 'py> for Real {
@@ -238,32 +242,6 @@ pub fn matrix<T: numpy::Element + Clone + Default>(
     let a = Array2::from_shape_vec((rows, cols), values)
         .unwrap_or_else(|_| Array2::from_elem((rows, cols), T::default()));
     a.into_pyarray(py).unbind()
-}
-
-/// A zeroed row-major buffer for a dense `rows x cols` result, allocated fallibly: memory that
-/// cannot be had is [`Unallocated`] (raised by [`Unallocated::raise`] as a `MemoryError` with the
-/// bytes), never an abort. Needs no interpreter, so it can run detached.
-pub fn zeroed(rows: usize, cols: usize) -> Result<Vec<f64>, Unallocated> {
-    let len = rows.saturating_mul(cols);
-    let mut values = Vec::new();
-    values.try_reserve_exact(len).map_err(|_| Unallocated { rows, cols })?;
-    values.resize(len, 0.0);
-    Ok(values)
-}
-
-/// A dense `rows x cols` float64 result that could not be allocated ([`zeroed`]).
-#[derive(Debug, Clone, Copy)]
-pub struct Unallocated {
-    pub rows: usize,
-    pub cols: usize,
-}
-
-impl Unallocated {
-    /// The `MemoryError` of the result of `what` (`hessian`, ...), with its bytes.
-    pub fn raise(self, py: Python<'_>, what: &str) -> PyErr {
-        let bytes = self.rows.saturating_mul(self.cols).saturating_mul(core::mem::size_of::<f64>());
-        errors::allocation(py, what, self.rows, self.cols, bytes)
-    }
 }
 
 /// Rows of equal length as a 2-D array (`rows x cols`; `0 x cols` when empty).

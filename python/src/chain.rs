@@ -258,13 +258,14 @@ impl Chain {
     /// The tangent stiffness as a dense symmetric ``n x n`` array.
     ///
     /// Raises:
-    ///     MemoryError: the ``8 n^2`` bytes cannot be allocated (``variant ==
-    ///         "AllocationFailed"``, with ``what``, ``rows``, ``cols`` and ``bytes``).
+    ///     StaticsError: ``n^2`` past the statics' bound on dense results, 2**26 values
+    ///         (``variant == "TooLarge"``, with ``what``, ``value`` and ``max``).
     fn hessian(&self, py: Python<'_>, theta: &Bound<'_, PyAny>) -> PyResult<Py<PyArray2<f64>>> {
         let theta = self.theta(theta)?;
         let n = theta.len();
+        dense_size(py, "hessian: rotors x rotors", n, n)?;
         let dense = py.detach(|| {
-            let mut dense = args::zeroed(n, n)?;
+            let mut dense = vec![0.0; n * n];
             let (mut diag, mut off) = (vec![0.0; n], vec![0.0; n - 1]);
             self.chain.tangent_stiffness_into(&theta, &mut diag, &mut off);
             for i in 0..n {
@@ -274,9 +275,8 @@ impl Chain {
                 dense[p * n + p + 1] = off[p];
                 dense[(p + 1) * n + p] = off[p];
             }
-            Ok(dense)
+            dense
         });
-        let dense = dense.map_err(|e: args::Unallocated| e.raise(py, "hessian"))?;
         Ok(matrix(py, n, n, dense))
     }
 
@@ -296,8 +296,8 @@ impl Chain {
     /// ``dense=True`` the ``(n - 1) x n`` array. Dimensionless.
     ///
     /// Raises:
-    ///     MemoryError: with ``dense=True``, the ``8 n (n - 1)`` bytes cannot be allocated
-    ///         (``variant == "AllocationFailed"``, with ``what``, ``rows``, ``cols`` and ``bytes``).
+    ///     StaticsError: with ``dense=True``, ``n (n - 1)`` past the statics' bound on dense
+    ///         results, 2**26 values (``variant == "TooLarge"``).
     #[pyo3(signature = (theta, *, dense = false))]
     fn compatibility<'py>(
         &self,
@@ -313,7 +313,8 @@ impl Chain {
             (left, right)
         });
         if dense {
-            let mut c = py.detach(|| args::zeroed(m, n)).map_err(|e| e.raise(py, "compatibility"))?;
+            dense_size(py, "compatibility: springs x rotors", m, n)?;
+            let mut c = vec![0.0; m * n];
             for p in 0..m {
                 c[p * n + p] = left[p];
                 c[p * n + p + 1] = right[p];
@@ -512,9 +513,8 @@ impl Chain {
     ) -> PyResult<crate::dynamics::Run> {
         let (t_max, output_interval) = (t_max.get("t_max")?, output_interval.get("output_interval")?);
         let (damping, energy_limit) = (damping.get("damping")?, energy_limit.get("energy_limit")?);
-        let dt = dt.map(|dt| dt.get("dt")).transpose()?;
-        let (rtol, atol) =
-            (rtol.map(|r| r.get("rtol")).transpose()?, atol.map(|a| a.get("atol")).transpose()?);
+        let dt = Real::optional(dt, "dt")?;
+        let (rtol, atol) = (Real::optional(rtol, "rtol")?, Real::optional(atol, "atol")?);
         let theta = self.theta(theta)?;
         let omega = vector(omega, "omega", self.n())?;
         let options = crate::dynamics::run_options(
@@ -560,8 +560,8 @@ impl Chain {
         watch: Real,
     ) -> PyResult<crate::dynamics::Scattering> {
         let (v0, t_max, watch) = (v0.get("v0")?, t_max.get("t_max")?, watch.get("watch")?);
-        let start = start.map(|s| s.get("start")).transpose()?;
-        let dt = dt.map(|dt| dt.get("dt")).transpose()?;
+        let start = Real::optional(start, "start")?;
+        let dt = Real::optional(dt, "dt")?;
         let springs = self.chain.spring_count();
         let impurity = match impurity {
             Some(p) => args::index(p, IndexKind::Spring, springs)?,
@@ -802,4 +802,17 @@ impl Continuum {
     fn __reduce__<'py>(slf: &Bound<'py, Self>) -> PyResult<pickle::Reduced<'py>> {
         pickle::reduce(slf)
     }
+}
+
+/// A dense ``rows x cols`` result of Python's own (``hessian``, ``compatibility(dense=True)``)
+/// within the statics' bound on dense results, [`MAX_DENSE_VALUES`](rotor_chain::statics::MAX_DENSE_VALUES)
+/// (2^26 values, 512 MiB): beyond it a ``StaticsError`` (``TooLarge``) before anything is allocated,
+/// the same rule as the dense SVD of the counting and the vectors of ``modes``, and the same on
+/// every machine (an allocation that merely succeeds can still exhaust the memory when filled).
+fn dense_size(py: Python<'_>, what: &'static str, rows: usize, cols: usize) -> PyResult<()> {
+    let (value, max) = (rows.saturating_mul(cols), rotor_chain::statics::MAX_DENSE_VALUES);
+    if value > max {
+        return Err(errors::statics(py, &rotor_chain::statics::StaticsError::TooLarge { what, value, max }));
+    }
+    Ok(())
 }

@@ -3,7 +3,7 @@
 
 use numpy::{PyArray1, PyArray2};
 use pyo3::prelude::*;
-use rotor_chain::dynamics::integrate::State;
+use rotor_chain::dynamics::integrate::{AdaptiveOptions, State};
 use rotor_chain::dynamics::launch::{self as ln, Direction};
 use rotor_chain::dynamics::run::{self as rn, ABSORBING_ENDS, Method, RunOptions};
 use rotor_chain::dynamics::scatter::{self as sc, ScatterSetup};
@@ -40,7 +40,9 @@ pub fn run_options(
                 "dt = {dt:?} applies to method='verlet' only (dop853 chooses its steps by rtol and atol)"
             )));
         }
-        Method::Dop853 { rtol: rtol.unwrap_or(DEFAULT_RTOL), atol: atol.unwrap_or(DEFAULT_ATOL) }
+        // The Rust defaults (`Method::dop853()`'s), for a tolerance not given.
+        let d = AdaptiveOptions::default();
+        Method::Dop853 { rtol: rtol.unwrap_or(d.rtol), atol: atol.unwrap_or(d.atol) }
     } else {
         if let Some((name, value)) =
             [("rtol", rtol), ("atol", atol)].into_iter().find_map(|(n, v)| Some((n, v?)))
@@ -63,10 +65,6 @@ pub fn run_options(
         ..RunOptions::default()
     })
 }
-
-/// DOP853's tolerances when `rtol` / `atol` are not given.
-const DEFAULT_RTOL: f64 = 1e-10;
-const DEFAULT_ATOL: f64 = 1e-11;
 
 /// A defect set in motion (``Chain.launch``).
 #[pyclass(frozen, get_all, module = "rotor_chain._native")]

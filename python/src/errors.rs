@@ -460,31 +460,6 @@ pub fn sweep(py: Python<'_>, e: &SweepError) -> PyErr {
 
 /// A plain `ValueError` (a wrong array length, an unknown name): programming errors of the
 /// caller, which the Rust API treats as panics.
-/// Python's `MemoryError` for a dense `rows x cols` float64 result (`what`, e.g. `hessian`) whose
-/// `bytes` could not be allocated; like the Rust `AllocationFailed`, never an abort. It carries
-/// `variant == "AllocationFailed"` and the numbers as attributes and `details`, as the package's
-/// own errors do (numpy raises a `MemoryError` for the same reason).
-pub fn allocation(py: Python<'_>, what: &str, rows: usize, cols: usize, bytes: usize) -> PyErr {
-    let err = pyo3::exceptions::PyMemoryError::new_err(format!(
-        "{what}: a {rows} x {cols} float64 array needs {bytes} bytes, which could not be allocated"
-    ));
-    let value = err.value(py);
-    let details = PyDict::new(py);
-    // Setting these plain attributes cannot fail; a failure would only lose them, not the error.
-    let _ = (|| -> PyResult<()> {
-        details.set_item("what", what)?;
-        details.set_item("rows", rows)?;
-        details.set_item("cols", cols)?;
-        details.set_item("bytes", bytes)?;
-        for (name, field) in details.iter() {
-            value.setattr(name.extract::<String>()?.as_str(), field)?;
-        }
-        value.setattr("variant", "AllocationFailed")?;
-        value.setattr("details", details)
-    })();
-    err
-}
-
 pub fn value_error(message: impl Into<String>) -> PyErr {
     pyo3::exceptions::PyValueError::new_err(message.into())
 }

@@ -61,7 +61,7 @@ impl PhaseDiagram {
     ) -> PyResult<Self> {
         let (r, k, theta_bar, mass) =
             (r.get("r")?, k.get("k")?, theta_bar.get("theta_bar")?, mass.get("mass")?);
-        let dt = dt.map(|dt| dt.get("dt")).transpose()?;
+        let dt = Real::optional(dt, "dt")?;
         let (energy_tolerance, t_max) = (energy_tolerance.get("energy_tolerance")?, t_max.get("t_max")?);
         // chain-sweep's own names (its `FromStr`), as the command line and the results file
         // spell them.

@@ -243,30 +243,23 @@ def test_an_index_out_of_range_is_a_parameter_error_in_every_method(reference):
         chain.next_angles(58, 1.5)
 
 
-def test_a_dense_result_too_large_to_allocate_is_a_memory_error_with_its_bytes_not_an_abort():
-    # 5 000 001 rotors: the chain and its angles are a few tens of MB, the dense n x n array
-    # 8 * 5 000 001**2 = 2e14 bytes, more than any address space holds, so the allocation fails
-    # at once, whatever the overcommit policy.
-    n = 5_000_001
-    chain = rc.Chain(n, 0.8, 1.0e4, 0.58)
-    theta = chain.uniform()
-    with pytest.raises(MemoryError) as info:
-        chain.hessian(theta)
-    e = info.value
-    assert e.variant == "AllocationFailed"
-    assert (e.what, e.rows, e.cols, e.bytes) == ("hessian", n, n, 200_000_080_000_008)
-    assert e.details == {"what": "hessian", "rows": n, "cols": n, "bytes": 200_000_080_000_008}
-    assert str(e) == (
-        "hessian: a 5000001 x 5000001 float64 array needs 200000080000008 bytes, which could not be allocated"
-    )
-    with pytest.raises(MemoryError) as info:
-        chain.compatibility(theta, dense=True)
-    e = info.value
-    assert e.variant == "AllocationFailed"
-    assert (e.what, e.rows, e.cols, e.bytes) == ("compatibility", n - 1, n, 200_000_040_000_000)
-    # The banded form of the same chain still works.
-    left, right = chain.compatibility(theta)
-    assert left.shape == right.shape == (n - 1,)
+def test_a_dense_result_past_the_dense_bound_is_an_error_before_any_allocation():
+    # The statics' bound on dense results, 2**26 values (512 MiB): 8 192 rotors' Hessian is the
+    # largest; 8 193 rotors' (or 100 001 rotors', 80 GB) is refused before anything is allocated.
+    assert rc.Chain(2000, 0.8, 1.0e4, 0.58).hessian(np.full(2000, 0.58)).shape == (2000, 2000)
+    for n in (8193, 100_001):
+        chain = rc.Chain(n, 0.8, 1.0e4, 0.58)
+        theta = chain.uniform()
+        with pytest.raises(rc.StaticsError) as info:
+            chain.hessian(theta)
+        e = info.value
+        assert (e.variant, e.what, e.value, e.max) == ("TooLarge", "hessian: rotors x rotors", n * n, 2**26)
+        with pytest.raises(rc.StaticsError) as info:
+            chain.compatibility(theta, dense=True)
+        assert (info.value.value, info.value.max) == ((n - 1) * n, 2**26)
+        # The banded form of the same chain still works.
+        left, right = chain.compatibility(theta)
+        assert left.shape == right.shape == (n - 1,)
 
 
 @pytest.mark.parametrize(
