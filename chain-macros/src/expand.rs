@@ -352,19 +352,19 @@ fn slice_method(n: usize, name: &str, body: TokenStream) -> TokenStream {
     let p = private();
     let method = SLICE_METHODS.iter().find(|m| m.name == name).expect("a slice method of ChainModel");
     let ident = format_ident!("{name}");
-    let slices: Vec<Ident> =
-        method.per_rotor.iter().chain(method.per_spring).map(|s| format_ident!("{s}")).collect();
-    let (rotors, springs) = (
-        method.per_rotor.iter().map(|s| (*s, format_ident!("{s}"))),
-        method.per_spring.iter().map(|s| (*s, format_ident!("{s}"))),
-    );
-    let (rotor_names, rotor_slices): (Vec<_>, Vec<_>) = rotors.unzip();
-    let (spring_names, spring_slices): (Vec<_>, Vec<_>) = springs.unzip();
+    let idents = |names: &[&str]| names.iter().map(|s| format_ident!("{s}")).collect::<Vec<Ident>>();
+    let (rotor_names, spring_names) = (method.per_rotor, method.per_spring);
+    let (rotor_slices, spring_slices) = (idents(rotor_names), idents(spring_names));
     let returns = method.energy.then(|| quote!(-> f64));
     let track = (name != "energy_and_gradient_into").then(|| quote!(#[track_caller]));
     quote! {
         #track
-        fn #ident(&self, theta: &[f64] #(, #slices: &mut [f64])*) #returns {
+        fn #ident(
+            &self,
+            theta: &[f64]
+            #(, #rotor_slices: &mut [f64])*
+            #(, #spring_slices: &mut [f64])*
+        ) #returns {
             #p::check_lengths(
                 #n,
                 theta.len(),
