@@ -197,7 +197,8 @@ def phase_diagram(
         ends: ``"free"`` (the paper's) or ``"absorbing"`` (a damping sponge at each end).
         integrator: ``"verlet"`` (default; recomputed with DOP853 over the energy budget) or
             ``"dop853"``.
-        dt: Verlet's largest step (default a tenth of its stability limit): each output interval is cut into equal steps of at most dt.
+        dt: Verlet's largest step (default a tenth of its stability limit): each output interval
+            is cut into equal steps of at most ``dt``.
         energy_tolerance: the largest relative energy error of a point (default 5e-3).
         recompute: recompute a point over budget with DOP853 (else it is recorded as failed).
         t_max: the end of each run (``t``).
