@@ -269,6 +269,36 @@ fn a_kink_too_wide_to_show_is_an_error() {
     assert!(walls[0].charge == Charge::Kink && (walls[0].position - 29.5).abs() < 1e-6);
 }
 
+/// A wide kink's wall sits at the asked centre to its conditioning: the branch solve's angles
+/// carry an absolute rounding of about `eps`, and near the core of a wall `1 / theta_bar` sites
+/// wide neighbours differ by about `2 r theta_bar^2 / a`, so the interpolated sign change is good
+/// to about `eps a / (r theta_bar^2)` sites (the bound `kink`'s documentation states). Checked
+/// with the walls' own interpolation, over rotor lengths, widths down to `theta_bar = 1e-6` and
+/// fractional centres; the profile has zero energy to rounding throughout.
+#[test]
+fn a_wide_kink_sits_at_its_centre_to_the_documented_bound() {
+    use rotor_chain::ChainModel;
+    use rotor_chain::statics::walls::domain_walls;
+    let eps = f64::EPSILON;
+    for r in [0.3, 0.8, 1.5] {
+        for theta_bar in [1e-6, 1e-4, 1e-2, 0.3] {
+            let model = RuntimeChain::builder(120, r, K, theta_bar).build().unwrap();
+            let bound = 4.0 * eps / (r * theta_bar * theta_bar) + 1e-13;
+            let mut worst = 0.0f64;
+            for step in 0..40 {
+                let centre = 10.0 + 2.47 * step as f64;
+                let theta = kink(&model, centre).unwrap();
+                let walls = domain_walls(&theta);
+                assert_eq!(walls.len(), 1, "r {r}, theta_bar {theta_bar}, centre {centre}");
+                worst = worst.max((walls[0].position - centre).abs());
+                let energy = model.energy(&theta);
+                assert!(energy < 1e-16 * K, "r {r}, theta_bar {theta_bar}, centre {centre}: {energy}");
+            }
+            assert!(worst <= bound, "r {r}, theta_bar {theta_bar}: off by {worst:.3e} > {bound:.3e} sites");
+        }
+    }
+}
+
 /// `antikink_at` solves the centrings, rotor or spring: a centre between them has no equilibrium
 /// (an audit found 29.25 labelled a minimum with an interior force of 0.65), so it is refused.
 /// Where the translation is held, `held` says so and the force shows in the gradient, checked

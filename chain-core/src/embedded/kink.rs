@@ -26,7 +26,9 @@ const BISECTION_STEPS: usize = 200;
 /// `n - 1` the wall sits on the end rotor, which stands vertical: the wall has reached the end and
 /// the chain is one domain (as for the statics' `kink`). A centre inside the chain whose profile
 /// shows no wall (a `theta_bar` so small that the wall is far wider than the chain and its angles
-/// round to zero) is [`EmbeddedError::NoWall`].
+/// round to zero) is [`EmbeddedError::NoWall`]. The wall's interpolated sign change sits at
+/// `centre` to about `eps a / (r theta_bar^2)` sites (the statics' `kink` says why), below 1e-12
+/// for `theta_bar >= 0.01`.
 pub fn kink_into<T: Real, M: FloatChain<T> + ?Sized>(
     model: &M,
     centre: T,
