@@ -10,7 +10,7 @@ use rotor_chain::dynamics::observe::{
     damping_to_stop_at, kinetic_energy_variation, passage_speeds, propagation, stability, stopping_point,
 };
 use rotor_chain::dynamics::run::{ABSORBING_ENDS, Method, RunOptions};
-use rotor_chain::dynamics::scatter::{LaterEvent, Outcome, ScatterSetup, Scattering, scatter};
+use rotor_chain::dynamics::scatter::{LaterEvent, Outcome, ScatterSetup, Scattering, scatter, scatter_with};
 use rotor_chain::statics::walls::Charge;
 
 const K: f64 = 1.0e4;
@@ -222,6 +222,31 @@ fn a_stiff_impurity_reflects_slow_antikinks_and_the_boundary_rises_with_v0() {
 /// impurity's range (`reach` = 4 sites) by t = 25: whatever the impurity (none, soft, stiff),
 /// nothing was reflected, transmitted or trapped. (An earlier rule took the antikink's first drift
 /// away from the impurity for a repulsion from afar and called it reflected.)
+/// `scatter_with`'s stop question ends the run where it says so, and the result reports only what
+/// was seen by then: undecided before the decision, unconfirmed between decision and
+/// confirmation; a stop that never says yes gives `scatter`'s result exactly.
+#[test]
+fn a_stopped_scattering_run_reports_what_it_saw() {
+    let model = impure(0.28, 0.2);
+    let setup = ScatterSetup::from_the_right(Charge::Antikink, 4.8, MIDDLE);
+    let whole = scatter(&model, &setup).unwrap();
+    assert_eq!((whole.outcome, whole.confirmed), (Outcome::Reflected, true));
+    let never = scatter_with(&model, &setup, &mut |_| false).unwrap();
+    assert_eq!(never, whole);
+    let at = |t_stop: f64| scatter_with(&model, &setup, &mut |s| s.time >= t_stop).unwrap();
+    let early = at(0.5 * whole.decided_at);
+    assert_eq!((early.outcome, early.confirmed), (Outcome::Undecided, false));
+    let end = early.run.final_state.time;
+    assert!(end >= 0.5 * whole.decided_at && end < 0.5 * whole.decided_at + 0.011, "stopped at {end}");
+    assert_eq!(early.decided_at, end);
+    let between = at(whole.decided_at);
+    assert_eq!(
+        (between.outcome, between.decided_at, between.confirmed),
+        (Outcome::Reflected, whole.decided_at, false)
+    );
+    assert!(between.run.final_state.time < whole.run.final_state.time);
+}
+
 #[test]
 fn a_defect_launched_at_rest_far_from_the_impurity_meets_nothing() {
     for charge in [Charge::Antikink, Charge::Kink] {

@@ -110,9 +110,15 @@ impl Chain {
                 })?;
                 let (mut kp, mut l0) = (None, None);
                 for (key, value) in spec.iter() {
-                    match key.extract::<String>()?.as_str() {
-                        "k" => kp = Some(value.extract::<f64>()?),
-                        "l0" => l0 = Some(value.extract::<f64>()?),
+                    let key = key.extract::<String>().map_err(|_| {
+                        pyo3::exceptions::PyTypeError::new_err(format!(
+                            "springs[{p}]: a key must be 'k' or 'l0', got {}",
+                            args::described(&key)
+                        ))
+                    })?;
+                    match key.as_str() {
+                        "k" => kp = Some(value.extract::<Real>()?.get(&format!("springs[{p}]['k']"))?),
+                        "l0" => l0 = Some(value.extract::<Real>()?.get(&format!("springs[{p}]['l0']"))?),
                         other => {
                             return Err(value_error(format!(
                                 "springs[{p}]: unknown key '{other}' (a spring takes 'k' and 'l0')"
@@ -127,7 +133,7 @@ impl Chain {
         if let Some(rotors) = rotors {
             for (i, ri) in rotors.iter() {
                 let i = args::unsigned_index(&i, IndexKind::Rotor, n)?;
-                rotor_list.push((i, ri.extract::<f64>()?));
+                rotor_list.push((i, ri.extract::<Real>()?.get(&format!("rotors[{i}]"))?));
             }
         }
         let mut builder = RuntimeChain::builder(n, r, k, theta_bar).lattice_spacing(a).mass(mass).law(law);
@@ -534,7 +540,8 @@ impl Chain {
     /// Scattering of a ``defect`` on the stiffness impurity at spring ``impurity`` (paper
     /// Sec. VI; the chain carries the impurity's stiffness, e.g. ``springs={29: {"k": 7e3}}``):
     /// launched at ``v0`` from 15 sites away (``start`` overrides), run until the outcome is
-    /// decided and confirmed, or ``t_max``.
+    /// decided and confirmed, or ``t_max``. Ctrl-C stops the run at its next output (every
+    /// 0.01 time units) and raises ``KeyboardInterrupt``.
     ///
     /// ``impurity`` defaults to the middle spring ``(n - 1) // 2``; ``direction="left"`` (the
     /// paper's, from the right) or ``"right"``.

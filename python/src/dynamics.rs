@@ -324,7 +324,11 @@ pub fn scatter(chain: &Chain, py: Python<'_>, a: ScatterArgs<'_>) -> PyResult<Sc
     }
     setup.watch = a.watch;
     setup.run = a.options;
-    let s = py.detach(|| sc::scatter(&chain.chain, &setup)).map_err(|e| errors::dynamics(py, &e))?;
+    let mut interrupt = Interrupt::default();
+    let s = py
+        .detach(|| sc::scatter_with(&chain.chain, &setup, &mut |_| interrupt.pending()))
+        .map_err(|e| errors::dynamics(py, &e))?;
+    interrupt.raise()?;
     Ok(Scattering {
         outcome: s.outcome.name().to_owned(),
         decided_at: s.decided_at,

@@ -289,6 +289,22 @@ def test_a_dense_result_past_the_dense_bound_is_an_error_before_any_allocation()
             lambda: rc.Chain(60, 0.8, 1e4, 0.58).propagate(np.full(60, 0.58), np.zeros(60), dt=[0.01]),
             "`dt` must be a real number, got [0.01] (list)",
         ),
+        (
+            lambda: rc.Chain(60, 0.8, 1e4, 0.58, springs={29: {"k": "7e3"}}),
+            "`springs[29]['k']` must be a real number, got '7e3' (str)",
+        ),
+        (
+            lambda: rc.Chain(60, 0.8, 1e4, 0.58, springs={3: {"k": 7e3, "l0": None}}),
+            "`springs[3]['l0']` must be a real number, got None (NoneType)",
+        ),
+        (
+            lambda: rc.Chain(60, 0.8, 1e4, 0.58, springs={3: {1: 7e3}}),
+            "springs[3]: a key must be 'k' or 'l0', got 1 (int)",
+        ),
+        (
+            lambda: rc.Chain(60, 0.8, 1e4, 0.58, rotors={7: [0.7]}),
+            "`rotors[7]` must be a real number, got [0.7] (list)",
+        ),
         (lambda: rc.Chain(60, 0.8, 1e4, 0.58).scatter("kink", "4"), "`v0` must be a real number, got '4' (str)"),
         (
             lambda: rc.Chain(60, 0.8, 1e4, 0.58).scatter("kink", 4.0, start="44.5"),

@@ -23,6 +23,7 @@ mod rules;
 use super::DynamicsError;
 use super::launch::{Direction, launch};
 use super::run::{Run, RunOptions, propagate};
+use super::track::Snapshot;
 use crate::model::ChainModel;
 use crate::statics::walls::Charge;
 
@@ -341,10 +342,24 @@ pub struct Scattering {
 /// # }
 /// ```
 pub fn scatter<M: ChainModel + ?Sized>(model: &M, setup: &ScatterSetup) -> Result<Scattering, DynamicsError> {
+    scatter_with(model, setup, &mut |_| false)
+}
+
+/// [`scatter`] with a caller's stop question, asked at every output (`setup.run.output_interval`)
+/// after the classifier's: `true` ends the run there, so that a caller can interrupt a long
+/// scattering run (Python's `Chain.scatter` stops on Ctrl-C this way). A run stopped before the
+/// outcome was decided is [`Outcome::Undecided`] with `decided_at` the stop's time, and one
+/// stopped after it but before its confirmation has `confirmed == false`: the result says what
+/// was seen, nothing more.
+pub fn scatter_with<M: ChainModel + ?Sized>(
+    model: &M,
+    setup: &ScatterSetup,
+    stop: &mut dyn FnMut(&Snapshot) -> bool,
+) -> Result<Scattering, DynamicsError> {
     setup.check(model.rotor_count())?;
     let launched = launch(model, setup.charge, setup.start, setup.v0, setup.direction)?;
     let mut classifier = rules::Classifier::new(setup, model.rotor_count());
-    let run = propagate(model, launched.state, &setup.run, &mut |s| classifier.observe(s))?;
+    let run = propagate(model, launched.state, &setup.run, &mut |s| classifier.observe(s) || stop(s))?;
     let end = run.final_state.time;
     Ok(match classifier.verdict {
         Some(v) => Scattering {
