@@ -12,13 +12,11 @@
 //! the continuum sound speed) as `L / T`. Every expected value below is the unscaled run's output
 //! times its factor; nothing is compared with a number the code printed.
 //!
-//! Two laws are not checked here because the code breaks them (reported with the audit that
-//! added this file); they belong here once fixed:
-//! - `statics::modes`: the kinds of the modes are not invariant under `L`. `ModeOptions::reach`
-//!   and `localised_widths` are documented in wall widths and compared with rotor indices, but
-//!   the width used is `a^2 / (2 r sin theta_bar)` in the length unit, not in sites (`/ a`, as
-//!   `dynamics::launch::wall_width` has it). With the paper's chain scaled to `a = 20` the kink's
-//!   translation and shape modes come out as `Edge { left: true }`.
+//! The audit that added this file found the mode kinds not invariant under `L` (the wall width
+//! they use was in the length unit, not in sites); they are checked here since the fix.
+//!
+//! One law is not checked here because the code breaks it (reported with the audit that added
+//! this file); it belongs here once fixed:
 //! - `statics::linkage::LinkageChain`: the head profile `tanh((|x| - x_head) / w)` takes `x` in
 //!   sites and `w = ContinuumChain::width()` in the length unit, so under `L` the potential
 //!   `V(x1, x2)` is not `L^2` times the unscaled one, the equilibria move (7.61 -> 7.22 sites at
@@ -548,10 +546,9 @@ fn mode_frequencies_scale_as_one_over_time_and_shapes_as_tip_displacements() {
                         1e-8,
                     );
                 }
-                if u.l == 1.0 {
-                    let kinds: Vec<_> = found.iter().map(|m| m.kind).collect();
-                    assert_eq!(kinds, base.iter().map(|m| m.kind).collect::<Vec<_>>(), "{}", what("kinds"));
-                }
+                // The kinds compare wall widths with positions, both in sites.
+                let kinds: Vec<_> = found.iter().map(|m| m.kind).collect();
+                assert_eq!(kinds, base.iter().map(|m| m.kind).collect::<Vec<_>>(), "{}", what("kinds"));
             }
         }
     }

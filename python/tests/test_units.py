@@ -9,7 +9,7 @@ the unscaled chain's result times its factor (tests/units_covariance.rs checks t
 Not checked, because they are not covariant (reported with the audit that added this file):
 ``Chain.scatter`` and ``sweep.phase_diagram`` / ``sweep.point`` under K or m (their output
 interval, 0.01 t, their outcome rules' windows and the ``absorbing_ends`` sponge, 30/t, are fixed
-in t and cannot be scaled from Python), and ``Modes.kinds`` under L."""
+in t and cannot be scaled from Python)."""
 
 from __future__ import annotations
 
@@ -112,6 +112,7 @@ def test_continuum_getters_and_statics(units):
     scaled(m1.frequencies[1:], m0.frequencies[1:], f["rate"], what=f"frequencies, {units}")
     scaled(m1.omega_squared[1:], m0.omega_squared[1:], f["rate"] ** 2, what=f"omega^2, {units}")
     scaled(m1.positions, m0.positions, 1.0, rtol=1e-8, what=f"positions, {units}")
+    assert m1.kinds == m0.kinds, f"kinds, {units}"
     pn0, pn = c0.peierls_nabarro(), c.peierls_nabarro()
     assert pn0.resolved and pn.resolved
     scaled(pn.barrier, pn0.barrier, f["energy"], rtol=1e-9, what=f"barrier, {units}")

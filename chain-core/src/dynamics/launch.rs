@@ -76,13 +76,8 @@ fn energy_beyond(e: &[f64], position: f64, distance: f64) -> f64 {
     e.iter().enumerate().filter(|(i, _)| (*i as f64 - position).abs() > distance).map(|(_, x)| x * x).sum()
 }
 
-/// The continuum width `w = a^2 / (2 r sin theta_bar)` of a wall (paper Sec. III; the `w` of
-/// `statics::modes`), in sites, from the middle rotor's length.
-pub fn wall_width<M: ChainModel + ?Sized>(model: &M) -> f64 {
-    let a = model.lattice_spacing();
-    let r = model.rotor_length(model.rotor_count() / 2);
-    a * a / (2.0 * r * libm::sin(model.theta_bar())) / a
-}
+/// The wall width in sites (it lives with the walls; here for the launches that use it).
+pub use crate::statics::walls::wall_width;
 
 /// How many of the lowest modes of a single wall of `charge` lie far below the phonon band: the
 /// translation, plus for an antikink the edge mechanisms of its two domains (module doc).

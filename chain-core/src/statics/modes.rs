@@ -74,7 +74,8 @@ pub struct ModeOptions {
     /// See [`ModeOptions::localised_fraction`].
     pub localised_widths: f64,
     /// A localised mode within `reach` wall widths (at least 4 rotors) of an end or of a wall
-    /// belongs to it. The width is the continuum `w = a^2 / (2 r sin theta_bar)` (App. E).
+    /// belongs to it. The width is the continuum `w = a^2 / (2 r sin theta_bar)` (App. E) in sites,
+    /// `w / a` ([`wall_width`](super::walls::wall_width)).
     pub reach: f64,
     /// Analyse with the end rotors held (the boundary condition of
     /// [`super::antikink::Ends::Held`]): the held rotors' shape entries are zero. Default `false`.
@@ -194,10 +195,8 @@ pub fn modes<M: ChainModel + ?Sized>(
         })
         .collect();
     // Kinds: edges first, then walls; at each wall the mode most parallel to dtheta/dx translates it.
-    let width = {
-        let (a, r) = (model.lattice_spacing(), model.rotor_length(n / 2));
-        a * a / (2.0 * r * libm::sin(model.theta_bar()))
-    };
+    // In sites, as the positions it is compared with.
+    let width = super::walls::wall_width(model);
     let reach = (options.reach * width).max(4.0);
     let max_participation =
         (options.localised_fraction * n as f64).min(options.localised_widths * width + 4.0);

@@ -8,6 +8,8 @@
 
 use alloc::vec::Vec;
 
+use crate::model::ChainModel;
+
 /// Kink or antikink, and a wall's position and charge: the no-alloc module's types (`f64` here).
 pub use crate::embedded::walls::{Charge, Wall};
 
@@ -25,6 +27,17 @@ pub fn count_walls(theta: &[f64]) -> (usize, usize) {
     let walls = domain_walls(theta);
     let kinks = walls.iter().filter(|w| w.charge == Charge::Kink).count();
     (kinks, walls.len() - kinks)
+}
+
+/// The continuum width of a wall in sites: `w / a` with `w = a^2 / (2 r sin theta_bar)` (paper
+/// Sec. III, App. E), from the middle rotor's length. Dimensionless: the distances it is compared
+/// with (rotor indices, wall positions) are in sites, so lengths scaled by any factor leave it
+/// unchanged. The reach of [`modes`](super::modes::modes)' kinds and the launches' distances are
+/// in these widths.
+pub fn wall_width<M: ChainModel + ?Sized>(model: &M) -> f64 {
+    let a = model.lattice_spacing();
+    let r = model.rotor_length(model.rotor_count() / 2);
+    a / (2.0 * r * libm::sin(model.theta_bar()))
 }
 
 #[cfg(test)]
