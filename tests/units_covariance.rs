@@ -12,15 +12,9 @@
 //! the continuum sound speed) as `L / T`. Every expected value below is the unscaled run's output
 //! times its factor; nothing is compared with a number the code printed.
 //!
-//! The audit that added this file found the mode kinds not invariant under `L` (the wall width
-//! they use was in the length unit, not in sites); they are checked here since the fix.
-//!
-//! One law is not checked here because the code breaks it (reported with the audit that added
-//! this file); it belongs here once fixed:
-//! - `statics::linkage::LinkageChain`: the head profile `tanh((|x| - x_head) / w)` takes `x` in
-//!   sites and `w = ContinuumChain::width()` in the length unit, so under `L` the potential
-//!   `V(x1, x2)` is not `L^2` times the unscaled one, the equilibria move (7.61 -> 7.22 sites at
-//!   `L = 2`, `l0 = 2.15 a`) and the kink mass is not `L^2` times. Only `K` and `m` are checked.
+//! The audit that added this file found two analyses that broke the law under `L`, both by
+//! comparing a wall width in the length unit with positions in sites: the mode kinds and the
+//! linkage model's head profile. Both are fixed and checked here.
 
 use rotor_chain::dynamics::integrate::{Sponge, State};
 use rotor_chain::dynamics::launch::{Direction, launch};
@@ -647,40 +641,34 @@ fn continuum_closed_forms_carry_their_documented_units() {
 }
 
 #[test]
-fn linkage_limit_scales_with_stiffness_and_mass() {
-    // Lengths are left out: see the module doc.
+fn linkage_limit_scales_with_lengths_stiffness_and_mass() {
+    // Positions are in sites: unchanged under L; the kink mass M r^2 sum (dtheta/dx)^2 is an
+    // inertia (m L^2), the momenta m(x) xdot scale as m L^2 / T.
     let base = ContinuumChain::new(1.3, 1.04, 0.58, 3.3e3, 2.5).unwrap();
     let l0 = 2.15 * 1.3;
     let link0 = LinkageChain::new(base, 8, l0).unwrap();
-    let start =
-        |u: Units| PhaseState { x1: 7.2, x2: 1.1, p1: 0.5 * u.m * u.rate(), p2: -0.2 * u.m * u.rate() };
+    let momentum = |u: Units| u.inertia() * u.rate();
+    let start = |u: Units| PhaseState { x1: 7.2, x2: 1.1, p1: 0.5 * momentum(u), p2: -0.2 * momentum(u) };
     let path0 = link0.trajectory(start(Units::NONE), 4e-4, 400, 100).unwrap();
     let sub_chain = link0.sub_chain_profile(5.4);
-    for u in Units::ALL.into_iter().filter(|u| u.l == 1.0) {
-        let c = ContinuumChain::new(1.3, 1.04, 0.58, 3.3e3 * u.k, 2.5 * u.m).unwrap();
-        let link = LinkageChain::new(c, 8, l0).unwrap();
+    for u in Units::ALL {
+        let c = ContinuumChain::new(1.3 * u.l, 1.04 * u.l, 0.58, 3.3e3 * u.k, 2.5 * u.m).unwrap();
+        let link = LinkageChain::new(c, 8, l0 * u.l).unwrap();
         let what = |s: &str| format!("linkage {s}, {u:?}");
         assert_scaled1(&what("V"), link.potential(3.0, 1.0), link0.potential(3.0, 1.0), u.energy(), EXACT);
         assert_scaled1(&what("E_c"), link.critical_energy(), link0.critical_energy(), u.energy(), EXACT);
-        assert_scaled1(&what("kink mass"), link.kink_mass(5.0), link0.kink_mass(5.0), u.m, EXACT);
+        assert_scaled1(&what("kink mass"), link.kink_mass(5.0), link0.kink_mass(5.0), u.inertia(), EXACT);
+        assert_scaled(&what("profile"), &link.sub_chain_profile(5.4), &sub_chain, 1.0, EXACT);
         let eq: Vec<f64> = link.equilibria().iter().map(|e| e.x).collect();
         let eq0: Vec<f64> = link0.equilibria().iter().map(|e| e.x).collect();
         assert_scaled(&what("equilibria"), &eq, &eq0, 1.0, EXACT);
-        // p = m(x) xdot: momenta scale as m / T; the same path at equal scaled times.
-        let momentum = u.m * u.rate();
+        // The same path at equal scaled times.
         let path = link.trajectory(start(u), 4e-4 * u.time(), 400, 100).unwrap();
         for (q, q0) in path.iter().zip(&path0) {
             assert_scaled(&what("path"), &[q.t, q.x1, q.x2], &[q0.t / u.rate(), q0.x1, q0.x2], 1.0, EXACT);
-            assert_scaled(&what("momenta"), &[q.p1, q.p2], &[q0.p1, q0.p2], momentum, EXACT);
+            assert_scaled(&what("momenta"), &[q.p1, q.p2], &[q0.p1, q0.p2], momentum(u), EXACT);
             assert_scaled1(&what("energy"), q.energy, q0.energy, u.energy(), EXACT);
         }
-        assert_scaled1(
-            &what("kink coordinate"),
-            kink_coordinate(&c, &sub_chain).unwrap(),
-            kink_coordinate(&base, &sub_chain).unwrap(),
-            1.0,
-            EXACT,
-        );
     }
     // The Appendix C coordinate of given angles is a length-free statement.
     for u in Units::ALL {

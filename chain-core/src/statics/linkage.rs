@@ -39,7 +39,9 @@
 //! sin theta~(x) = sin theta_bar tanh((|x| - x_head) / w)                                   (head_angle)
 //! ```
 //!
-//! even in `x` (the far-end flip), with a cusp at `x = 0`. **The printed equation has
+//! even in `x` (the far-end flip), with a cusp at `x = 0`. Positions `x` count sites, so `w` here
+//! and below is the width in sites, `w / a` (the paper's `a = 1`): the model is the same for a
+//! chain with all lengths scaled. **The printed equation has
 //! `r sin theta_bar (|x| - x_head) / a^2 = (|x| - x_head) / (2w)`: a profile twice as wide as
 //! Eq. (`eq:kinksolution`)**, whose argument is `(x - x0) / (a^2 / 2 ubar) = (x - x0) / w`. We use
 //! `w` (a test shows that the discrete linkage follows `w`, not `2w`, at small `theta_bar`);
@@ -72,8 +74,9 @@
 //! ```
 //!
 //! so `p = m(x) xdot` and `H = p1^2/(2 m(x1)) + p2^2/(2 m(x2)) + V(x1, x2; l0)`. Deep in a long
-//! sub-chain `m -> 4 M ubar^2 / (3 w a)` (small `theta_bar`), the continuum kink's mass; it falls
-//! as the kink leaves the sub-chain. The paper writes `T(p1, p2)` as if the mass were constant:
+//! sub-chain `m -> 4 M ubar^2 a / (3 w)` (small `theta_bar`), the continuum kink's mass per site
+//! squared (the continuum's `4 M ubar^2 / (3 w a)` per length squared, times `a^2`); it falls as the
+//! kink leaves the sub-chain. The paper writes `T(p1, p2)` as if the mass were constant:
 //! [`KinkMass::Constant`] gives that model.
 //!
 //! **Dynamics.** `H` is not separable when `m` depends on `x`, so [`LinkageChain::trajectory`] uses
@@ -206,11 +209,11 @@ pub enum KinkMass {
 /// A point of the two-kink phase space.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PhaseState {
-    /// Position of the first kink (Appendix C coordinate), in `a`.
+    /// Position of the first kink (Appendix C coordinate), in sites.
     pub x1: f64,
-    /// Position of the second kink.
+    /// Position of the second kink, in sites.
     pub x2: f64,
-    /// Momentum conjugate to `x1`.
+    /// Momentum conjugate to `x1`: `m(x1) dx1/dt`, in `M a^2 / t` (a length squared: `x` is in sites).
     pub p1: f64,
     /// Momentum conjugate to `x2`.
     pub p2: f64,
@@ -221,9 +224,9 @@ pub struct PhaseState {
 pub struct TrajectoryPoint {
     /// Time, in `t`.
     pub t: f64,
-    /// Position of the first kink, in `a`.
+    /// Position of the first kink, in sites.
     pub x1: f64,
-    /// Position of the second kink.
+    /// Position of the second kink, in sites.
     pub x2: f64,
     /// Momentum conjugate to `x1`.
     pub p1: f64,
@@ -384,7 +387,7 @@ impl<M: ChainModel> LinkageChain<M> {
             rotors,
             impurity,
             rest_length,
-            profile_width: chain.width(),
+            profile_width: chain.width() / chain.a(),
             kink_mass: KinkMass::Profile,
         })
     }
@@ -394,7 +397,7 @@ impl<M: ChainModel> LinkageChain<M> {
         &self.impurity
     }
 
-    /// The same model with head profile width `width` (default: the continuum `w`).
+    /// The same model with head profile width `width`, in sites (default: the continuum `w / a`).
     pub fn with_profile_width(&self, width: f64) -> Result<Self, LinkageError>
     where
         M: Clone,
@@ -416,9 +419,10 @@ impl<M: ChainModel> LinkageChain<M> {
         Ok(Self { kink_mass, ..self.clone() })
     }
 
-    /// The width `a^2 / (r sin theta_bar) = 2w` that the printed Sec. VII-B equation implies.
+    /// The width `a^2 / (r sin theta_bar) = 2w` that the printed Sec. VII-B equation implies, in
+    /// sites (`2w / a`), as [`LinkageChain::profile_width`].
     pub fn printed_profile_width(&self) -> f64 {
-        2.0 * self.chain.width()
+        2.0 * self.chain.width() / self.chain.a()
     }
 
     /// The chain parameters.
@@ -436,7 +440,8 @@ impl<M: ChainModel> LinkageChain<M> {
         self.rest_length
     }
 
-    /// The head width used for the profile.
+    /// The head width used for the profile, in sites (the positions `x` are): `w / a` unless
+    /// [`LinkageChain::with_profile_width`] set another.
     pub fn profile_width(&self) -> f64 {
         self.profile_width
     }
