@@ -19,7 +19,7 @@
 use rotor_chain::dynamics::integrate::{Sponge, State};
 use rotor_chain::dynamics::launch::{Direction, launch};
 use rotor_chain::dynamics::run::{Method, RunOptions, propagate};
-use rotor_chain::dynamics::scatter::{ScatterSetup, scatter};
+use rotor_chain::dynamics::scatter::{ScatterSetup, paper_time_unit, scatter};
 use rotor_chain::prelude::*;
 use rotor_chain::statics::antikink::{AntikinkOptions, antikink_relaxed, peierls_nabarro};
 use rotor_chain::statics::cobweb::fixed_points;
@@ -861,6 +861,30 @@ fn scattering_outcomes_are_invariant_in_scaled_units() {
             // Decided at the same output, up to rounding in the output times.
             let (t, t0) = (got.decided_at / u.time(), base.decided_at);
             assert!((t - t0).abs() <= 0.0101, "{what}: decided at {t} (scaled) against {t0}");
+            // The library's own carrying-over of the paper's setup (what Python's scatter and the
+            // phase diagrams use) scales the same times and gives the same result.
+            let own = ScatterSetup::from_the_right(charge, v0 * u.speed(), 29)
+                .in_time_unit(paper_time_unit(1e4 * u.k, u.m));
+            let times = |s: &ScatterSetup| {
+                [
+                    s.persistence,
+                    s.trap_time,
+                    s.entry_window,
+                    s.pair_age,
+                    s.break_time,
+                    s.grace,
+                    s.confirm,
+                    s.watch,
+                    s.run.t_max,
+                    s.run.output_interval,
+                ]
+            };
+            let by_hand = setup(charge, v0, u);
+            assert_scaled(&format!("{what}: setup times"), &times(&own), &times(&by_hand), 1.0, EXACT);
+            let carried = scatter(&chain(ki, u), &own).unwrap();
+            assert_eq!((carried.outcome, carried.confirmed), (base.outcome, base.confirmed), "{what}");
+            let t = carried.decided_at / u.time();
+            assert!((t - t0).abs() <= 0.0101, "{what}: in_time_unit decided at {t} (scaled) against {t0}");
         }
     }
 }

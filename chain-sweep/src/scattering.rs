@@ -17,7 +17,7 @@ use std::str::FromStr;
 use rotor_chain::dynamics::DynamicsError;
 use rotor_chain::dynamics::integrate::{IntegrateError, Schedule};
 use rotor_chain::dynamics::run::{ABSORBING_ENDS, Method, RunOptions};
-use rotor_chain::dynamics::scatter::{ScatterSetup, Scattering, scatter};
+use rotor_chain::dynamics::scatter::{ScatterSetup, Scattering, paper_time_unit, scatter};
 use rotor_chain::statics::walls::Charge;
 use rotor_chain::{ParameterError, RuntimeChain};
 
@@ -223,6 +223,9 @@ pub const DEFAULT_ENERGY_TOLERANCE: f64 = 5e-3;
 /// written by other rules is refused on resume instead of mixing two rules' labels in one
 /// diagram. Raised whenever a rule changes a label: v3, a wall unseen for less than the grace
 /// time counts where it was last seen (a split no longer hangs on the output a wall leaves at).
+/// Since v3 the rules' windows and the output interval are in the chain's time unit
+/// ([`paper_time_unit`]`(k, mass)`, 1 for the paper's `k = 1e4`, `M = 1`); for other chains the
+/// label names it (`time_unit=`), so a file such a chain wrote before is refused too.
 pub const PHYSICS: &str = "scatter-v3";
 
 /// One phase diagram: the chain, the defect, and how each point is computed. Build with
@@ -252,7 +255,9 @@ pub struct PhaseDiagram {
     pub energy_tolerance: f64,
     /// Recompute a point over the tolerance with DOP853 (default); `false`: record it as failed.
     pub recompute: bool,
-    /// The end of every run, in the time unit `t`. Default 20 (the paper's runs).
+    /// The end of every run, in the time unit `t`, as given (not scaled with the chain's time
+    /// unit). Default 20 (the paper's runs; `20 * paper_time_unit(k, mass)` is the same span
+    /// for another chain).
     pub t_max: f64,
 }
 
@@ -337,7 +342,7 @@ impl PhaseDiagram {
     pub fn run_label(&self) -> String {
         let dt = self.dt.map_or("stable".to_owned(), |dt| format!("{dt:?}"));
         format!(
-            "defect={} n={} r={:?} k={:?} theta_bar={:?}{} ends={} integrator={} dt={dt} energy_tolerance={:?} \
+            "defect={} n={} r={:?} k={:?} theta_bar={:?}{}{} ends={} integrator={} dt={dt} energy_tolerance={:?} \
              recompute={} t_max={:?} physics={PHYSICS}",
             self.defect.name(),
             self.n,
@@ -345,6 +350,11 @@ impl PhaseDiagram {
             self.k,
             self.theta_bar,
             if self.mass == 1.0 { String::new() } else { format!(" mass={:?}", self.mass) },
+            if self.time_unit() == 1.0 {
+                String::new()
+            } else {
+                format!(" time_unit={:?}", self.time_unit())
+            },
             self.ends.name(),
             self.integrator.name(),
             self.energy_tolerance,
@@ -362,19 +372,27 @@ impl PhaseDiagram {
             .build()?)
     }
 
+    /// The chain's time unit relative to the paper's, [`paper_time_unit`]`(k, mass)`.
+    pub fn time_unit(&self) -> f64 {
+        paper_time_unit(self.k, self.mass)
+    }
+
     /// The paper's experiment (Sec. VI) for this point: the defect 15 sites to the right of the
-    /// middle spring, moving left, with this diagram's ends and `t_max`.
+    /// middle spring, moving left, with this diagram's ends and `t_max`; the rules' windows, the
+    /// output interval and the absorbing ends in the chain's [time unit](PhaseDiagram::time_unit),
+    /// so that chains with the same `sqrt(M / k)`-scaled motion get the same outcomes.
     pub fn setup(&self, v0: f64, integrator: Integrator) -> ScatterSetup {
         let mut setup = ScatterSetup::from_the_right(self.defect.charge(), v0, self.impurity());
+        if self.ends == Ends::Absorbing {
+            setup.run.absorbing_ends = Some(ABSORBING_ENDS);
+        }
+        let mut setup = setup.in_time_unit(self.time_unit());
         setup.run.t_max = self.t_max;
         setup.run.dt = self.dt;
         setup.run.method = match integrator {
             Integrator::Verlet => Method::Verlet,
             Integrator::Dop853 => Method::dop853(),
         };
-        if self.ends == Ends::Absorbing {
-            setup.run.absorbing_ends = Some(ABSORBING_ENDS);
-        }
         setup
     }
 
@@ -721,6 +739,44 @@ mod tests {
             }
         }
         assert!(shortest.is_some_and(|n| n <= 40), "{shortest:?}");
+    }
+
+    /// A chain with other `k` and `M` moves as the paper's in its time unit `sqrt(1e4 M / k)`:
+    /// at `v0` divided by that unit (and `t_max` times it) every point has the paper's outcome,
+    /// decided at the same scaled time (an audit found (antikink, 0.8, 4.0) transmitted for the
+    /// paper's chain and reflected at k = 4e4, v0 = 8 while the rules' windows stayed in t). The
+    /// label names the unit when it is not 1, so a results file of the old rules is refused.
+    #[test]
+    fn a_chain_in_other_units_has_the_papers_outcomes() {
+        let points = [
+            (Defect::Antikink, 0.8, 4.0),
+            (Defect::Antikink, 0.7, 4.0),
+            (Defect::Antikink, 0.2, 4.8),
+            (Defect::Kink, 0.01, 9.6),
+        ];
+        let paper = PhaseDiagram::new(60, 0.8, 1.0e4, 0.28, Defect::Antikink).unwrap();
+        assert!(!paper.run_label().contains("time_unit"), "{}", paper.run_label());
+        for (k, mass, unit) in [(4.0e4, 1.0, 0.5), (1.0e4, 0.25, 0.5), (1.0e6, 4.0, 0.2)] {
+            for ends in [Ends::Free, Ends::Absorbing] {
+                for (defect, ki, v0) in points {
+                    let base = PhaseDiagram { defect, ends, ..paper.clone() };
+                    let other = PhaseDiagram { k, mass, t_max: 20.0 * unit, ..base.clone() };
+                    assert_eq!(other.time_unit(), unit);
+                    let (want, got) =
+                        (base.compute_point(ki, v0).unwrap(), other.compute_point(ki, v0 / unit).unwrap());
+                    let what = format!("{defect:?} at ({ki}, {v0}), {ends:?}, k = {k}, M = {mass}");
+                    assert_eq!((got.outcome, got.confirmed), (want.outcome, want.confirmed), "{what}");
+                    let t = got.t_decided / unit;
+                    assert!(
+                        (t - want.t_decided).abs() <= 0.0101,
+                        "{what}: decided at {t} against {}",
+                        want.t_decided
+                    );
+                }
+            }
+            let other = PhaseDiagram { k, mass, ..paper.clone() };
+            assert!(other.run_label().contains(&format!(" time_unit={unit:?} ")), "{}", other.run_label());
+        }
     }
 
     #[test]

@@ -201,7 +201,10 @@ def phase_diagram(
             is cut into equal steps of at most ``dt``.
         energy_tolerance: the largest relative energy error of a point (default 5e-3).
         recompute: recompute a point over budget with DOP853 (else it is recorded as failed).
-        t_max: the end of each run (``t``).
+        t_max: the end of each run (``t``, as given). The outcome rules' windows, the output
+            interval and the absorbing ends are the paper's in the chain's time unit
+            ``sqrt(1e4 mass / k)``: with other ``k`` and ``mass`` the same diagram shows at
+            ``v0`` and ``t_max`` scaled by ``sqrt(k / (1e4 mass))`` and its inverse.
         out: a results file (CSV): created, or resumed if it holds part of this sweep (then only
             the missing points are computed, and the records returned are all of the file's).
         client: a ``dask.distributed.Client``: the points are computed in chunks on its workers

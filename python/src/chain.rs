@@ -69,6 +69,11 @@ impl Chain {
         vector(theta, "theta", self.n())
     }
 
+    /// The chain's time unit relative to the paper's (`k = 1e4`, `M = 1`): `sqrt(1e4 M / k)`.
+    pub fn time_unit(&self) -> f64 {
+        rotor_chain::dynamics::scatter::paper_time_unit(self.spec.k, self.spec.mass)
+    }
+
     fn springs_of(spec: &Spec) -> Vec<(usize, Option<f64>, Option<f64>)> {
         spec.springs.clone()
     }
@@ -485,7 +490,9 @@ impl Chain {
     ///         interval is cut into a whole number of equal steps, each at most ``dt``:
     ///         ``dt = 0.03`` with ``output_interval = 0.01`` steps at 0.01.
     ///     damping: viscous rate ``gamma`` (``1/t``), >= 0.
-    ///     absorbing_ends: a damping sponge on the last 10 rotors at each end.
+    ///     absorbing_ends: a damping sponge on the last 10 rotors at each end (rate ``30/t`` at the
+    ///         end rotor for ``k = 1e4``, ``mass = 1``; ``30 sqrt(k / (1e4 mass))`` in general, so
+    ///         that it absorbs the same in any units).
     ///     space_time: keep the angles at every output (``Run.space_time``; at most 2**27 angles,
     ///         outputs times rotors).
     ///     energy_limit: the run stops with ``IntegrateError`` if the energy changes by more than
@@ -533,6 +540,7 @@ impl Chain {
             absorbing_ends,
             space_time,
             energy_limit,
+            self.time_unit(),
         )?;
         crate::dynamics::propagate(self, py, theta, omega, options)
     }
@@ -540,8 +548,14 @@ impl Chain {
     /// Scattering of a ``defect`` on the stiffness impurity at spring ``impurity`` (paper
     /// Sec. VI; the chain carries the impurity's stiffness, e.g. ``springs={29: {"k": 7e3}}``):
     /// launched at ``v0`` from 15 sites away (``start`` overrides), run until the outcome is
-    /// decided and confirmed, or ``t_max``. Ctrl-C stops the run at its next output (every
-    /// 0.01 time units) and raises ``KeyboardInterrupt``.
+    /// decided and confirmed, or ``t_max``. Ctrl-C stops the run at its next output and raises
+    /// ``KeyboardInterrupt``.
+    ///
+    /// Units: the outcome rules' windows, the output interval (0.01) and the absorbing ends are
+    /// the paper's (``k = 1e4``, ``mass = 1``) in this chain's time unit ``sqrt(1e4 mass / k)``,
+    /// so a chain with other ``k`` and ``mass`` gives the paper's outcome at ``v0`` times
+    /// ``sqrt(k / (1e4 mass))`` (``v0`` is a tip speed in length per ``t``). ``t_max``, ``dt``
+    /// and ``watch`` are in ``t`` as given.
     ///
     /// ``impurity`` defaults to the middle spring ``(n - 1) // 2``; ``direction="left"`` (the
     /// paper's, from the right) or ``"right"``.
@@ -574,9 +588,11 @@ impl Chain {
             Some(p) => args::index(p, IndexKind::Spring, springs)?,
             None => (self.n() - 1) / 2,
         };
+        // The paper's output interval and rules in this chain's time unit; t_max, dt, watch as given.
+        let time_unit = self.time_unit();
         let options = crate::dynamics::run_options(
             t_max,
-            0.01,
+            0.01 * time_unit,
             method,
             dt,
             (None, None),
@@ -584,8 +600,18 @@ impl Chain {
             absorbing_ends,
             space_time,
             0.1,
+            time_unit,
         )?;
-        let setup = crate::dynamics::ScatterArgs { defect, v0, impurity, start, direction, watch, options };
+        let setup = crate::dynamics::ScatterArgs {
+            defect,
+            v0,
+            impurity,
+            start,
+            direction,
+            watch,
+            options,
+            time_unit,
+        };
         crate::dynamics::scatter(self, py, setup)
     }
 

@@ -3,7 +3,7 @@
 
 use numpy::{PyArray1, PyArray2};
 use pyo3::prelude::*;
-use rotor_chain::dynamics::integrate::{AdaptiveOptions, State};
+use rotor_chain::dynamics::integrate::{AdaptiveOptions, Sponge, State};
 use rotor_chain::dynamics::launch::{self as ln, Direction};
 use rotor_chain::dynamics::run::{self as rn, ABSORBING_ENDS, Method, RunOptions};
 use rotor_chain::dynamics::scatter::{self as sc, ScatterSetup};
@@ -32,6 +32,7 @@ pub fn run_options(
     absorbing_ends: bool,
     space_time: bool,
     energy_limit: f64,
+    time_unit: f64,
 ) -> PyResult<RunOptions> {
     let adaptive = choice("method", method, &[("verlet", false), ("dop853", true)])?;
     let method = if adaptive {
@@ -59,7 +60,9 @@ pub fn run_options(
         method,
         dt,
         damping,
-        absorbing_ends: absorbing_ends.then_some(ABSORBING_ENDS),
+        // The sponge's rate is the paper's in the chain's time unit (30/t at k = 1e4, M = 1).
+        absorbing_ends: absorbing_ends
+            .then_some(Sponge { strength: ABSORBING_ENDS.strength / time_unit, ..ABSORBING_ENDS }),
         space_time,
         energy_limit,
         ..RunOptions::default()
@@ -308,11 +311,13 @@ pub struct ScatterArgs<'a> {
     pub direction: &'a str,
     pub watch: f64,
     pub options: RunOptions,
+    /// The chain's time unit relative to the paper's (`paper_time_unit`), for the rules' windows.
+    pub time_unit: f64,
 }
 
 pub fn scatter(chain: &Chain, py: Python<'_>, a: ScatterArgs<'_>) -> PyResult<Scattering> {
     let (charge, direction) = (charge(a.defect)?, direction(a.direction)?);
-    let mut setup = ScatterSetup::from_the_right(charge, a.v0, a.impurity);
+    let mut setup = ScatterSetup::from_the_right(charge, a.v0, a.impurity).in_time_unit(a.time_unit);
     setup.direction = direction;
     setup.start = match (a.start, direction) {
         (Some(start), _) => start,

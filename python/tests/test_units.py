@@ -6,10 +6,9 @@ angles unchanged, lengths x L, tensions x K L, energies, gradients and stiffness
 inertia x m L^2, times x T = sqrt(m/K), frequencies x 1/T, speeds x L/T. Each expected value is
 the unscaled chain's result times its factor (tests/units_covariance.rs checks the Rust API).
 
-Not checked, because they are not covariant (reported with the audit that added this file):
-``Chain.scatter`` and ``sweep.phase_diagram`` / ``sweep.point`` under K or m (their output
-interval, 0.01 t, their outcome rules' windows and the ``absorbing_ends`` sponge, 30/t, are fixed
-in t and cannot be scaled from Python)."""
+The audit that added this file found ``Chain.scatter`` and the phase diagrams not covariant under
+K or m (their rules' windows, output interval and sponge were fixed in t); they now take the
+chain's time unit ``sqrt(1e4 mass / k)`` and are checked here."""
 
 from __future__ import annotations
 
@@ -19,6 +18,7 @@ import numpy as np
 import pytest
 
 import rotor_chain as rc
+from rotor_chain import sweep
 
 N, A, R, K, MASS, THETA_BAR = 48, 1.7, 1.36, 3.3e3, 2.5, 0.5
 LBAR = math.sqrt(A * A + 4.0 * (R * math.cos(THETA_BAR)) ** 2)
@@ -149,14 +149,23 @@ def test_launch_and_propagate_take_speeds_and_times_in_their_units(units, defect
 
 
 @pytest.mark.parametrize("point", [("kink", 9.6, 0.01), ("antikink", 4.0, 0.8), ("antikink", 4.8, 0.2)])
-def test_scattering_outcome_is_invariant_under_lengths(point):
-    # The paper's chain of Sec. VI; v0 is a tip speed, length per t (Appendix B).
+@pytest.mark.parametrize("absorbing_ends", [False, True])
+def test_scattering_outcome_is_invariant_under_a_change_of_units(point, absorbing_ends):
+    # The paper's chain of Sec. VI; v0 is a tip speed, length per t (Appendix B); t_max is as
+    # given, so it is scaled here; the rules' windows follow the chain's time unit by themselves.
     defect, v0, ki = point
     results = []
-    for l in [1.0, 2.3, 0.6]:
-        chain = rc.Chain(60, 0.8 * l, 1e4, 0.28, a=l, springs={29: {"k": ki * 1e4}})
-        results.append(chain.scatter(defect, v0 * l))
-    base = results[0]
-    for s in results[1:]:
-        assert (s.outcome, s.confirmed) == (base.outcome, base.confirmed)
-        assert abs(s.decided_at - base.decided_at) <= 0.0101
+    for units in [NONE] + UNITS:
+        l, k, m = units
+        f = factors(units)
+        chain = rc.Chain(60, 0.8 * l, 1e4 * k, 0.28, a=l, mass=m, springs={29: {"k": ki * 1e4 * k}})
+        s = chain.scatter(defect, v0 * f["speed"], t_max=20.0 * f["time"], absorbing_ends=absorbing_ends)
+        if l == 1.0:  # the phase diagrams' chains have a = 1
+            ends = "absorbing" if absorbing_ends else "free"
+            record = sweep.point(defect, ki, v0 * f["speed"], k=1e4 * k, mass=m, t_max=20.0 * f["time"], ends=ends)
+            assert (record["outcome"], record["t_decided"]) == (s.outcome, s.decided_at), units
+        results.append((units, s, f["time"]))
+    _, base, _ = results[0]
+    for units, s, t in results[1:]:
+        assert (s.outcome, s.confirmed) == (base.outcome, base.confirmed), units
+        assert abs(s.decided_at / t - base.decided_at) <= 0.0101, units

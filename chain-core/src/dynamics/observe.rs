@@ -249,7 +249,9 @@ pub fn stability<M: ChainModel + ?Sized>(
     let n = model.rotor_count();
     let last = n.saturating_sub(1) as f64;
     let launched = launch(model, charge, start, v0, direction)?;
-    let mut follower = Follower::new(n, 4.0, 3.0, 0.05);
+    // A wall unseen for five outputs has vanished (0.05 t at the default interval): in outputs, so
+    // that a run in another time unit (its interval scaled with it) follows the same walls.
+    let mut follower = Follower::new(n, 4.0, 3.0, 5.0 * options.output_interval);
     let mut result =
         Stability { most_walls: 0, first_extra: None, longest_extra: 0.0, reached: launched.position };
     let mut since: Option<f64> = None;

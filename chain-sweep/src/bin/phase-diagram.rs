@@ -85,8 +85,8 @@ struct Cli {
     /// The integrator each point starts with
     #[arg(long, value_enum, default_value_t = IntegratorArg::Verlet)]
     integrator: IntegratorArg,
-    /// Verlet's time step, shortened to divide the output interval 0.01 [default: a tenth of its
-    /// stability limit]
+    /// Verlet's time step, shortened to divide the output interval (0.01 sqrt(1e4 mass / k): the
+    /// paper's 0.01 in the chain's time unit) [default: a tenth of its stability limit]
     #[arg(long)]
     dt: Option<f64>,
     /// Largest relative energy error of a point before it is recomputed with DOP853 (or, with
@@ -96,7 +96,8 @@ struct Cli {
     /// Record a point over the energy tolerance as failed instead of recomputing it with DOP853
     #[arg(long)]
     no_recompute: bool,
-    /// End time of each run
+    /// End time of each run, as given (the outcome rules' windows are the paper's in the chain's
+    /// time unit sqrt(1e4 mass / k))
     #[arg(long, default_value_t = 20.0)]
     t_max: f64,
     /// The results file (CSV); created if missing, resumed if it holds part of this sweep. With

@@ -132,8 +132,21 @@ impl core::str::FromStr for LaterEvent {
     }
 }
 
+/// The paper's time unit carried to a chain of stiffness `k` (in `M / t^2`) and tip mass `mass`:
+/// `sqrt(1e4 mass / k)`, so 1 for the paper's `k = 1e4`, `M = 1` (Sec. VI). Times of a chain
+/// scale as `sqrt(M / k)` (its equations of motion have no other time), so the paper's windows
+/// and output interval, multiplied by this ([`ScatterSetup::in_time_unit`]), give the same
+/// outcome for a chain whose `k` and `M` differ from the paper's but whose `sqrt(M / k)`-scaled
+/// motion is the same: `v0` in length per `t` scaled by `1 / unit` then finds the same regime.
+pub fn paper_time_unit(k: f64, mass: f64) -> f64 {
+    crate::math::sqrt(1.0e4 * mass / k)
+}
+
 /// One scattering experiment and the numbers of its rules (docs/dynamics.md §5 says why each
-/// default was chosen). Times in the unit `t` of Appendix B, distances in sites.
+/// default was chosen). Times in the unit `t` of Appendix B, distances in sites. The defaults of
+/// [`ScatterSetup::from_the_right`] are the paper's, for `k = 1e4 M / t^2`; for another chain,
+/// [`ScatterSetup::in_time_unit`] with [`paper_time_unit`] carries them over (Python's
+/// `Chain.scatter` and chain-sweep's diagrams do).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ScatterSetup {
     /// The incoming defect: kink or antikink.
@@ -233,6 +246,38 @@ impl ScatterSetup {
             watch: 0.0,
             run: RunOptions::default(),
         }
+    }
+
+    /// This setup with every duration multiplied by `unit` (> 0) and every rate divided by it:
+    /// the rules' windows (`persistence`, `trap_time`, `entry_window`, `pair_age`, `break_time`,
+    /// `grace`, `confirm`, `watch`) and the run's `t_max`, `output_interval` and `dt`, its
+    /// `damping` and the strength of its absorbing ends. Distances (in sites) and counts stay, and
+    /// so does `max_jump`, a distance per output whose speeds and interval scale inversely. With
+    /// `unit = paper_time_unit(k, M)` the paper's setup is carried to a chain of stiffness `k` and
+    /// tip mass `M`; set `t_max` or `dt` of your own afterwards if they are meant as given.
+    pub fn in_time_unit(mut self, unit: f64) -> Self {
+        for duration in [
+            &mut self.persistence,
+            &mut self.trap_time,
+            &mut self.entry_window,
+            &mut self.pair_age,
+            &mut self.break_time,
+            &mut self.grace,
+            &mut self.confirm,
+            &mut self.watch,
+            &mut self.run.t_max,
+            &mut self.run.output_interval,
+        ] {
+            *duration *= unit;
+        }
+        if let Some(dt) = &mut self.run.dt {
+            *dt *= unit;
+        }
+        self.run.damping /= unit;
+        if let Some(sponge) = &mut self.run.absorbing_ends {
+            sponge.strength /= unit;
+        }
+        self
     }
 
     /// Whether the setup describes an experiment on a chain of `n` rotors (what [`scatter`]
