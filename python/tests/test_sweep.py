@@ -64,11 +64,11 @@ def test_the_file_is_the_clis_and_each_resumes_the_other(phase_diagram_cli, tmp_
 
 
 def test_point_errors_are_the_clis(phase_diagram_cli, tmp_path):
-    # A stiff chain (k = 1e5) and a Verlet step 15 times the default: the energy budget breaks.
-    settings = dict(k=1.0e5, dt=0.008, recompute=False)
-    cli = cli_records(
-        phase_diagram_cli, tmp_path / "bad.csv", "antikink", "0.7:0.7:1", "4:4:1", "--k", "1e5", "--dt", "0.008", "--no-recompute"
-    )
+    # A stiff chain (k = 1e5) and a Verlet step of a whole output interval (0.01 sqrt(1e4 / k) =
+    # 0.00316, 5 times the default step) against a tolerance of 1e-3: the energy budget breaks.
+    settings = dict(k=1.0e5, dt=0.0032, energy_tolerance=1e-3, recompute=False)
+    options = ["--k", "1e5", "--dt", "0.0032", "--energy-tolerance", "1e-3", "--no-recompute"]
+    cli = cli_records(phase_diagram_cli, tmp_path / "bad.csv", "antikink", "0.7:0.7:1", "4:4:1", *options)
     assert cli[0]["error"] is not None
     with pytest.raises(rc.PointError) as info:
         sweep.point("antikink", 0.7, 4.0, **settings)
@@ -76,7 +76,7 @@ def test_point_errors_are_the_clis(phase_diagram_cli, tmp_path):
     assert str(e) == cli[0]["error"]
     assert e.variant in ("EnergyBudget", "Run"), e
     if e.variant == "EnergyBudget":
-        assert e.error > e.tolerance == 5e-3 and e.integrator == "verlet"
+        assert e.error > e.tolerance == 1e-3 and e.integrator == "verlet"
     else:
         assert isinstance(e.__cause__, rc.DynamicsError)
     # In a sweep the failure is recorded, not raised, with the same text.
