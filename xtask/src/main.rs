@@ -8,17 +8,15 @@
 //!
 //! **`test`** runs exactly what `cargo test --workspace` runs, plus the Python tests, arranged so
 //! that the two cores stay busy:
-//! 1. `cargo test -p ui-tests --test ui --no-run` compiles the trybuild test's executable (its
-//!    path read from cargo's JSON messages); then, side by side:
-//!    - this process: `cargo test --workspace --no-run` compiles every other test target once;
-//!    - a second thread: the trybuild test `ui-tests/tests/ui.rs` (compile-fail and pass cases,
-//!      which build in their own target folder, so they need no lock of the main one), run as
-//!      cargo would run it, its output kept and printed at the end;
-//! 2. then, again side by side:
+//! 1. `cargo test --workspace --no-run` compiles every test target once (its diagnostics on
+//!    stderr; the list of test executables read from its JSON messages);
+//! 2. then two lanes run side by side:
 //!    - this process: `cargo test --workspace -- --exact --skip rotor_chain_compile_time_checks`
 //!      (every unit, integration and doc test except the one trybuild test, nothing left to
 //!      compile), streamed;
-//!    - the second thread, once its trybuild test is done: the Python half below, its output kept.
+//!    - a second thread: the trybuild test `ui-tests/tests/ui.rs` (compile-fail and pass
+//!      cases, which builds in its own target folder), run as cargo would run it, then the
+//!      Python half below; their output is kept and printed when the lane ends.
 //!
 //! The Python half: a virtual environment at `target/python/venv` (from `python3`, or `$PYTHON`),
 //! the packages of `python/requirements-test.txt` installed into it with pip (only when that file
@@ -36,7 +34,6 @@ use std::ffi::OsString;
 use std::fs;
 use std::path::{Path, PathBuf};
 use std::process::{Command, ExitCode, Stdio};
-use std::sync::mpsc;
 use std::thread;
 use std::time::Instant;
 
@@ -128,47 +125,34 @@ fn test(pytest_args: &[OsString]) -> Step {
         let root = root.clone();
         thread::spawn(move || prepare_venv(&root))
     };
-    // The trybuild test's executable first: its cases build in a target folder of their own, so
-    // they compile beside the rest of step 1 and fill the cores its serial stretches leave idle.
-    let ui = build_ui_test(&root)?;
-    // Lane two: the trybuild test, then (once step 1 has built the extension's dependencies and
-    // the reference programs) the Python tests, output kept for the end.
-    let (built, step_one) = mpsc::channel::<bool>();
+    let ui = build_tests(&root)?;
+    // Lane two: the trybuild test, then the Python tests, output kept for the end.
     let lane = {
         let (root, pytest_args) = (root.clone(), pytest_args.to_vec());
         thread::spawn(move || {
             let mut log = Vec::new();
             let ui = run_ui_test(&root, &ui, &mut log);
-            let python = match step_one.recv() {
-                Ok(true) => venv
-                    .join()
-                    .map_err(|_| Failure("preparing the Python environment panicked".to_owned()))
-                    .and_then(|venv| venv)
-                    .and_then(|venv| python_tests(&root, &venv, &pytest_args, Some(&mut log))),
-                _ => Err(Failure(
-                    "the Python tests did not run: the Rust test targets did not build".to_owned(),
-                )),
-            };
+            let python = venv
+                .join()
+                .map_err(|_| Failure("preparing the Python environment panicked".to_owned()))
+                .and_then(|venv| venv)
+                .and_then(|venv| python_tests(&root, &venv, &pytest_args, Some(&mut log)));
             (ui, python, log)
         })
     };
-    let step_one = build_tests(&root);
-    let _ = built.send(step_one.is_ok());
     // Lane one: every other Rust test, streamed. `--exact` makes `--skip` match the whole name.
-    let rust = step_one.and_then(|()| {
-        run(
-            "cargo test --workspace (all but the trybuild test, which runs beside it)",
-            Command::new(cargo()).current_dir(&root).args([
-                "test",
-                "--workspace",
-                "--",
-                "--exact",
-                "--skip",
-                UI_TEST,
-            ]),
-            None,
-        )
-    });
+    let rust = run(
+        "cargo test --workspace (all but the trybuild test, which runs beside it)",
+        Command::new(cargo()).current_dir(&root).args([
+            "test",
+            "--workspace",
+            "--",
+            "--exact",
+            "--skip",
+            UI_TEST,
+        ]),
+        None,
+    );
     let (ui, python, log) =
         lane.join().map_err(|_| Failure("the trybuild and Python lane panicked".to_owned()))?;
     eprintln!("\nxtask: the trybuild test and the Python tests, run beside the other tests:");
@@ -180,23 +164,19 @@ fn test(pytest_args: &[OsString]) -> Step {
     python
 }
 
-/// Step 1a: `cargo test -p ui-tests --test ui --no-run`; the trybuild test's executable.
-fn build_ui_test(root: &Path) -> Step<PathBuf> {
+/// Step 1: `cargo test --workspace --no-run`; the trybuild test's executable.
+fn build_tests(root: &Path) -> Step<PathBuf> {
     let start = Instant::now();
     let output = Command::new(cargo())
         .current_dir(root)
-        .args(["test", "--package", "ui-tests", "--test", UI_TARGET, "--no-run"])
-        .arg("--message-format=json-render-diagnostics")
+        .args(["test", "--workspace", "--no-run", "--message-format=json-render-diagnostics"])
         .stderr(Stdio::inherit())
         .output()
         .map_err(|e| Failure(format!("cannot start cargo: {e}")))?;
     if !output.status.success() {
-        return Err(Failure(format!("cargo test -p ui-tests --test ui --no-run failed ({})", output.status)));
+        return Err(Failure(format!("cargo test --workspace --no-run failed ({})", output.status)));
     }
-    eprintln!(
-        "xtask: cargo test -p ui-tests --test ui --no-run: done in {:.1} s",
-        start.elapsed().as_secs_f64()
-    );
+    eprintln!("xtask: cargo test --workspace --no-run: done in {:.1} s", start.elapsed().as_secs_f64());
     let messages = String::from_utf8_lossy(&output.stdout);
     let wanted = format!(r#""name":"{UI_TARGET}","src_path":"#);
     messages
@@ -208,15 +188,6 @@ fn build_ui_test(root: &Path) -> Step<PathBuf> {
         .ok_or_else(|| {
             Failure(format!("cargo built no test executable named `{UI_TARGET}` (ui-tests/tests/ui.rs)"))
         })
-}
-
-/// Step 1b: `cargo test --workspace --no-run`, every test target.
-fn build_tests(root: &Path) -> Step {
-    run(
-        "cargo test --workspace --no-run",
-        Command::new(cargo()).current_dir(root).args(["test", "--workspace", "--no-run"]),
-        None,
-    )
 }
 
 /// The JSON string value that follows `key` in `message`, with the escapes `\\`, `\"` and `\/`
