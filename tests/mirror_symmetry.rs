@@ -40,20 +40,18 @@
 //! exact ties (a start on the saddle of a chain that is its own mirror image, two walls equally
 //! near a launch position) are broken one way, and none is exercised here.
 //!
-//! **Defects found, left out of this file** (the library is unchanged; reproductions in the
-//! audit's report):
-//! 1. `statics::walls::wall_width` reads the length of rotor `n / 2`, which for even `n` is not
-//!    the middle: with a rotor override on rotor 30 of 60 the mirrored chain (override on 29) has
-//!    another width, so `modes` classifies some modes differently (a mode `Extended` in one chain
-//!    is `Shape` in the other). No chain here overrides rotor `n / 2` or `n / 2 - 1`.
-//! 2. `statics::counting::maxwell_calladine` takes the rank from the singular values of `C`
-//!    (resolved to `n eps sigma_max`) but the zero modes and self-stresses from eigenvectors of
-//!    `C^T C` and `C C^T`, which resolve singular values only to about `sqrt(eps) sigma_max`: with
-//!    a singular value between the two (an antikink about 15 sites from an end at
-//!    `theta_bar = 0.6`, `r = 0.7`), the one zero mode returned is an arbitrary vector of the
-//!    two-dimensional near-null space, at the wrong end for one of a mirror pair. The counting is
-//!    compared here on configurations whose singular values are clear of that band (antikinks in
-//!    the middle of their chain).
+//! **Defects this audit found, fixed since** (checked in
+//! `the_cases_the_audit_found_broken_now_mirror`):
+//! 1. `statics::walls::wall_width` read the length of rotor `n / 2`, which for even `n` is not
+//!    the middle: with a rotor override on rotor 30 of 60 the mirrored chain (override on 29) had
+//!    another width, so `modes` classified some modes differently. It now takes the mean of the
+//!    two middle rotors.
+//! 2. `statics::counting::maxwell_calladine` took the zero modes and self-stresses from
+//!    eigenvectors of `C^T C` and `C C^T`, which resolve singular values only to about
+//!    `sqrt(eps) sigma_max`: with a singular value just above the rank tolerance (an antikink
+//!    15 sites from an end at `theta_bar = 0.6`, `r = 0.7`), the one zero mode returned was a
+//!    vector of the two-dimensional near-null space, at the wrong end for one of a mirror pair.
+//!    They are singular vectors now.
 
 use rotor_chain::dynamics::integrate::{Sponge, State};
 use rotor_chain::dynamics::launch::{Direction, launch};
@@ -76,7 +74,7 @@ use rotor_chain::statics::impurity::{critical_length, impurity_analysis, two_kin
 use rotor_chain::statics::kink::{kink, mechanism_path, reflected_kink};
 use rotor_chain::statics::linkage::{LinkageChain, PhaseState};
 use rotor_chain::statics::modes::{Mode, ModeKind, ModeOptions, modes};
-use rotor_chain::statics::walls::{Charge, Wall, domain_walls};
+use rotor_chain::statics::walls::{Charge, Wall, domain_walls, wall_width};
 use rotor_chain::{Law, batch};
 
 /// Relative tolerance of results computed in closed form or by a fixed sequence of operations
@@ -480,6 +478,51 @@ fn assert_modes_mirrored(what: &str, mirrored: &[Mode], original: &[Mode], n: us
         assert_close1(&format!("{what} position"), partner.position, last - o.position, tol);
         assert_close1(&format!("{what} participation"), partner.participation, o.participation, tol);
         assert_eq!(partner.kind, mirrored_kind(o.kind), "{what}: mode at {} ({:?})", o.position, o.kind);
+    }
+}
+
+#[test]
+fn the_cases_the_audit_found_broken_now_mirror() {
+    // 1. A rotor override on a middle rotor of an even chain: one width, mirrored mode kinds.
+    for theta_bar in [0.2, 0.4] {
+        let c = RuntimeChain::builder(60, 0.8, 1.0e4, theta_bar).rotor(30, 1.0).build().unwrap();
+        let m = RuntimeChain::builder(60, 0.8, 1.0e4, theta_bar).rotor(29, 1.0).build().unwrap();
+        assert_eq!(wall_width(&c), wall_width(&m), "theta_bar {theta_bar}");
+        let theta = kink(&c, 52.0).unwrap();
+        let options = ModeOptions { count: Some(12), ..ModeOptions::default() };
+        let (found, found_m) =
+            (modes(&c, &theta, &options).unwrap(), modes(&m, &mirror(&theta), &options).unwrap());
+        assert_modes_mirrored(&format!("middle rotor, theta_bar {theta_bar}"), &found_m, &found, 60, 1e-7);
+    }
+    // 2. Antikinks near either end of a uniform chain (its own mirror image): the zero modes
+    // and self-stresses of one are the mirror images of the other's.
+    let chain = RuntimeChain::builder(41, 0.7, 1.0e4, 0.6).build().unwrap();
+    for centre in [7.0, 15.0] {
+        let theta = antikink_at(&chain, centre, &AntikinkOptions::default()).unwrap().theta;
+        let (counting, counting_m) = (
+            maxwell_calladine(&chain, &theta, None).unwrap(),
+            maxwell_calladine(&chain, &mirror(&theta), None).unwrap(),
+        );
+        let what = format!("antikink at {centre} of 41");
+        assert_eq!(
+            (counting_m.rank, counting_m.zero_modes.len()),
+            (counting.rank, counting.zero_modes.len()),
+            "{what}"
+        );
+        assert_close(
+            &format!("{what}: zero modes"),
+            &projector(&counting_m.zero_modes),
+            &reversed_projector(&counting.zero_modes),
+            1e-6,
+        );
+        if !counting.self_stresses.is_empty() {
+            assert_close(
+                &format!("{what}: self-stresses"),
+                &projector(&counting_m.self_stresses),
+                &reversed_projector(&counting.self_stresses),
+                1e-6,
+            );
+        }
     }
 }
 

@@ -9,9 +9,15 @@
 //!
 //! The rank comes from the singular values of `C` (a dense SVD; `C` is small next to the O(n^3)
 //! it costs only for chains of thousands of rotors) with the tolerance
-//! `max(n, n - 1) * epsilon * sigma_max` (the usual numerical-rank rule); the vectors of both null
-//! spaces and the **tensional modes** are eigenvectors of the tridiagonal matrices `C^T C` and
-//! `C C^T`.
+//! `max(n, n - 1) * epsilon * sigma_max` (the usual numerical-rank rule). The vectors of both null
+//! spaces are singular vectors of the same decomposition: the self-stresses the left ones of `C`
+//! for its `m - rank` smallest singular values, the zero modes the right ones of `C` with a row of
+//! zeros appended (square, so that its decomposition holds all `n` right vectors) for its
+//! `n - rank` smallest. Eigenvectors of `C^T C` would be cheaper but cannot tell apart singular
+//! values below `sqrt(epsilon) sigma_max`: a singular value of 3e-14, just above the rank
+//! tolerance, left a "zero mode" with `|C z| = 3e-14`, a mix of the null vector and its
+//! neighbour (found by a mirror-symmetry audit; the singular vectors give `|C z| ~ epsilon
+//! sigma_max`). The **tensional modes** are eigenvectors of the tridiagonal `C C^T`.
 
 use alloc::vec;
 use alloc::vec::Vec;
@@ -108,31 +114,51 @@ pub fn maxwell_calladine<M: ChainModel + ?Sized>(
     // nalgebra's `singular_values()` iterates without a bound; LAPACK's `dbdsqr` allows
     // 6 n^2 sweeps, which is what this gives.
     let budget = 6 * n.max(m) * n.max(m);
-    let svd = c.try_svd(false, false, f64::EPSILON, budget).ok_or(StaticsError::NoConvergence {
+    let failed = || StaticsError::NoConvergence {
         method: "SVD of the compatibility matrix",
         iterations: budget,
         residual: f64::NAN,
         tolerance: f64::EPSILON,
-    })?;
+    };
+    // With the left vectors: `m <= n`, so the thin `U` (m x m) holds all of them.
+    let svd = c.clone().try_svd(true, false, f64::EPSILON, budget).ok_or_else(failed)?;
     let mut singular_values: Vec<f64> = svd.singular_values.iter().copied().collect();
     singular_values.sort_by(|a, b| b.total_cmp(a));
     let sigma_max = singular_values.first().copied().unwrap_or(0.0);
     let tolerance = tolerance.unwrap_or(n.max(m) as f64 * f64::EPSILON * sigma_max);
     let rank = singular_values.iter().filter(|&&s| s > tolerance).count();
-    // C^T C (n x n) and C C^T (m x m) are tridiagonal.
-    let ctc_diag: Vec<f64> = (0..n)
-        .map(|i| if i < m { left[i] * left[i] } else { 0.0 } + if i > 0 { right[i - 1] * right[i - 1] } else { 0.0 })
+    let u = svd.u.as_ref().ok_or_else(failed)?;
+    let self_stresses = smallest(svd.singular_values.as_slice(), m - rank)
+        .into_iter()
+        .map(|j| oriented(u.column(j).iter().copied().collect()))
         .collect();
-    let ctc_off: Vec<f64> = (0..n - 1).map(|i| left[i] * right[i]).collect();
-    let zero_modes =
-        linalg::lowest_eigenpairs(&ctc_diag, &ctc_off, n - rank)?.into_iter().map(|p| p.vector).collect();
-    let (cct_diag, cct_off) = cct(&left, &right);
-    let self_stresses = if m > rank {
-        linalg::lowest_eigenpairs(&cct_diag, &cct_off, m - rank)?.into_iter().map(|p| p.vector).collect()
-    } else {
-        Vec::new()
-    };
+    // The right vectors: `C` with zero rows appended to `n x n`, whose decomposition has all `n`.
+    let square = c.resize(n, n, 0.0);
+    let full = square.try_svd(false, true, f64::EPSILON, budget).ok_or_else(failed)?;
+    let v_t = full.v_t.as_ref().ok_or_else(failed)?;
+    let zero_modes = smallest(full.singular_values.as_slice(), n - rank)
+        .into_iter()
+        .map(|j| oriented(v_t.row(j).iter().copied().collect()))
+        .collect();
     Ok(Counting { rotors: n, springs: m, singular_values, tolerance, rank, zero_modes, self_stresses })
+}
+
+/// The indices of the `count` smallest of `values`, ascending by value.
+fn smallest(values: &[f64], count: usize) -> Vec<usize> {
+    let mut order: Vec<usize> = (0..values.len()).collect();
+    order.sort_by(|&a, &b| values[a].total_cmp(&values[b]));
+    order.truncate(count);
+    order
+}
+
+/// `v` with the sign that makes its largest entry (the first, on a tie) positive: a singular
+/// vector's sign is arbitrary, and this gives one answer for one subspace of dimension 1.
+fn oriented(mut v: Vec<f64>) -> Vec<f64> {
+    let largest = v.iter().copied().fold(0.0f64, |best, x| if x.abs() > best.abs() { x } else { best });
+    if largest < 0.0 {
+        v.iter_mut().for_each(|x| *x = -*x);
+    }
+    v
 }
 
 /// `C C^T` as a tridiagonal matrix.

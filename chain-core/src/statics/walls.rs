@@ -30,13 +30,16 @@ pub fn count_walls(theta: &[f64]) -> (usize, usize) {
 }
 
 /// The continuum width of a wall in sites: `w / a` with `w = a^2 / (2 r sin theta_bar)` (paper
-/// Sec. III, App. E), from the middle rotor's length. Dimensionless: the distances it is compared
-/// with (rotor indices, wall positions) are in sites, so lengths scaled by any factor leave it
-/// unchanged. The reach of [`modes`](super::modes::modes)' kinds and the launches' distances are
-/// in these widths.
+/// Sec. III, App. E), `r` the length of the middle rotor (for even `n` the mean of the two
+/// middle ones, so that a chain and its mirror image have one width). Dimensionless: the
+/// distances it is compared with (rotor indices, wall positions) are in sites, so lengths scaled
+/// by any factor leave it unchanged. The reach of [`modes`](super::modes::modes)' kinds and the
+/// launches' distances are in these widths.
 pub fn wall_width<M: ChainModel + ?Sized>(model: &M) -> f64 {
     let a = model.lattice_spacing();
-    let r = model.rotor_length(model.rotor_count() / 2);
+    let n = model.rotor_count();
+    // Equal lengths give `r` exactly: r + r and the halving are exact.
+    let r = 0.5 * (model.rotor_length((n - 1) / 2) + model.rotor_length(n / 2));
     a / (2.0 * r * libm::sin(model.theta_bar()))
 }
 
