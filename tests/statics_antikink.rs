@@ -277,7 +277,7 @@ fn a_kink_too_wide_to_show_is_an_error() {
 /// from its bands, not through the counting.
 #[test]
 fn counting_returns_null_vectors_to_rounding() {
-    use rotor_chain::statics::counting::compatibility;
+    use rotor_chain::statics::counting::{compatibility, tensional_modes};
     let model = RuntimeChain::builder(41, 0.7, K, 0.6).build().unwrap();
     let options = AntikinkOptions::default();
     let mut checked = 0;
@@ -289,6 +289,15 @@ fn counting_returns_null_vectors_to_rounding() {
         let sigma_max = counting.singular_values[0];
         let bound = 4.0 * 41.0 * f64::EPSILON * sigma_max;
         assert_eq!(counting.index(), 1, "centre {centre}");
+        // The singular values against an independent route: sigma^2 are the eigenvalues of the
+        // tridiagonal C C^T (Sturm bisection), to a few eps sigma_max^2. (nalgebra's SVD of a
+        // non-square matrix with vectors was 1e-5 off; the counting does not use it.)
+        let mut squares: Vec<f64> =
+            tensional_modes(&model, &theta, 40).unwrap().iter().map(|t| t.eigenvalue).collect();
+        squares.sort_by(|a, b| b.total_cmp(a));
+        for (s, e) in counting.singular_values.iter().zip(&squares) {
+            assert!((s * s - e).abs() <= 1e-13 * sigma_max * sigma_max, "centre {centre}: {s}^2 vs {e}");
+        }
         for z in &counting.zero_modes {
             let norm = z.iter().map(|x| x * x).sum::<f64>().sqrt();
             let residual =

@@ -10,14 +10,15 @@
 //! The rank comes from the singular values of `C` (a dense SVD; `C` is small next to the O(n^3)
 //! it costs only for chains of thousands of rotors) with the tolerance
 //! `max(n, n - 1) * epsilon * sigma_max` (the usual numerical-rank rule). The vectors of both null
-//! spaces are singular vectors of the same decomposition: the self-stresses the left ones of `C`
-//! for its `m - rank` smallest singular values, the zero modes the right ones of `C` with a row of
-//! zeros appended (square, so that its decomposition holds all `n` right vectors) for its
-//! `n - rank` smallest. Eigenvectors of `C^T C` would be cheaper but cannot tell apart singular
-//! values below `sqrt(epsilon) sigma_max`: a singular value of 3e-14, just above the rank
-//! tolerance, left a "zero mode" with `|C z| = 3e-14`, a mix of the null vector and its
-//! neighbour (found by a mirror-symmetry audit; the singular vectors give `|C z| ~ epsilon
-//! sigma_max`). The **tensional modes** are eigenvectors of the tridiagonal `C C^T`.
+//! spaces are singular vectors of `C` with a row of zeros appended (square, so that its
+//! decomposition holds all `n` right vectors; nalgebra's decomposition of the non-square `C` with
+//! vectors is also far less accurate, 1e-5 in the singular values): for its `n - rank` smallest
+//! singular values, the right ones are the zero modes and the left ones span the self-stresses
+//! and the appended row's axis, which is taken out. Eigenvectors of `C^T C` would be cheaper but
+//! cannot tell apart singular values below `sqrt(epsilon) sigma_max`: a singular value of 3e-14,
+//! just above the rank tolerance, left a "zero mode" with `|C z| = 3e-14`, a mix of the null
+//! vector and its neighbour (found by a mirror-symmetry audit; the singular vectors give
+//! `|C z| ~ epsilon sigma_max`). The **tensional modes** are eigenvectors of the tridiagonal `C C^T`.
 
 use alloc::vec;
 use alloc::vec::Vec;
@@ -120,27 +121,59 @@ pub fn maxwell_calladine<M: ChainModel + ?Sized>(
         residual: f64::NAN,
         tolerance: f64::EPSILON,
     };
-    // With the left vectors: `m <= n`, so the thin `U` (m x m) holds all of them.
-    let svd = c.clone().try_svd(true, false, f64::EPSILON, budget).ok_or_else(failed)?;
-    let mut singular_values: Vec<f64> = svd.singular_values.iter().copied().collect();
+    // The singular values alone: nalgebra's SVD of a non-square matrix is accurate only without
+    // vectors (with them, 1e-5 off on a 59 x 60 `C` whose values agree to 3e-15 otherwise; the
+    // same family as nalgebra issues #983 and #1211). A test compares them with the eigenvalues
+    // of the tridiagonal `C C^T`.
+    let values = c.clone().try_svd(false, false, f64::EPSILON, budget).ok_or_else(failed)?;
+    let mut singular_values: Vec<f64> = values.singular_values.iter().copied().collect();
     singular_values.sort_by(|a, b| b.total_cmp(a));
     let sigma_max = singular_values.first().copied().unwrap_or(0.0);
     let tolerance = tolerance.unwrap_or(n.max(m) as f64 * f64::EPSILON * sigma_max);
     let rank = singular_values.iter().filter(|&&s| s > tolerance).count();
-    let u = svd.u.as_ref().ok_or_else(failed)?;
-    let self_stresses = smallest(svd.singular_values.as_slice(), m - rank)
-        .into_iter()
-        .map(|j| oriented(u.column(j).iter().copied().collect()))
-        .collect();
-    // The right vectors: `C` with zero rows appended to `n x n`, whose decomposition has all `n`.
+    // The vectors: `C` with a row of zeros appended, square, whose decomposition holds all `n`
+    // right vectors and is accurate. Its `n - rank` smallest singular values belong to the null
+    // space of `C` (the zero modes) on the right, and on the left to the self-stresses `[s; 0]`
+    // and the appended row's `e_n`.
     let square = c.resize(n, n, 0.0);
-    let full = square.try_svd(false, true, f64::EPSILON, budget).ok_or_else(failed)?;
-    let v_t = full.v_t.as_ref().ok_or_else(failed)?;
-    let zero_modes = smallest(full.singular_values.as_slice(), n - rank)
-        .into_iter()
-        .map(|j| oriented(v_t.row(j).iter().copied().collect()))
-        .collect();
+    let full = square.try_svd(true, true, f64::EPSILON, budget).ok_or_else(failed)?;
+    let (u, v_t) = (full.u.as_ref().ok_or_else(failed)?, full.v_t.as_ref().ok_or_else(failed)?);
+    let near_null = smallest(full.singular_values.as_slice(), n - rank);
+    let zero_modes = near_null.iter().map(|&j| oriented(v_t.row(j).iter().copied().collect())).collect();
+    let left: Vec<Vec<f64>> = near_null.iter().map(|&j| u.column(j).iter().copied().collect()).collect();
+    let self_stresses = without_last_axis(&left).into_iter().map(oriented).collect();
     Ok(Counting { rotors: n, springs: m, singular_values, tolerance, rank, zero_modes, self_stresses })
+}
+
+/// An orthonormal basis of the vectors of `span(basis)` (orthonormal, each of length `n`, the
+/// span holding the last axis `e_n`) that are orthogonal to `e_n`, with that last entry dropped:
+/// one vector fewer. The combination along `e_n` is `x = h / |h|`, `h` the basis vectors' last
+/// entries; the Householder reflection `H` that takes `x` to a multiple of `e_1` has its other
+/// columns orthogonal to `x`, and those combinations of the basis are the answer.
+fn without_last_axis(basis: &[Vec<f64>]) -> Vec<Vec<f64>> {
+    let q = basis.len();
+    if q < 2 {
+        return Vec::new();
+    }
+    let n = basis[0].len();
+    let h: Vec<f64> = basis.iter().map(|b| b[n - 1]).collect();
+    let size = crate::math::sqrt(h.iter().map(|x| x * x).sum());
+    // v = x + sign(x_1) e_1 (no cancellation); H = I - 2 v v^T / (v^T v).
+    let mut v: Vec<f64> = if size > 0.0 { h.iter().map(|x| x / size).collect() } else { vec![0.0; q] };
+    v[0] += if v[0] < 0.0 { -1.0 } else { 1.0 };
+    let vv: f64 = v.iter().map(|x| x * x).sum();
+    (1..q)
+        .map(|j| {
+            // Column j of H, then the combination of the basis, without its last entry.
+            let column: Vec<f64> =
+                (0..q).map(|k| if k == j { 1.0 } else { 0.0 } - 2.0 * v[k] * v[j] / vv).collect();
+            let mut s: Vec<f64> =
+                (0..n - 1).map(|i| basis.iter().zip(&column).map(|(b, c)| b[i] * c).sum()).collect();
+            let norm = crate::math::sqrt(s.iter().map(|x| x * x).sum());
+            s.iter_mut().for_each(|x| *x /= norm);
+            s
+        })
+        .collect()
 }
 
 /// The indices of the `count` smallest of `values`, ascending by value.
