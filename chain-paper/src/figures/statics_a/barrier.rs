@@ -158,7 +158,7 @@ pub fn akconfigpn(p: &Params, _q: Quality) -> Result<Figure, FigureError> {
                 Some(theory.pn_barrier()),
                 format!(
                     "continuum: our peak-to-peak derivation (Eq. PNB2 as printed gives half, {:.4}){resolved}; \
-                     θ̄ = {fitted:.6}, fitted to V_min = {PAPER_MINIMUM}, gives saddle {:.4} and barrier {:.4}",
+                     θ̄ = {fitted:.7}, fitted to V_min = {PAPER_MINIMUM}, gives saddle {:.4} and barrier {:.4}",
                     theory.pn_barrier_as_printed(),
                     refit.saddle().energy,
                     refit.barrier
