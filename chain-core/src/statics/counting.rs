@@ -11,14 +11,16 @@
 //! it costs only for chains of thousands of rotors) with the tolerance
 //! `max(n, n - 1) * epsilon * sigma_max` (the usual numerical-rank rule). The vectors of both null
 //! spaces are singular vectors of `C` with a row of zeros appended (square, so that its
-//! decomposition holds all `n` right vectors; nalgebra's decomposition of the non-square `C` with
-//! vectors is also far less accurate, 1e-5 in the singular values): for its `n - rank` smallest
-//! singular values, the right ones are the zero modes and the left ones span the self-stresses
-//! and the appended row's axis, which is taken out. Eigenvectors of `C^T C` would be cheaper but
+//! decomposition holds all `n` right vectors; nalgebra's decomposition with vectors is less
+//! accurate in its singular values, 1e-5 to 3e-3 seen, so the values come from a decomposition
+//! without vectors): the `n - rank` right vectors that `C` maps nearest to zero are the zero
+//! modes, and the `n - rank` left ones that `C^T` maps nearest to zero span the self-stresses and
+//! the appended row's axis, which is taken out. Eigenvectors of `C^T C` would be cheaper but
 //! cannot tell apart singular values below `sqrt(epsilon) sigma_max`: a singular value of 3e-14,
 //! just above the rank tolerance, left a "zero mode" with `|C z| = 3e-14`, a mix of the null
 //! vector and its neighbour (found by a mirror-symmetry audit; the singular vectors give
-//! `|C z| ~ epsilon sigma_max`). The **tensional modes** are eigenvectors of the tridiagonal `C C^T`.
+//! `|C z| ~ epsilon sigma_max`). The **tensional modes** are eigenvectors of the tridiagonal
+//! `C C^T`.
 
 use alloc::vec;
 use alloc::vec::Vec;
@@ -132,16 +134,32 @@ pub fn maxwell_calladine<M: ChainModel + ?Sized>(
     let tolerance = tolerance.unwrap_or(n.max(m) as f64 * f64::EPSILON * sigma_max);
     let rank = singular_values.iter().filter(|&&s| s > tolerance).count();
     // The vectors: `C` with a row of zeros appended, square, whose decomposition holds all `n`
-    // right vectors and is accurate. Its `n - rank` smallest singular values belong to the null
-    // space of `C` (the zero modes) on the right, and on the left to the self-stresses `[s; 0]`
-    // and the appended row's `e_n`.
+    // right vectors. On the right, `n - rank` of them span the null space of `C` (the zero
+    // modes); on the left, the self-stresses `[s; 0]` and the appended row's `e_n`.
     let square = c.resize(n, n, 0.0);
     let full = square.try_svd(true, true, f64::EPSILON, budget).ok_or_else(failed)?;
     let (u, v_t) = (full.u.as_ref().ok_or_else(failed)?, full.v_t.as_ref().ok_or_else(failed)?);
-    let near_null = smallest(full.singular_values.as_slice(), n - rank);
-    let zero_modes = near_null.iter().map(|&j| oriented(v_t.row(j).iter().copied().collect())).collect();
-    let left: Vec<Vec<f64>> = near_null.iter().map(|&j| u.column(j).iter().copied().collect()).collect();
-    let self_stresses = without_last_axis(&left).into_iter().map(oriented).collect();
+    // Which vectors span the null spaces is read from what `C` does to them (`|C v|`, and
+    // `|C^T u|` on the left, whose appended axis `e_n` gives 0), not from the singular values
+    // this decomposition pairs them with: with vectors, nalgebra's values can be off (3e-3 seen
+    // on the square `C` of a 41-rotor chain, which is why the values above come from the
+    // vector-free decomposition).
+    let right_residual =
+        |v: &[f64]| -> f64 { (0..m).map(|p| left[p] * v[p] + right[p] * v[p + 1]).map(|x| x * x).sum() };
+    let left_residual = |u: &[f64]| -> f64 {
+        (0..n)
+            .map(|i| {
+                let below = if i < m { left[i] * u[i] } else { 0.0 };
+                let above = if i > 0 { right[i - 1] * u[i - 1] } else { 0.0 };
+                (below + above) * (below + above)
+            })
+            .sum()
+    };
+    let rows: Vec<Vec<f64>> = (0..n).map(|j| v_t.row(j).iter().copied().collect()).collect();
+    let columns: Vec<Vec<f64>> = (0..n).map(|j| u.column(j).iter().copied().collect()).collect();
+    let zero_modes = least(&rows, n - rank, right_residual).into_iter().map(oriented).collect();
+    let stresses_and_axis = least(&columns, n - rank, left_residual);
+    let self_stresses = without_last_axis(&stresses_and_axis).into_iter().map(oriented).collect();
     Ok(Counting { rotors: n, springs: m, singular_values, tolerance, rank, zero_modes, self_stresses })
 }
 
@@ -176,12 +194,11 @@ fn without_last_axis(basis: &[Vec<f64>]) -> Vec<Vec<f64>> {
         .collect()
 }
 
-/// The indices of the `count` smallest of `values`, ascending by value.
-fn smallest(values: &[f64], count: usize) -> Vec<usize> {
-    let mut order: Vec<usize> = (0..values.len()).collect();
-    order.sort_by(|&a, &b| values[a].total_cmp(&values[b]));
-    order.truncate(count);
-    order
+/// The `count` vectors with the smallest `residual`, ascending.
+fn least(vectors: &[Vec<f64>], count: usize, residual: impl Fn(&[f64]) -> f64) -> Vec<Vec<f64>> {
+    let mut scored: Vec<(f64, &Vec<f64>)> = vectors.iter().map(|v| (residual(v), v)).collect();
+    scored.sort_by(|a, b| a.0.total_cmp(&b.0));
+    scored.into_iter().take(count).map(|(_, v)| v.clone()).collect()
 }
 
 /// `v` with the sign that makes its largest entry (the first, on a tie) positive: a singular
