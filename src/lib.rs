@@ -113,6 +113,11 @@ pub use chain_core::{
 };
 #[cfg(feature = "alloc")]
 pub use chain_core::{ChainBuilder, Law, RuntimeChain, dynamics, linalg, runtime, statics};
+/// Periodic spring and rotor networks in one and two dimensions: cells, Maxwell-Calladine
+/// counts, Bloch bands, winding numbers and polarization, edge modes (crate `chain-network`;
+/// guide [`guide::network`]).
+#[cfg(feature = "network")]
+pub use chain_network as network;
 // The attribute's page: the keys and a runnable example of each. Written here, on the re-export,
 // so that the examples are this crate's doctests (the proc-macro crate would need the facade as a
 // dev-dependency, which compiles the facade and all its dependencies a second time for the host).

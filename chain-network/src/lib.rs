@@ -37,4 +37,6 @@ pub mod winding;
 
 pub use cell::{Bond, Cell, CellBuilder, Node, NodeKind};
 pub use error::{CellError, Location, NetworkError};
+/// The linear-algebra crate whose matrices the API returns.
+pub use faer;
 pub use faer::c64;

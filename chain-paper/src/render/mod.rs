@@ -9,6 +9,7 @@
 //! - `legend`: legends where the data leave room, outside the plot otherwise;
 //! - `heatmap`: heat maps (diverging colours centred on zero for signed values) and colour bars;
 //! - `chain`: drawings of the chain;
+//! - `network`: drawings of a network's patch (equal scales, like the chain's);
 //! - `text`: text drawn glyph by glyph, combining marks (`θ̄`, `l̄`) placed over their letter.
 
 use std::error::Error;
@@ -27,6 +28,7 @@ mod chain;
 mod heatmap;
 mod legend;
 mod lines;
+mod network;
 mod text;
 
 pub use text::{glyph_font, missing_glyphs};
@@ -213,6 +215,7 @@ where
             Chart::Lines(panel) => lines::draw(&area, panel)?,
             Chart::Heat(map) => heatmap::draw(&area, map)?,
             Chart::Chain(drawing) => chain::draw(&area, drawing)?,
+            Chart::Network(drawing) => network::draw(&area, drawing)?,
         }
     }
     Ok(())
