@@ -35,7 +35,7 @@ pub mod patch;
 pub mod strip;
 pub mod winding;
 
-pub use cell::{Bond, Cell, CellBuilder, Node, NodeKind};
+pub use cell::{Bond, Cell, CellBuilder, CellDescription, Node, NodeKind};
 pub use error::{CellError, Location, NetworkError};
 /// The linear-algebra crate whose matrices the API returns.
 pub use faer;

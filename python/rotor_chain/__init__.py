@@ -17,6 +17,9 @@ True
   ``maxwell_calladine``) and dynamics (``launch``, ``propagate``, ``scatter``) as methods.
 - :mod:`rotor_chain.sweep`: scattering phase diagrams (Fig. ``fig:phasediagram``) on one machine
   or a Dask cluster, resumable CSV files shared with the ``phase-diagram`` command.
+- :class:`Network`: periodic spring and rotor networks (issue 33) from a cell file, TOML text,
+  keyword arguments or a ready lattice: Maxwell-Calladine counts, zero modes, Bloch matrices,
+  bands, winding numbers and the polarization, strips with edge modes, Guest modes.
 - :mod:`rotor_chain.errors`: the exceptions, one class per Rust error family.
 
 Units: every number is absolute, in the units of the parameters given; nothing is divided by
@@ -35,6 +38,7 @@ from ._native import (
     Counting,
     Launch,
     Modes,
+    Network,
     PeierlsNabarro,
     Run,
     Scattering,
@@ -43,10 +47,12 @@ from ._native import (
 )
 from .errors import (
     BranchError,
+    CellError,
     ConfigError,
     DynamicsError,
     GridError,
     IntegrateError,
+    NetworkError,
     ParameterError,
     PointError,
     RotorChainError,
@@ -57,6 +63,7 @@ from .errors import (
 __all__ = [
     "Chain",
     "Continuum",
+    "Network",
     "Antikink",
     "PeierlsNabarro",
     "Modes",
@@ -77,5 +84,7 @@ __all__ = [
     "PointError",
     "GridError",
     "SweepError",
+    "CellError",
+    "NetworkError",
     "__version__",
 ]

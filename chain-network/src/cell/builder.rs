@@ -89,3 +89,87 @@ impl CellBuilder {
         validate_raw(self.raw)
     }
 }
+
+/// A cell as plain optional values, every key of the file format, for front ends that gather
+/// them from elsewhere (Python keyword arguments, later an attribute macro): [`CellDescription::build`]
+/// validates it by the same rules as a cell file, errors naming the key.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct CellDescription {
+    /// `dimension`.
+    pub dimension: Option<i64>,
+    /// `lattice`, rows.
+    pub lattice: Option<Vec<Vec<f64>>>,
+    /// The `[[node]]` tables.
+    pub nodes: Vec<NodeDescription>,
+    /// The `[[bond]]` tables.
+    pub bonds: Vec<BondDescription>,
+}
+
+/// A `[[node]]` table.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct NodeDescription {
+    /// `name`.
+    pub name: Option<String>,
+    /// `kind`: `joint` or `rotor`.
+    pub kind: Option<String>,
+    /// `position` (joints).
+    pub position: Option<Vec<f64>>,
+    /// `pivot` (rotors).
+    pub pivot: Option<Vec<f64>>,
+    /// `length` (rotors).
+    pub length: Option<f64>,
+    /// `angle` (rotors).
+    pub angle: Option<f64>,
+}
+
+/// A `[[bond]]` table.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct BondDescription {
+    /// `from`.
+    pub from: Option<String>,
+    /// `to`.
+    pub to: Option<String>,
+    /// `cell` (default zeros).
+    pub cell: Option<Vec<i64>>,
+    /// `k` (default 1).
+    pub k: Option<f64>,
+    /// `rest_length` (default: the reference length).
+    pub rest_length: Option<f64>,
+}
+
+impl CellDescription {
+    /// Validate and build (the rules of [`CellBuilder::build`]).
+    pub fn build(self) -> Result<Cell, CellError> {
+        let raw = Raw {
+            dimension: self.dimension.map(Val::plain),
+            lattice: self.lattice.map(Val::plain),
+            line: None,
+            nodes: self
+                .nodes
+                .into_iter()
+                .map(|n| RawNode {
+                    line: None,
+                    name: n.name.map(Val::plain),
+                    kind: n.kind.map(Val::plain),
+                    position: n.position.map(Val::plain),
+                    pivot: n.pivot.map(Val::plain),
+                    length: n.length.map(Val::plain),
+                    angle: n.angle.map(Val::plain),
+                })
+                .collect(),
+            bonds: self
+                .bonds
+                .into_iter()
+                .map(|b| RawBond {
+                    line: None,
+                    from: b.from.map(Val::plain),
+                    to: b.to.map(Val::plain),
+                    cell: b.cell.map(Val::plain),
+                    k: b.k.map(Val::plain),
+                    rest_length: b.rest_length.map(Val::plain),
+                })
+                .collect(),
+        };
+        validate_raw(raw)
+    }
+}

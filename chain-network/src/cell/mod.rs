@@ -19,7 +19,7 @@ mod validate;
 
 pub mod ready;
 
-pub use builder::CellBuilder;
+pub use builder::{BondDescription, CellBuilder, CellDescription, NodeDescription};
 
 use crate::error::CellError;
 use std::path::Path;
