@@ -17,6 +17,9 @@ use rotor_chain::network::{Cell, CellDescription, bloch, c64, guest};
 
 use crate::errors::{self, value_error};
 
+/// Two real arrays.
+type ArrayPair<'py, A, B> = PyResult<(Bound<'py, A>, Bound<'py, B>)>;
+
 /// A periodic network's unit cell, validated.
 #[pyclass(module = "rotor_chain._native", frozen)]
 pub struct Network {
@@ -231,7 +234,7 @@ impl Network {
         py: Python<'py>,
         cells: &Bound<'py, PyAny>,
         boundary: &str,
-    ) -> PyResult<(Bound<'py, PyArray2<f64>>, Bound<'py, PyArray2<f64>>)> {
+    ) -> ArrayPair<'py, PyArray2<f64>, PyArray2<f64>> {
         let n = cells_of(&self.cell, cells)?;
         let boundary = boundary_of(boundary)?;
         let cell = &self.cell;
@@ -283,7 +286,7 @@ impl Network {
         py: Python<'py>,
         path: &str,
         samples: usize,
-    ) -> PyResult<(Bound<'py, PyArray1<f64>>, Bound<'py, PyArray2<f64>>)> {
+    ) -> ArrayPair<'py, PyArray1<f64>, PyArray2<f64>> {
         let cell = &self.cell;
         let b = py
             .detach(|| bloch::parse_path(cell, path).and_then(|p| bloch::bands(cell, &p, samples)))
