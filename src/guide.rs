@@ -17,6 +17,7 @@
 //! | [`benchmarks`] | `docs/benchmarks.md` | how the speed figures were measured |
 //! | [`embedded`] | `docs/embedded.md` | a chain on a Cortex-M4F under QEMU, `no_std` without `alloc` |
 //! | [`scaling`] | `docs/scaling.md` | the Python package, Dask and SLURM sweeps |
+//! | [`network`] | `docs/network.md` | periodic networks: cells, counts, Bloch bands, windings and polarization, strips, Guest modes |
 //!
 //! Links between the guides point at the markdown files of the repository, where they also read
 //! as plain markdown.
@@ -50,3 +51,7 @@ pub mod embedded {}
 
 #[doc = include_str!("../docs/scaling.md")]
 pub mod scaling {}
+
+#[doc = include_str!("../docs/network.md")]
+#[cfg(feature = "network")]
+pub mod network {}

@@ -80,6 +80,7 @@
 //! | [`banded`], [`Tridiagonal`], [`Bidiagonal`] | stiffness and compatibility matrices of generated chains |
 //! | [`geometry`] | the parameter rules and closed forms shared by the macro and the runtime |
 //! | [`math`], [`simd`], [`kernel`] | `no_std` maths, run-time vector dispatch, the per-spring kernels |
+//! | `network` (feature `network`, default) | periodic spring and rotor networks: counts, bands, windings, polarization, edge modes |
 //!
 //! ## Guides
 //!
@@ -93,6 +94,7 @@
 //! | [`guide::paper`] | the reproduction of every figure of the paper |
 //! | [`guide::guarantees`] | what each layer promises for hostile inputs |
 //! | [`guide::benchmarks`], [`guide::embedded`], [`guide::scaling`] | speed, microcontrollers, Python and clusters |
+//! | `guide::network` | periodic networks, from a cell file to counts, polarization, strips and figures |
 //!
 //! Every Rust block of the guides is a doctest (`cargo test --doc`). Math renders with KaTeX on
 //! docs.rs and with `cargo docs` locally.

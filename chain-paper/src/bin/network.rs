@@ -7,7 +7,7 @@
 //! network guest CELL.toml [--json]
 //! network bands CELL.toml [--path G-X-M-G] [--samples 60] [--out DIR]
 //! network draw CELL.toml [--out DIR]
-//! network diagram [--x1 -0.2:0.2:41] [--x2 -0.2:0.2:41] [--x3 0.1] [--z 0] [--out DIR] [--shard I/N|slurm]
+//! network diagram [--x1 -0.2:0.2:41] [--x2 -0.2:0.2:41] [--x3 0.1] [--z 0] [--out DIR] [--shard I/N|slurm | --merge]
 //! network cell NAME [PARAMETERS...]     # a ready cell's TOML on stdout
 //! ```
 //!
@@ -21,7 +21,7 @@ use std::process::ExitCode;
 use chain_paper::network::diagram::{DiagramParams, PolarizationPoint, compute_point, diagram_figure};
 use chain_paper::network::{bands_figure, cell_figure};
 use chain_paper::{output, render};
-use chain_sweep::{Axis, Grid, Shard, SweepOptions, read_results, run_sweep};
+use chain_sweep::{Axis, Grid, Shard, SweepOptions, find_shards, merge_shards, read_results, run_sweep};
 use clap::{Parser, Subcommand, ValueEnum};
 use rotor_chain::network::bloch::parse_path;
 use rotor_chain::network::cell::ready;
@@ -140,9 +140,14 @@ enum Command {
         /// Output folder (results file `diagram.csv` and the figure).
         #[arg(long, default_value = "network-output")]
         out: PathBuf,
-        /// Compute only shard I/N (or `slurm`) into its own file; join with `phase-diagram merge`.
-        #[arg(long)]
+        /// Compute only shard I/N (or `slurm`: this task of a SLURM job array) into its own file
+        /// (`diagram.shard-I-of-N.csv`); `--merge` joins them.
+        #[arg(long, conflicts_with = "merge")]
         shard: Option<String>,
+        /// Join the shard files beside `diagram.csv` into it (chain-sweep's checked merge), then
+        /// draw the figure.
+        #[arg(long)]
+        merge: bool,
         /// Worker threads (default: every core).
         #[arg(long)]
         threads: Option<usize>,
@@ -356,7 +361,7 @@ fn run(command: Command) -> Result<(), Failure> {
             prepare(&out)?;
             write_figure(&figure, &out)?;
         }
-        Command::Diagram { x1, x2, x3, z, out, shard, threads } => {
+        Command::Diagram { x1, x2, x3, z, out, shard, merge, threads } => {
             let axis = |flag: &str, text: &str| {
                 text.parse::<Axis>().map_err(|e| fail(2, format!("--{flag} `{text}`: {e}")))
             };
@@ -367,6 +372,14 @@ fn run(command: Command) -> Result<(), Failure> {
             let params = DiagramParams { x3, z };
             prepare(&out)?;
             let path = out.join("diagram.csv");
+            if merge {
+                let shards = find_shards(&path).map_err(|e| fail(2, e.to_string()))?;
+                let summary = merge_shards::<PolarizationPoint>(&shards, &path).map_err(|e| fail(2, e.to_string()))?;
+                eprintln!("network: merged {} shards into {}: {} points ({} failed)", summary.shards, path.display(), summary.total, summary.failed);
+                let rows = read_results::<PolarizationPoint>(&path).map_err(|e| fail(1, e.to_string()))?;
+                write_figure(&diagram_figure(&params, &grid, &rows), &out)?;
+                return Ok(());
+            }
             let mut options = SweepOptions::new("polarization", params.run_label());
             options.threads = threads;
             let shard = match shard.as_deref() {

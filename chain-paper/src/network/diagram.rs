@@ -1,8 +1,8 @@
 //! The polarization phase diagram of Kane and Lubensky's deformed kagome lattice: `R_T` over a
 //! plane `(x1, x2)` at fixed `x3` and `z`, computed through chain-sweep's resumable sweep
 //! ([`chain_sweep::run_sweep`], one CSV line per point; `--shard I/N` or `slurm` and
-//! `phase-diagram merge` as for the scattering diagrams), drawn with the lines where the gap
-//! closes.
+//! `--merge` through chain-sweep's shards and checked merge, as for the scattering diagrams),
+//! drawn with the lines where the gap closes.
 //!
 //! Each point records the windings and `R_T` ([`rotor_chain::network::winding::winding`]), or
 //! why they are undefined (`gapless`: `det Q` vanishes on every path, the critical lines
