@@ -374,8 +374,15 @@ fn run(command: Command) -> Result<(), Failure> {
             let path = out.join("diagram.csv");
             if merge {
                 let shards = find_shards(&path).map_err(|e| fail(2, e.to_string()))?;
-                let summary = merge_shards::<PolarizationPoint>(&shards, &path).map_err(|e| fail(2, e.to_string()))?;
-                eprintln!("network: merged {} shards into {}: {} points ({} failed)", summary.shards, path.display(), summary.total, summary.failed);
+                let summary =
+                    merge_shards::<PolarizationPoint>(&shards, &path).map_err(|e| fail(2, e.to_string()))?;
+                eprintln!(
+                    "network: merged {} shards into {}: {} points ({} failed)",
+                    summary.shards,
+                    path.display(),
+                    summary.total,
+                    summary.failed
+                );
                 let rows = read_results::<PolarizationPoint>(&path).map_err(|e| fail(1, e.to_string()))?;
                 write_figure(&diagram_figure(&params, &grid, &rows), &out)?;
                 return Ok(());
