@@ -13,8 +13,9 @@
 //! operator `X = diag(m)` (each degree of freedom's cell index) restricted to it,
 //! `V^H X V`; each eigenvector is a zero mode with a definite centre `<m>`. A mode whose
 //! centre lies below the middle `(M - 1)/2` is counted on the low edge, above it on the high
-//! edge; a mode with more than a quarter of its weight in the middle third of the strip is
-//! reported as a bulk mode instead (not localized at either edge).
+//! edge; a mode with more than 30 % of its weight in the middle third of the strip is reported
+//! as a bulk mode instead (a uniform mode has a third there; a mode decaying from an edge over
+//! a length `xi` has less than 30 % while `xi < 1.25 M`).
 //!
 //! **Prediction** (square cells). With `n_J` the winding of `det Q` along `b_J` at
 //! `k . a_I = Q` ([`crate::winding::path_winding`]), `s_low = sum_b max(0, -R_bJ)` and
@@ -33,6 +34,9 @@ use faer::{Mat, c64};
 /// The default wave number along the strip, `Q = k . a_I = 2.0` rad (issue 33): generic, away
 /// from the acoustic `Q = 0` and the zone edge `Q = pi`.
 pub const DEFAULT_Q: f64 = 2.0;
+
+/// A zero mode with more of its weight than this in the middle third of the strip is bulk.
+pub const BULK_WEIGHT: f64 = 0.3;
 
 /// The widest strip: its dense complex decomposition has `(M dof)^2` entries.
 pub const MAX_STRIP_DOF: usize = 4000;
@@ -164,7 +168,7 @@ pub fn strip_modes(cell: &Cell, strip: &Strip) -> Result<StripModes, NetworkErro
             .filter(|&r| position[r] >= third - 0.5 && position[r] < 2.0 * third - 0.5)
             .map(|r| modes[(r, a)].norm_sqr())
             .sum();
-        if middle > 0.25 {
+        if middle > BULK_WEIGHT {
             bulk += 1;
         } else if centre < mid {
             low += 1;
