@@ -58,7 +58,8 @@ impl Default for WindingOptions {
 pub struct Winding {
     /// `n_i`, one per lattice direction.
     pub winding: Vec<i64>,
-    /// `R_T` in lattice coordinates: `R_T = sum_i polarization[i] a_i`.
+    /// `R_T` in lattice coordinates: `R_T = sum_i polarization[i] a_i` (within
+    /// [`SNAP_TOLERANCE`] of a multiple of 1/2: that multiple).
     pub polarization: Vec<f64>,
     /// The cell's dipole `r0` in lattice coordinates.
     pub dipole: Vec<f64>,
@@ -80,6 +81,16 @@ pub fn dipole(cell: &Cell) -> [f64; 2] {
         r[1] -= m[1];
     }
     r
+}
+
+/// Within this of a multiple of 1/2, a lattice coordinate of `r0` or `R_T` is that multiple: the
+/// difference is the rounding of the positions (when every node's point lies in `2 dof` bonds,
+/// `r0 = -sum_b R_b / 2` exactly).
+pub const SNAP_TOLERANCE: f64 = 1e-9;
+
+fn snap(x: f64) -> f64 {
+    let half = (2.0 * x).round() / 2.0;
+    if (x - half).abs() <= SNAP_TOLERANCE { half + 0.0 } else { x }
 }
 
 /// The winding along one path.
@@ -277,8 +288,8 @@ pub fn winding(cell: &Cell, options: &WindingOptions) -> Result<Winding, Network
         closest_approach = found.iter().map(|f| f.2).fold(closest_approach, f64::min);
         windings.push(found[0].1);
     }
-    let r0 = cell.lattice_coordinates(dipole(cell));
-    let polarization = windings.iter().zip(&r0).map(|(n, r)| -(*n as f64) - r).collect();
+    let r0: Vec<f64> = cell.lattice_coordinates(dipole(cell)).into_iter().map(snap).collect();
+    let polarization = windings.iter().zip(&r0).map(|(n, r)| snap(-(*n as f64) - r)).collect();
     Ok(Winding { winding: windings, polarization, dipole: r0, closest_approach })
 }
 
