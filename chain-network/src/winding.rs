@@ -18,8 +18,8 @@
 //! coefficients are recovered exactly (to rounding) from as many samples by a discrete Fourier
 //! transform; then `arg det Q` is followed on a grid fine enough that the polynomial's Lipschitz
 //! bound `2 pi sum |m c_m|` keeps each step inside a disc around the sample that excludes 0, so
-//! the unwrapped phase is certified. A path on which `|det Q|` falls below `1e-8` of its scale
-//! `sum |c_m|` passes through (or next to) a zero and is moved: [`WindingOptions::transverse`]
+//! the unwrapped phase is certified. A path on which `|det Q|` falls below `1e-8` of Hadamard's
+//! bound `prod_b |row_b|` passes through (or next to) a zero and is moved: [`WindingOptions::transverse`]
 //! lists the transverse positions tried. If every path along a direction meets a zero (lines of
 //! zeros: the square and regular kagome lattices), the winding is undefined
 //! ([`NetworkError::WindingUndefined`]); if paths disagree, point zeros (Weyl points) lie between
@@ -32,7 +32,8 @@ use crate::error::NetworkError;
 use faer::{Mat, c64};
 use std::f64::consts::TAU;
 
-/// `|det Q|` below this fraction of its scale `sum |c_m|` counts as a zero on the path.
+/// `|det Q|` below this fraction of Hadamard's bound `prod_b |row_b|` counts as a zero on the
+/// path.
 pub const ZERO_TOLERANCE: f64 = 1e-8;
 
 /// The most samples of one path (the certified grid refines up to here).
@@ -63,7 +64,8 @@ pub struct Winding {
     pub polarization: Vec<f64>,
     /// The cell's dipole `r0` in lattice coordinates.
     pub dipole: Vec<f64>,
-    /// The smallest `|det Q| / sum |c_m|` met on the paths used: how far they stayed from zeros.
+    /// The smallest `|det Q|` met on the paths used, relative to Hadamard's bound
+    /// `prod_b |row_b|`: how far they stayed from zeros.
     pub closest_approach: f64,
 }
 
@@ -96,14 +98,15 @@ fn snap(x: f64) -> f64 {
 /// The winding along one path.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum PathWinding {
-    /// The path stays clear of zeros: the winding and the smallest `|det Q| / sum |c_m|`.
+    /// The path stays clear of zeros: the winding and the smallest `|det Q|` relative to
+    /// Hadamard's bound.
     Winds {
         /// Turns of `arg det Q`.
         winding: i64,
         /// Closest relative approach to zero.
         closest: f64,
     },
-    /// `|det Q|` falls to `relative` of its scale at `k . a_i = at` on the path.
+    /// `|det Q|` falls to `relative` of Hadamard's bound at `k . a_i = at` on the path.
     MeetsZero {
         /// Where (radians).
         at: f64,
@@ -188,9 +191,22 @@ pub fn path_winding(cell: &Cell, direction: usize, transverse: f64) -> Result<Pa
             (m as f64, c / samples as f64)
         })
         .collect();
-    let scale: f64 = coefficients.iter().map(|(_, c)| c.norm()).sum();
-    if scale == 0.0 {
-        return Ok(PathWinding::MeetsZero { at: 0.0, relative: 0.0 });
+    // What |det Q| is measured against: Hadamard's bound prod_b |row_b| with each row's norm
+    // bounded for every phase by |from part| + |to part|. A cell whose det Q vanishes
+    // identically (its coefficients are rounding) is then all zeros, not a winding of noise.
+    let scale: f64 = rows
+        .iter()
+        .map(|r| {
+            let norm = |e: &[(usize, f64)]| e.iter().map(|x| x.1 * x.1).sum::<f64>().sqrt();
+            norm(&r.from) + norm(&r.to)
+        })
+        .product();
+    let size: f64 = coefficients.iter().map(|(_, c)| c.norm()).sum();
+    if scale == 0.0 || size <= ZERO_TOLERANCE * scale {
+        return Ok(PathWinding::MeetsZero {
+            at: 0.0,
+            relative: if scale > 0.0 { size / scale } else { 0.0 },
+        });
     }
     let lipschitz: f64 = TAU * coefficients.iter().map(|(m, c)| m.abs() * c.norm()).sum::<f64>();
     let eval = |t: f64| -> c64 {
@@ -262,7 +278,7 @@ pub fn winding(cell: &Cell, options: &WindingOptions) -> Result<Winding, Network
                 .iter()
                 .map(|(tau, at, rel)| {
                     format!(
-                        "k.a{} = {at:.4} at transverse {tau:.4} (|det Q| = {rel:.1e} of its scale)",
+                        "k.a{} = {at:.4} at transverse {tau:.4} (|det Q| = {rel:.1e} of its Hadamard bound)",
                         i + 1
                     )
                 })

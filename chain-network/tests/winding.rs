@@ -133,3 +133,18 @@ fn paper_chain_winds_by_its_lean() {
         Err(NetworkError::WindingUndefined { .. })
     ));
 }
+
+/// A lattice whose det Q vanishes identically (Kane and Lubensky's parametrisation at
+/// (-0.3, 0, 0.1; 0.3), where Q(k) is singular at every k) has no winding: the rounding-level
+/// determinant is not followed as if it were a signal.
+#[test]
+fn an_identically_singular_q_has_no_winding() {
+    let cell = ready::deformed_kagome(-0.3, 0.0, 0.1, 0.3).unwrap();
+    for theta in [[0.3, 1.7], [2.0, -0.4], [5.0, 4.0]] {
+        let q = chain_network::bloch::compatibility(&cell, theta);
+        let s = chain_network::linalg::singular_values("test", q.as_ref()).unwrap();
+        assert!(s[s.len() - 1] < 1e-12 * s[0], "{s:?}");
+    }
+    let e = winding(&cell, &WindingOptions::default()).unwrap_err();
+    assert!(matches!(e, NetworkError::WindingUndefined { .. }), "{e}");
+}
