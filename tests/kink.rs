@@ -102,8 +102,8 @@ fn a_spring_impurity_changes_only_its_own_spring() {
     let stretch = l - soft.rest_length(29);
     let de = soft.energy(&theta) - stiff.energy(&theta);
     assert_close(de, 0.5 * (100.0 - 5000.0) * stretch * stretch, 1e-9, "energy difference");
-    assert_eq!(soft.stiffness(29), 100.0);
-    assert_eq!(soft.stiffness(28), 1.0e4);
+    assert_eq!(soft.spring_constant(29), 100.0);
+    assert_eq!(soft.spring_constant(28), 1.0e4);
 }
 
 #[test]

@@ -11,6 +11,7 @@ use rotor_chain::statics::counting::maxwell_calladine;
 use rotor_chain::statics::impurity::{critical_length, impurity_analysis};
 use rotor_chain::statics::kink::kink;
 use rotor_chain::statics::modes::{ModeKind, ModeOptions, modes};
+use rotor_chain::Potential;
 
 const K: f64 = 1.0e4;
 
@@ -258,7 +259,7 @@ fn a_kink_too_wide_to_show_is_an_error() {
         let mut theta = [0.0; 60];
         let e = rotor_chain::embedded::kink_into(&model, 29.5, &mut theta);
         assert!(
-            matches!(e, Err(rotor_chain::embedded::EmbeddedError::NoWall { expected: "kink", .. })),
+            matches!(e, Err(StaticsError::NoWall { expected: "kink", .. })),
             "{e:?}"
         );
     }
@@ -390,11 +391,12 @@ fn antikink_at_solves_centrings_only_and_says_when_it_held_the_translation() {
 fn phonon_band_edges_of_the_uniform_chain_match_the_exact_dispersion() {
     use rotor_chain::linalg::eigenvalues;
     use rotor_chain::statics::continuum::ContinuumChain;
-    use rotor_chain::statics::equilibrium::stiffness;
+    use rotor_chain::linalg::SymmetricMatrix;
     for (n, theta_bar) in [(60, 0.58), (200, 0.3)] {
         let model = chain(n, theta_bar);
-        let (diag, off) = stiffness(&model, &vec![theta_bar; n]);
-        let ours = eigenvalues(&diag, &off).unwrap();
+        let k = SymmetricMatrix::tangent_stiffness(&model, &vec![theta_bar; n]).unwrap();
+        let (diag, off) = k.bands().unwrap();
+        let ours = eigenvalues(diag, off).unwrap();
         let exact =
             ContinuumChain::new(1.0, 0.8, theta_bar, K, 1.0).unwrap().finite_chain_spectrum(n).unwrap();
         let top = exact[n - 1];

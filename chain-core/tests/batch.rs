@@ -6,6 +6,8 @@
 
 use chain_core::simd::{self, Level};
 use chain_core::{ChainModel, Law, RuntimeChain, batch};
+use chain_core::ChainGeometry;
+use chain_core::Potential;
 
 /// A chain of `n` rotors with one softer, longer spring and one shorter rotor where it has room.
 fn chain(n: usize, law: Law) -> RuntimeChain {

@@ -11,6 +11,7 @@ use chain_core::statics::continuum::{
 use chain_core::statics::walls::Charge;
 use chain_core::{ChainModel, RuntimeChain};
 use nalgebra::{DMatrix, SymmetricEigen};
+use chain_core::linalg::SymmetricMatrix;
 
 const A: f64 = 1.0;
 const R: f64 = 0.8;
@@ -301,8 +302,8 @@ fn finite_chain_spectrum_matches_the_generated_tangent_stiffness() {
     // The harmonic RuntimeChain's tangent stiffness at theta_i = theta_bar is k C^T C.
     let (n, k) = (24, 3.0);
     let model = RuntimeChain::builder(n, R, k, TB).build().unwrap();
-    let (mut diag, mut off) = (vec![0.0; n], vec![0.0; n - 1]);
-    model.tangent_stiffness_into(&vec![TB; n], &mut diag, &mut off);
+    let k_matrix = SymmetricMatrix::tangent_stiffness(&model, &vec![TB; n]).unwrap();
+    let (diag, off) = k_matrix.bands().unwrap();
     let dense = DMatrix::from_fn(n, n, |i, j| match i.abs_diff(j) {
         0 => diag[i],
         1 => off[i.min(j)],

@@ -86,8 +86,8 @@ fn the_runtime_error_says_what_the_compile_error_says() {
 fn valid_overrides_still_apply() {
     let chain =
         builder(10).spring(3, Some(2.0), None).spring(4, None, Some(1.9)).rotor(2, 0.7).build().unwrap();
-    assert_eq!((chain.stiffness(3), chain.rest_length(4), chain.rotor_length(2)), (2.0, 1.9, 0.7));
-    assert_eq!(chain.stiffness(4), 1.0e4);
+    assert_eq!((chain.spring_constant(3), chain.rest_length(4), chain.rotor_length(2)), (2.0, 1.9, 0.7));
+    assert_eq!(chain.spring_constant(4), 1.0e4);
 }
 
 #[test]

@@ -33,7 +33,7 @@ use std::sync::atomic::{AtomicBool, AtomicI32, Ordering};
 use std::time::Duration;
 
 use chain_sweep::scattering::{
-    DEFAULT_ENERGY_TOLERANCE, Defect, Ends, Integrator, PhaseDiagram, PointRecord, fake_point,
+    DEFAULT_ENERGY_TOLERANCE, Defect, Ends, Method, PhaseDiagram, PointRecord, fake_point,
 };
 use chain_sweep::{
     Axis, Grid, MergeSummary, Shard, Summary, SweepError, SweepOptions, find_shards, merge_shards, run_sweep,
@@ -184,8 +184,8 @@ fn diagram(cli: &Cli, ki: &Axis, v0: &Axis) -> Result<PhaseDiagram, Failure> {
         EndsArg::Absorbing => Ends::Absorbing,
     };
     d.integrator = match cli.integrator {
-        IntegratorArg::Verlet => Integrator::Verlet,
-        IntegratorArg::Dop853 => Integrator::Dop853,
+        IntegratorArg::Verlet => Method::Verlet,
+        IntegratorArg::Dop853 => Method::dop853(),
     };
     d.dt = cli.dt;
     d.energy_tolerance = cli.energy_tolerance;

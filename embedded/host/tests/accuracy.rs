@@ -10,7 +10,7 @@
 use embedded_check::Scenario;
 use embedded_check::report::Header;
 use embedded_check::{
-    Chain16, Chain16F32, FloatChain, Real, Verlet, domain_walls, kink_into, launch_velocities,
+    Chain16, Chain16F32, DomainWalls, Real, State, Verlet, kink_into, kink_launch_velocities,
 };
 use embedded_host::{Tolerated, compare_accuracy, host_run};
 use rotor_chain::prelude::*;
@@ -137,8 +137,8 @@ fn a_kink_built_by_the_f32_branch_solve_matches_the_f64_kink() {
         for (x, y) in t32.iter().zip(&t64) {
             angle = angle.max((f64::from(*x) - y).abs());
         }
-        let w32: Vec<_> = domain_walls(&t32).collect();
-        let w64: Vec<_> = domain_walls(&t64).collect();
+        let w32: Vec<_> = DomainWalls::of(&t32).collect();
+        let w64: Vec<_> = DomainWalls::of(&t64).collect();
         assert_eq!(w32.len(), w64.len(), "centre {centre}: walls {w32:?} against {w64:?}");
         for (a, b) in w32.iter().zip(&w64) {
             assert_eq!(a.charge, b.charge, "centre {centre}");
@@ -174,20 +174,20 @@ struct Trajectory {
     final_energy: f64,
 }
 
-fn trajectory<T: Real, M: FloatChain<T>>(chain: &M, steps: u32) -> Trajectory {
+fn trajectory<T: Real, M: ChainGeometry<T>>(chain: &M, steps: u32) -> Trajectory {
     const N: usize = 48;
     let (centre, v0, dt) = (8.25, 1.0, 1.953125e-3);
     let mut theta = [T::ZERO; N];
     kink_into(chain, T::of(centre), &mut theta).unwrap();
-    let omega = launch_velocities(chain, &theta, T::of(v0)).unwrap();
-    let mut stepper = Verlet::new(chain, theta, omega, T::of(dt)).unwrap();
-    let energy = |s: &Verlet<T, N>| (s.kinetic_energy(chain) + s.potential_energy(chain)).widen();
+    let omega = kink_launch_velocities(chain, &theta, T::of(v0)).unwrap();
+    let mut stepper = Verlet::new(chain, State { time: T::ZERO, theta, omega }, T::of(dt)).unwrap();
+    let energy = |s: &Verlet<T, [T; N]>| (s.kinetic_energy(chain) + s.potential_energy(chain)).widen();
     let energy0 = energy(&stepper);
     let (mut walls, mut max_drift) = (Vec::new(), 0.0f64);
     for step in 1..=steps {
         stepper.step(chain).unwrap();
         if step % 100 == 0 {
-            let found: Vec<_> = domain_walls(stepper.theta()).collect();
+            let found: Vec<_> = DomainWalls::of(stepper.theta()).collect();
             assert_eq!(found.len(), 1, "step {step}: {} walls in {}", found.len(), T::NAME);
             walls.push(found[0].position.widen());
             max_drift = max_drift.max((energy(&stepper) - energy0).abs());
@@ -296,8 +296,8 @@ fn other_declarations_agree_with_f64_too() {
         for k in 0..=40 {
             let t = (0.3 + 0.5 * f64::from(k) / 40.0) as f32;
             let pairs = [
-                (c32.next_angles(p, t), ChainModel::next_angles(&c64, p, f64::from(t))),
-                (c32.previous_angles(p, t), ChainModel::previous_angles(&c64, p, f64::from(t))),
+                (c32.next_angles(p, t), ChainGeometry::next_angles(&c64, p, f64::from(t))),
+                (c32.previous_angles(p, t), ChainGeometry::previous_angles(&c64, p, f64::from(t))),
             ];
             for pair in pairs {
                 match pair {

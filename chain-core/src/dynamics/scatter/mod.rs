@@ -17,6 +17,7 @@
 //! [`Outcome::PairCreation`], and [`Outcome::Undecided`] means only that the run ended before
 //! anything was settled.
 
+pub mod budget;
 mod follow;
 mod rules;
 
@@ -27,6 +28,7 @@ use super::track::Snapshot;
 use crate::model::ChainModel;
 use crate::statics::walls::Charge;
 
+pub use budget::{Budgeted, BudgetError, EnergyBudget, scatter_within_budget};
 pub use follow::{Followed, Follower, Origin, Vanished};
 
 /// What the impurity did to the incoming defect.

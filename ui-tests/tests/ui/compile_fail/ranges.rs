@@ -39,7 +39,7 @@ mod limits {
     pub fn main() {
         let theta = vec![0.58; Long::N];
         let mut g = vec![0.0; Long::N];
-        ChainModel::gradient_into(&Long, &theta, &mut g);
+        Potential::gradient_into(&Long, &theta, &mut g);
         let fixed: &[f64; 49153] = theta.as_slice().try_into().unwrap();
         let _ = Long.gradient(fixed);
     }
