@@ -58,8 +58,11 @@ fn check_agreement() {
         .unwrap();
         for l in Level::ALL.into_iter().filter(|l| l.is_supported()) {
             let (mut g2, mut k2) = (vec![0.0; n], vec![0.0; 2 * n - 1]);
-            let e2 = simd::with_level(l, || c.energy_gradient_stiffness_into(&theta, &mut g2, &mut k2)).unwrap();
-            for (what, a, b) in [("energy", &vec![energy], &vec![e2]), ("gradient", &g, &g2), ("(diag, off)", &k, &k2)] {
+            let e2 =
+                simd::with_level(l, || c.energy_gradient_stiffness_into(&theta, &mut g2, &mut k2)).unwrap();
+            for (what, a, b) in
+                [("energy", &vec![energy], &vec![e2]), ("gradient", &g, &g2), ("(diag, off)", &k, &k2)]
+            {
                 let scale = a.iter().fold(0.0f64, |s, x| s.max(x.abs()));
                 for (x, y) in a.iter().zip(b.iter()) {
                     assert!((x - y).abs() <= 1e-12 * scale, "n = {n}, {}: {what} {x} vs {y}", l.name());
@@ -127,7 +130,10 @@ fn runtime_energy_gradient(bencher: Bencher, (level, n): (&str, usize)) {
 fn runtime_energy_gradient_stiffness(bencher: Bencher, (level, n): (&str, usize)) {
     let (c, theta) = (chain(n), angles(n));
     let (mut g, mut k) = (vec![0.0; n], vec![0.0; 2 * n - 1]);
-    at(level, || bencher.bench_local(|| black_box(&c).energy_gradient_stiffness_into(black_box(&theta), &mut g, &mut k)));
+    at(level, || {
+        bencher
+            .bench_local(|| black_box(&c).energy_gradient_stiffness_into(black_box(&theta), &mut g, &mut k))
+    });
 }
 
 // ---------------------------------------------------------------------------------------------

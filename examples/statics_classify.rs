@@ -4,11 +4,11 @@
 //!
 //! Run: `cargo run --example statics_classify`
 
+use rotor_chain::linalg::SymmetricMatrix;
 use rotor_chain::linalg::eigenvalues_in_index_range;
 use rotor_chain::prelude::*;
 use rotor_chain::statics::antikink::{AntikinkOptions, peierls_nabarro};
 use rotor_chain::statics::classify::classify;
-use rotor_chain::linalg::SymmetricMatrix;
 use rotor_chain::statics::kink::kink;
 
 #[rotor_chain(n = 60, r = 0.8, theta_bar = 0.58, k = 1.0e4)]

@@ -112,8 +112,9 @@
 #[cfg(feature = "std")]
 pub use chain_core::batch;
 pub use chain_core::{
-    Bidiagonal, BranchError, ChainGeometry, ChainModel, ParameterError, Potential, Real, SpringNetwork, Stiffness,
-    Tridiagonal, banded, branch, dynamics, embedded, error, geometry, integrate, linalg, model, statics,
+    Bidiagonal, BranchError, ChainGeometry, ChainModel, ParameterError, Potential, Real, SpringNetwork,
+    Stiffness, Tridiagonal, banded, branch, dynamics, embedded, error, geometry, integrate, linalg, model,
+    statics,
 };
 #[cfg(feature = "alloc")]
 pub use chain_core::{ChainBuilder, Law, RuntimeChain, runtime};
@@ -136,8 +137,8 @@ pub mod guide;
 /// ([`model`]) and [`ChainModel`], so that their methods can be called on any chain.
 pub mod prelude {
     pub use chain_core::{
-        Bidiagonal, BranchError, ChainGeometry, ChainModel, ParameterError, Potential, SpringNetwork, Stiffness,
-        Tridiagonal,
+        Bidiagonal, BranchError, ChainGeometry, ChainModel, ParameterError, Potential, SpringNetwork,
+        Stiffness, Tridiagonal,
     };
     #[cfg(feature = "alloc")]
     pub use chain_core::{Law, RuntimeChain};
@@ -148,13 +149,15 @@ pub mod prelude {
 /// `#[rotor_chain]` reaches its dependencies, so users depend on this crate alone.
 #[doc(hidden)]
 pub mod __private {
-    pub use chain_core::integrate::{IntegrateError, State, Verlet};
+    pub use chain_core::integrate::{IntegrateError, Phase, Verlet};
     pub use chain_core::model::layout::{split_bidiagonal, split_tridiagonal};
     pub use chain_core::model::{
-        ChainGeometry, CompatibilityLayout, Potential, SpringNetwork, Stiffness, StiffnessLayout, chain_energy_floor,
-        check_lengths,
+        ChainGeometry, CompatibilityLayout, Potential, SpringNetwork, Stiffness, StiffnessLayout,
+        chain_energy_floor, check_lengths,
     };
-    pub use chain_core::{Bidiagonal, BranchError, ParameterError, Tridiagonal, branch, geometry, kernel, math};
+    pub use chain_core::{
+        Bidiagonal, BranchError, ParameterError, Tridiagonal, branch, geometry, kernel, math,
+    };
     pub use nalgebra::SMatrix;
 
     /// The body of every stub the macro emits beside its compile errors (so that calls on an

@@ -56,7 +56,7 @@ struct CustomUnrolled;
 struct CustomLooped;
 
 fn harmonic_runtime() -> RuntimeChain {
-    RuntimeChain::builder(70, 0.8, 1.0e4, 0.58).spring(29, Some(100.0), None).rotor(12, 0.7).build().unwrap()
+    RuntimeChain::builder(70, 0.8, 1.0e4, 0.58).spring_constant(29, 100.0).rotor(12, 0.7).build().unwrap()
 }
 
 fn quartic_runtime() -> RuntimeChain {
@@ -90,7 +90,11 @@ fn outputs(m: &impl ChainModel, theta: &[f64]) -> Vec<(&'static str, Vec<f64>)> 
     let e = m.energy_and_gradient_into(theta, &mut g);
     out.extend([("fused E+g: energy", vec![e]), ("fused E+g: gradient", g.clone())]);
     let e = m.energy_gradient_stiffness_into(theta, &mut g, &mut k);
-    out.extend([("fused E+g+K: energy", vec![e]), ("fused E+g+K: gradient", g), ("fused E+g+K: (diag, off)", k)]);
+    out.extend([
+        ("fused E+g+K: energy", vec![e]),
+        ("fused E+g+K: gradient", g),
+        ("fused E+g+K: (diag, off)", k),
+    ]);
     out
 }
 

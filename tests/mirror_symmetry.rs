@@ -871,7 +871,7 @@ const POINTS: [(Charge, f64, f64); 5] = [
 ];
 
 fn scattering_chain(n: usize, impurity: usize, ki: f64) -> RuntimeChain {
-    RuntimeChain::builder(n, 0.8, 1.0e4, 0.28).spring(impurity, Some(ki * 1.0e4), None).build().unwrap()
+    RuntimeChain::builder(n, 0.8, 1.0e4, 0.28).spring_constant(impurity, ki * 1.0e4).build().unwrap()
 }
 
 #[test]

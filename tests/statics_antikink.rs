@@ -4,6 +4,7 @@
 //! References are the paper's numbers and the continuum closed forms (docs/statics.md), never
 //! values computed by the code under test.
 
+use rotor_chain::Potential;
 use rotor_chain::RuntimeChain;
 use rotor_chain::statics::antikink::{AntikinkOptions, antikink_at, antikink_relaxed, peierls_nabarro};
 use rotor_chain::statics::classify::EquilibriumKind;
@@ -11,7 +12,6 @@ use rotor_chain::statics::counting::maxwell_calladine;
 use rotor_chain::statics::impurity::{critical_length, impurity_analysis};
 use rotor_chain::statics::kink::kink;
 use rotor_chain::statics::modes::{ModeKind, ModeOptions, modes};
-use rotor_chain::Potential;
 
 const K: f64 = 1.0e4;
 
@@ -200,7 +200,7 @@ fn maxwell_calladine_index_is_one_everywhere_and_l_critical_has_a_self_stress() 
     assert!((critical_length(&model, 29).unwrap() - l_critical).abs() < 1e-12);
     assert!((l_critical - 2.31).abs() < 0.01, "paper: l_critical / a = 2.31");
     let at_critical =
-        RuntimeChain::builder(60, 0.8, K, 0.58).spring(29, None, Some(l_critical)).build().unwrap();
+        RuntimeChain::builder(60, 0.8, K, 0.58).spring_rest_length(29, l_critical).build().unwrap();
     let analysis = impurity_analysis(&at_critical, 29).unwrap();
     assert_eq!(analysis.counting.self_stresses.len(), 1, "one state of self-stress at l_critical");
     assert_eq!(analysis.counting.zero_modes.len(), 2);
@@ -212,7 +212,7 @@ fn soft_mode_and_tensional_mode_soften_towards_l_critical() {
     let l_critical = ((2.0 * 0.8 * s + 1.0).powi(2) + (2.0 * 0.8 * c).powi(2)).sqrt();
     let mut previous = (f64::INFINITY, f64::INFINITY);
     for l0 in [1.9, 2.1, 2.25, 2.30] {
-        let model = RuntimeChain::builder(60, 0.8, K, 0.58).spring(29, None, Some(l0)).build().unwrap();
+        let model = RuntimeChain::builder(60, 0.8, K, 0.58).spring_rest_length(29, l0).build().unwrap();
         let a = impurity_analysis(&model, 29).unwrap();
         let soft = a.modes[1].frequency;
         let tension = a.tensional.eigenvalue;
@@ -231,7 +231,7 @@ fn failures_are_typed_errors() {
     let model = chain(60, 0.58);
     assert!(kink(&model, 60.5).is_err());
     assert!(kink(&model, f64::NAN).is_err());
-    let too_long = RuntimeChain::builder(60, 0.8, K, 0.58).spring(29, None, Some(2.5)).build().unwrap();
+    let too_long = RuntimeChain::builder(60, 0.8, K, 0.58).spring_rest_length(29, 2.5).build().unwrap();
     assert!(impurity_analysis(&too_long, 29).is_err(), "no zero-energy state beyond l_critical");
 }
 
@@ -258,10 +258,7 @@ fn a_kink_too_wide_to_show_is_an_error() {
         // The no-alloc builder both share says so itself (firmware builds its kinks with it).
         let mut theta = [0.0; 60];
         let e = rotor_chain::embedded::kink_into(&model, 29.5, &mut theta);
-        assert!(
-            matches!(e, Err(StaticsError::NoWall { expected: "kink", .. })),
-            "{e:?}"
-        );
+        assert!(matches!(e, Err(StaticsError::NoWall { expected: "kink", .. })), "{e:?}");
     }
     let wide = chain(60, 0.05);
     let theta = kink(&wide, 29.5).unwrap();
@@ -389,9 +386,9 @@ fn antikink_at_solves_centrings_only_and_says_when_it_held_the_translation() {
 
 #[test]
 fn phonon_band_edges_of_the_uniform_chain_match_the_exact_dispersion() {
+    use rotor_chain::linalg::SymmetricMatrix;
     use rotor_chain::linalg::eigenvalues;
     use rotor_chain::statics::continuum::ContinuumChain;
-    use rotor_chain::linalg::SymmetricMatrix;
     for (n, theta_bar) in [(60, 0.58), (200, 0.3)] {
         let model = chain(n, theta_bar);
         let k = SymmetricMatrix::tangent_stiffness(&model, &vec![theta_bar; n]).unwrap();

@@ -20,8 +20,8 @@ struct Looped {
 
 fn runtime(k_imp: f64) -> RuntimeChain {
     RuntimeChain::builder(60, 0.8, 1.0e4, 0.58)
-        .spring(29, Some(k_imp), None)
-        .spring(7, None, Some(2.30))
+        .spring_constant(29, k_imp)
+        .spring_rest_length(7, 2.30)
         .rotor(12, 0.7)
         .build()
         .expect("valid chain")

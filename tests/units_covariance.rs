@@ -113,8 +113,8 @@ impl Params {
             .lattice_spacing(self.a * u.l)
             .mass(self.mass * u.m)
             .law(self.law)
-            .spring(self.soft.0, Some(self.soft.1 * self.k * u.k), None)
-            .spring(self.long.0, None, Some(self.long.1 * self.lbar() * u.l));
+            .spring_constant(self.soft.0, self.soft.1 * self.k * u.k)
+            .spring_rest_length(self.long.0, self.long.1 * self.lbar() * u.l);
         if let Some((i, f)) = self.rotor {
             b = b.rotor(i, f * self.r * u.l);
         }
@@ -848,7 +848,7 @@ fn scattering_outcomes_are_invariant_in_scaled_units() {
         RuntimeChain::builder(60, 0.8 * u.l, 1e4 * u.k, 0.28)
             .lattice_spacing(u.l)
             .mass(u.m)
-            .spring(29, Some(ki * 1e4 * u.k), None)
+            .spring_constant(29, ki * 1e4 * u.k)
             .build()
             .unwrap()
     };

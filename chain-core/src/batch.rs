@@ -177,7 +177,7 @@ mod tests {
     /// configuration, fewer than a task, many tasks).
     #[test]
     fn a_batch_equals_its_configurations_one_by_one() {
-        let chain = RuntimeChain::builder(23, 0.8, 1.0e4, 0.58).spring(7, Some(50.0), None).build().unwrap();
+        let chain = RuntimeChain::builder(23, 0.8, 1.0e4, 0.58).spring_constant(7, 50.0).build().unwrap();
         let n = 23;
         for count in [1, 5, 17, 300] {
             let thetas: Vec<f64> = (0..count * n)

@@ -11,7 +11,9 @@ use chain_geometry::{IndexKind, Key, ParameterError};
 
 use crate::kernel;
 use crate::model::layout::{split_bidiagonal, split_tridiagonal};
-use crate::model::{ChainGeometry, CompatibilityLayout, Potential, SpringNetwork, Stiffness, StiffnessLayout};
+use crate::model::{
+    ChainGeometry, CompatibilityLayout, Potential, SpringNetwork, Stiffness, StiffnessLayout,
+};
 
 /// The spring laws a runtime chain offers (a custom law needs the macro, which compiles it).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -86,9 +88,14 @@ impl RuntimeChain {
     /// // n = 60, r = 0.8 a, k = 1e4 M/t^2, theta_bar = 0.58 rad; an impurity spring, a longer lattice.
     /// let chain = RuntimeChain::builder(60, 0.8, 1.0e4, 0.58)
     ///     .lattice_spacing(1.0)
-    ///     .spring(29, Some(1.0e3), None)
+    ///     .spring_constant(29, 1.0e3)         // a stiffness impurity on spring 29
+    ///     .spring_rest_length(7, 1.7)         // a length impurity on spring 7
+    ///     .spring(40, Some(2.0e4), Some(1.6)) // both on spring 40, in one override
     ///     .build()?;
-    /// assert_eq!(chain.spring_constant(29), 1.0e3);
+    /// assert_eq!((chain.spring_constant(29), chain.rest_length(7)), (1.0e3, 1.7));
+    /// // A spring overridden twice is refused, as the macro refuses it.
+    /// let twice = RuntimeChain::builder(60, 0.8, 1.0e4, 0.58).spring_constant(3, 1.0).spring_rest_length(3, 1.7);
+    /// assert!(twice.build().is_err());
     /// assert!(RuntimeChain::builder(60, 0.8, 1.0e4, 0.7).build().is_err()); // past the flipper phase
     /// # Ok(())
     /// # }
@@ -147,7 +154,8 @@ impl RuntimeChain {
     #[track_caller]
     fn batch(&self, thetas: &[f64], out: &mut [f64], energies: Option<&mut [f64]>) {
         let n = self.dof_count();
-        let count = crate::model::batch_count(n, thetas.len(), out.len(), energies.as_deref().map(<[f64]>::len));
+        let count =
+            crate::model::batch_count(n, thetas.len(), out.len(), energies.as_deref().map(<[f64]>::len));
         let per_block = (BATCH_ROTORS / n).clamp(1, count.max(1));
         // `per_block > 1` only where the chain made its tiles (`BATCH_ROTORS / n > 1`).
         let [rotor_lengths, stiffness, rest_lengths] = if per_block == 1 {
@@ -358,8 +366,17 @@ impl ChainBuilder {
         self.law = law;
         self
     }
+    /// Override spring `p`'s spring constant: an impurity in the stiffness, `k_p = k`.
+    pub fn spring_constant(self, p: usize, k: f64) -> Self {
+        self.spring(p, Some(k), None)
+    }
+    /// Override spring `p`'s rest length: an impurity in the length, `l0_p = l0`.
+    pub fn spring_rest_length(self, p: usize, l0: f64) -> Self {
+        self.spring(p, None, Some(l0))
+    }
     /// Override spring `p`'s stiffness and/or rest length (`None` keeps the chain's value). At
-    /// least one must be given, and each spring may be overridden once ([`ChainBuilder::build`]).
+    /// least one must be given, and each spring may be overridden once, all its values in one
+    /// override, as the macro's `spring(p, k = .., l0 = ..)` ([`ChainBuilder::build`]).
     pub fn spring(mut self, p: usize, k: Option<f64>, l0: Option<f64>) -> Self {
         self.springs.push((p, k, l0));
         self

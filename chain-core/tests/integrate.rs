@@ -621,11 +621,17 @@ fn steps_that_underflow_or_run_out_are_typed_errors() {
     let e = adaptive(&model, &mut state, &[10.0], &options, &mut continue_always);
     assert!(matches!(e, Err(IntegrateError::StepSizeTooSmall { time: 0.0, .. })), "{e:?}");
     // A budget that cannot cover the run even at the largest stable step: refused before the
-    // first step, the state untouched.
-    let options = AdaptiveOptions { max_steps: 5, ..AdaptiveOptions::default() };
+    // first step, the state untouched, when the options carry the bound on the fastest mode
+    // (from the tangent stiffness; the runs of `dynamics` fill it in).
+    let omega_max = Some(chain_core::integrate::omega_bound(&model, &state.theta).unwrap().omega);
+    let options = AdaptiveOptions { max_steps: 5, omega_max, ..AdaptiveOptions::default() };
     let e = adaptive(&model, &mut state, &[10.0], &options, &mut continue_always).unwrap_err();
     assert!(matches!(e, IntegrateError::StepBudget { budget: 5, .. }), "{e}");
     assert_eq!(state.time, 0.0);
+    // Without the bound (a model with only a potential has none) the budget still ends the run.
+    let options = AdaptiveOptions { max_steps: 5, ..AdaptiveOptions::default() };
+    let e = adaptive(&model, &mut state.clone(), &[10.0], &options, &mut continue_always).unwrap_err();
+    assert!(matches!(e, IntegrateError::TooManySteps { steps: 5, .. }), "{e}");
     // A budget the error control runs out of; the state is left at the last accepted step.
     let options = AdaptiveOptions { max_steps: 20, ..AdaptiveOptions::default() };
     let e = adaptive(&model, &mut state, &[10.0], &options, &mut continue_always).unwrap_err();

@@ -25,8 +25,8 @@ use syn::ItemStruct;
 use crate::attr;
 use crate::ctxt::Ctxt;
 use crate::fallback::{self, Stubs};
-use crate::traits::{self, SliceMethod};
 use crate::model::{PRIVATE, float_type, math_prefix, value_tokens_f64};
+use crate::traits::{self, SliceMethod};
 use crate::valid::{self, Model, Uniform};
 
 /// The stack a generated method may use in a debug build, its caller's copy of the result
@@ -676,7 +676,8 @@ fn emit(item: &ItemStruct, model: &Model) -> TokenStream {
     let (bodies, trait_bodies, fused, fused_trait_bodies) = if model.unrolled() {
         let (g, out) = model.unrolled_outputs();
         let fused = (float == Float::F64).then(|| unrolled_fused_bodies(n, &g, &out));
-        let fused_trait_bodies = if fused.is_some() { unrolled_fused_trait_bodies(ident) } else { Vec::new() };
+        let fused_trait_bodies =
+            if fused.is_some() { unrolled_fused_trait_bodies(ident) } else { Vec::new() };
         (unrolled_bodies(model, &g, &out), unrolled_trait_bodies(ident), fused, fused_trait_bodies)
     } else {
         let (bodies, trait_bodies) = looped_bodies(model);
@@ -778,7 +779,7 @@ fn emit(item: &ItemStruct, model: &Model) -> TokenStream {
                 omega: [#t; #n],
                 dt: #t,
             ) -> ::core::result::Result<#p::Verlet<#t, [#t; #n]>, #p::IntegrateError> {
-                #p::Verlet::new(self, #p::State { time: 0.0, theta, omega }, dt)
+                #p::Verlet::new(self, #p::Phase { time: 0.0, theta, omega }, dt)
             }
         }
     });
@@ -872,7 +873,8 @@ mod tests {
 
     /// An `f32` chain's generated methods compute in `f32` throughout: single-precision math
     /// paths, `f32` literals and arrays, no `f64` in any method body but `check()` (whose rules are
-    /// `chain-geometry`'s, in `f64`), and `FloatChain<f32>` instead of `ChainModel`.
+    /// `chain-geometry`'s, in `f64`), and the model traits in `f32` (never their `f64` instance,
+    /// `ChainModel`).
     #[test]
     fn an_f32_chain_computes_in_f32() {
         let out = expand(
@@ -885,9 +887,11 @@ mod tests {
         );
         let text = pretty(out);
         assert!(text.contains("math::single::sin_cos_into"), "{text}");
-        assert!(text.contains("FloatChain<f32> for Tiny"), "{text}");
-        assert!(!text.contains("ChainModel for Tiny"), "{text}");
-        for method in ["energy", "gradient", "tangent_stiffness", "compatibility", "next_angles"] {
+        for rung in ["Potential", "Stiffness", "SpringNetwork", "ChainGeometry"] {
+            assert!(text.contains(&format!("{rung}<f32> for Tiny")), "{rung}: {text}");
+            assert!(!text.contains(&format!("{rung}<f64> for Tiny")), "{rung}: {text}");
+        }
+        for method in ["energy", "gradient", "tangent_stiffness", "compatibility", "verlet"] {
             let start =
                 text.find(&format!("pub fn {method}(")).unwrap_or_else(|| panic!("no {method}: {text}"));
             let body = &text[start..];

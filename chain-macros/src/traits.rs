@@ -167,7 +167,11 @@ pub(crate) fn slice_method(n: usize, float: Float, name: &str, body: TokenStream
                 let slice = format_ident!("{s}");
                 params.push(quote!(#slice: &mut [#t]));
                 let check = quote!((#s, #slice.len()));
-                if matches!(output, Output::PerRotor(_)) { per_rotor.push(check) } else { per_spring.push(check) }
+                if matches!(output, Output::PerRotor(_)) {
+                    per_rotor.push(check)
+                } else {
+                    per_spring.push(check)
+                }
             }
             Output::Tridiagonal => {
                 params.push(quote!(values: &mut [#t]));
@@ -208,7 +212,13 @@ fn stub_slice_method(float: Float, method: &SliceMethod, body: &TokenStream) -> 
 }
 
 /// An accessor with `body`.
-fn accessor(float: Float, name: &str, index: Option<&str>, returns: Returns, body: &TokenStream) -> TokenStream {
+fn accessor(
+    float: Float,
+    name: &str,
+    index: Option<&str>,
+    returns: Returns,
+    body: &TokenStream,
+) -> TokenStream {
     let (p, t) = (private(), float_type(float));
     let ident = format_ident!("{name}");
     let index = index.map(|i| {
@@ -255,7 +265,12 @@ pub(crate) fn impls(
 }
 
 /// The four impls with stub bodies (the fallback of an invalid chain): the required methods only.
-pub(crate) fn stub_impls(ident: &Ident, generics: &Generics, float: Float, body: &TokenStream) -> TokenStream {
+pub(crate) fn stub_impls(
+    ident: &Ident,
+    generics: &Generics,
+    float: Float,
+    body: &TokenStream,
+) -> TokenStream {
     impls(ident, generics, float, &|_| body.clone(), &|m: &SliceMethod| {
         (!m.fused).then(|| stub_slice_method(float, m, body))
     })

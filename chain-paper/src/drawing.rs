@@ -189,7 +189,7 @@ mod tests {
 
     #[test]
     fn tips_follow_the_alternating_convention_and_springs_their_lengths() {
-        let model = RuntimeChain::builder(4, 0.8, 1.0, 0.5).spring(1, None, Some(2.0)).build().unwrap();
+        let model = RuntimeChain::builder(4, 0.8, 1.0, 0.5).spring_rest_length(1, 2.0).build().unwrap();
         let theta = [0.5, 0.5, 0.5, 0.3];
         let d = ChainDrawing::new("t", &model, &theta, 0..10).unwrap();
         assert_eq!(d.rotors, 0..4);

@@ -330,7 +330,7 @@ impl PhaseDiagram {
         self.check_ki(ki_ratio)?;
         Ok(RuntimeChain::builder(self.n, self.r, self.k, self.theta_bar)
             .mass(self.mass)
-            .spring(self.impurity(), Some(ki_ratio * self.k), None)
+            .spring_constant(self.impurity(), ki_ratio * self.k)
             .build()?)
     }
 

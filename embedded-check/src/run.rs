@@ -6,7 +6,8 @@
 //! the machine's arithmetic and its `sin`/`cos`/`atan2`/`sqrt`.
 
 use rotor_chain::embedded::{
-    ChainGeometry, Charge, DomainWalls, DynamicsError, Real, State, Verlet, Wall, kink_into, kink_launch_velocities,
+    ChainGeometry, Charge, DomainWalls, DynamicsError, Phase, Real, Verlet, Wall, kink_into,
+    kink_launch_velocities,
 };
 use rotor_chain::statics::StaticsError;
 
@@ -206,5 +207,5 @@ where
     let mut theta = [T::ZERO; N];
     kink_into(model, T::of(scenario.centre), &mut theta)?;
     let omega = kink_launch_velocities(model, &theta, T::of(scenario.v0))?;
-    Ok(Verlet::new(model, State { time: T::ZERO, theta, omega }, T::of(scenario.dt))?)
+    Ok(Verlet::new(model, Phase { time: T::ZERO, theta, omega }, T::of(scenario.dt))?)
 }

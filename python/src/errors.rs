@@ -353,10 +353,12 @@ fn budget<'py>(py: Python<'py>, e: &BudgetError, d: Details<'py>) -> Details<'py
         BudgetError::Run { integrator, source } => {
             Details { variant: "Run", ..d }.f("integrator", integrator.name()).source(dynamics(py, source))
         }
-        &BudgetError::EnergyBudget { error, tolerance, integrator } => Details { variant: "EnergyBudget", ..d }
-            .f("error", error)
-            .f("tolerance", tolerance)
-            .f("integrator", integrator.name()),
+        &BudgetError::EnergyBudget { error, tolerance, integrator } => {
+            Details { variant: "EnergyBudget", ..d }
+                .f("error", error)
+                .f("tolerance", tolerance)
+                .f("integrator", integrator.name())
+        }
         BudgetError::Recomputed { verlet, dop853 } => {
             let d = Details { variant: "Recomputed", ..d }.f("verlet", verlet.to_string());
             let d = match verlet {

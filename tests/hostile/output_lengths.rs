@@ -47,7 +47,7 @@ fn a_wrong_slice_length_names_the_slice_and_points_at_the_caller() {
     let cases: Vec<Case> = vec![
         (
             Box::new(|| chain.batch_gradient_into(&[0.3; 13], &mut zeros(13))),
-            "thetas has 13 angles, not a whole number of configurations of 6 rotors",
+            "the batch has 13 values, not a whole number of configurations of 6 degrees of freedom",
         ),
         (
             Box::new(|| chain.batch_energy_and_gradient_into(&[0.3; 12], &mut zeros(3), &mut zeros(12))),

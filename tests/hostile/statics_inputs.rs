@@ -142,7 +142,10 @@ fn settings_out_of_range_are_errors() {
     let nan = SymmetricMatrix::tridiagonal(&[1.0, f64::NAN], &[0.5]).unwrap();
     assert!(matches!(classify(&nan, 1e-10), Err(StaticsError::Linalg(_))));
     // Bands of mismatched lengths are no matrix at all.
-    assert!(matches!(SymmetricMatrix::tridiagonal(&[1.0, 2.0], &[0.5, 0.5]), Err(LinalgError::DimensionMismatch { .. })));
+    assert!(matches!(
+        SymmetricMatrix::tridiagonal(&[1.0, 2.0], &[0.5, 0.5]),
+        Err(LinalgError::DimensionMismatch { .. })
+    ));
 }
 
 #[test]

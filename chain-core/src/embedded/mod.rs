@@ -8,7 +8,7 @@
 //! | [`kink_into`], [`reflected_kink_into`] | [`statics::kink`](crate::statics::kink) | the zero-energy kink at any centre, by the branch solve; the reflected kink | Sec. II, App. A |
 //! | [`DomainWalls`], [`Wall`], [`Charge`] | [`statics::walls`](crate::statics::walls) | the domain walls of a configuration | App. C |
 //! | [`kink_translation_mode`], [`kink_launch_velocities`] | [`dynamics::launch`](crate::dynamics::launch) | the kink's translation mode (null vector of the compatibility matrix) and the launch along it | Sec. II, App. B |
-//! | [`Verlet`], [`State`] | [`integrate`](crate::integrate) | velocity Verlet on arrays, one gradient per step | Sec. V |
+//! | [`Verlet`], [`Phase`] | [`integrate`](crate::integrate) | velocity Verlet on arrays, one gradient per step | Sec. V |
 //! | [`DynamicsError`] | [`dynamics`](crate::dynamics) | every error of the above (it wraps the statics' and the integrator's) | |
 //!
 //! A chain declared with `#[rotor_chain]` implements the model traits ([`ChainGeometry`] and the
@@ -16,7 +16,7 @@
 
 pub use crate::dynamics::DynamicsError;
 pub use crate::dynamics::launch::{kink_launch_velocities, kink_translation_mode};
-pub use crate::integrate::{State, Verlet};
+pub use crate::integrate::{Phase, Verlet};
 pub use crate::model::{ChainGeometry, Potential, SpringNetwork, Stiffness};
 pub use crate::real::Real;
 pub use crate::statics::kink::{kink_into, reflected_kink_into};

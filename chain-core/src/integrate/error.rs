@@ -137,7 +137,9 @@ pub enum IntegrateError {
     },
     /// A rotor whose inertia `M r_i^2` is not positive and finite, or so small that its inverse
     /// overflows.
-    #[error("degree of freedom {index} has inertia {inertia}: it must be positive and finite, with a finite inverse")]
+    #[error(
+        "degree of freedom {index} has inertia {inertia}: it must be positive and finite, with a finite inverse"
+    )]
     BadInertia {
         /// The rotor.
         index: usize,

@@ -84,7 +84,9 @@ pub use bound::{OmegaBound, omega_bound};
 pub use dop853::{AdaptiveOptions, adaptive};
 pub use error::IntegrateError;
 pub use method::Method;
-pub use state::{State, Storage};
+#[cfg(feature = "alloc")]
+pub use state::State;
+pub use state::{Phase, Storage};
 pub use verlet::{Verlet, kinetic_energy};
 #[cfg(feature = "alloc")]
 pub use verlet::{VerletOptions, verlet};

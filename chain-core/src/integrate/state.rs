@@ -27,10 +27,11 @@ impl<T: Copy> Storage<T> for alloc::vec::Vec<T> {
 }
 
 /// A point of a trajectory: the degrees of freedom `theta` (a chain's angles) and their rates
-/// `omega = dtheta/dt` at a time, in the time unit `t` of paper Appendix B.
-#[cfg(feature = "alloc")]
+/// `omega = dtheta/dt` at a time, in the time unit `t` of paper Appendix B, in the float type `T`
+/// and the storage `S` of the caller's choice (`[T; N]` on a microcontroller; [`State`] is the
+/// `f64` and `Vec` one of the runs).
 #[derive(Clone, Debug, PartialEq)]
-pub struct State<T = f64, S = alloc::vec::Vec<T>> {
+pub struct Phase<T, S> {
     /// Time, in `t`.
     pub time: T,
     /// The degrees of freedom (radians for a rotor chain, measured from the vertical,
@@ -40,18 +41,9 @@ pub struct State<T = f64, S = alloc::vec::Vec<T>> {
     pub omega: S,
 }
 
-/// A point of a trajectory (see the `alloc` build's documentation; without `alloc` the storage is
-/// an array).
-#[cfg(not(feature = "alloc"))]
-#[derive(Clone, Debug, PartialEq)]
-pub struct State<T, S> {
-    /// Time, in `t`.
-    pub time: T,
-    /// The degrees of freedom.
-    pub theta: S,
-    /// Their rates `dtheta/dt`.
-    pub omega: S,
-}
+/// The state of a run: a [`Phase`] in `f64`, in `Vec`s.
+#[cfg(feature = "alloc")]
+pub type State = Phase<f64, alloc::vec::Vec<f64>>;
 
 #[cfg(feature = "alloc")]
 impl State {
@@ -62,7 +54,7 @@ impl State {
     }
 }
 
-impl<T: Real, S: Storage<T>> State<T, S> {
+impl<T: Real, S: Storage<T>> Phase<T, S> {
     /// `Ok` if the state fits `model` (one value of each kind per degree of freedom) and every
     /// number in it is finite. The integrators check this before they start.
     pub fn check<M: Potential<T> + ?Sized>(&self, model: &M) -> Result<(), IntegrateError> {

@@ -59,7 +59,9 @@ impl SymmetricMatrix {
     pub fn for_model<M: Stiffness + ?Sized>(model: &M) -> Result<Self, LinalgError> {
         let n = model.dof_count();
         match model.stiffness_layout() {
-            StiffnessLayout::Tridiagonal => Ok(Self { n, form: Form::Tridiagonal, values: vec![0.0; (2 * n).saturating_sub(1)] }),
+            StiffnessLayout::Tridiagonal => {
+                Ok(Self { n, form: Form::Tridiagonal, values: vec![0.0; (2 * n).saturating_sub(1)] })
+            }
             StiffnessLayout::Upper(p) => {
                 p.check(true)?;
                 if p.rows() != n {
@@ -166,7 +168,9 @@ impl SymmetricMatrix {
             Form::Upper { row_starts, columns } => (None, Some((row_starts, columns))),
         };
         let banded = tri.into_iter().flat_map(move |()| {
-            (0..n).map(move |i| (i, i, self.values[i])).chain((0..n.saturating_sub(1)).map(move |i| (i, i + 1, self.values[n + i])))
+            (0..n)
+                .map(move |i| (i, i, self.values[i]))
+                .chain((0..n.saturating_sub(1)).map(move |i| (i, i + 1, self.values[n + i])))
         });
         let sparse = upper.into_iter().flat_map(move |(starts, columns)| {
             (0..n).flat_map(move |i| (starts[i]..starts[i + 1]).map(move |k| (i, columns[k], self.values[k])))
@@ -439,7 +443,8 @@ mod tests {
         let p = s.principal(1..5);
         assert_eq!(p.to_dense().unwrap(), t.principal(1..5).to_dense().unwrap());
         let inertia = [1.0, 2.0, 0.5, 1.5, 3.0, 0.25];
-        let (ms, mt) = (s.mass_scaled(&inertia).to_dense().unwrap(), t.mass_scaled(&inertia).to_dense().unwrap());
+        let (ms, mt) =
+            (s.mass_scaled(&inertia).to_dense().unwrap(), t.mass_scaled(&inertia).to_dense().unwrap());
         assert_eq!(ms, mt);
         assert!((ms[(1, 2)] - (-0.3) / (2.0f64 * 0.5).sqrt()).abs() < 1e-15);
         assert_eq!(s.get(2, 3), 1.1);

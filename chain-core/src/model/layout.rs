@@ -70,7 +70,12 @@ impl Pattern<'_> {
                 let unsorted = k > 0 && c <= row[k - 1];
                 let below = upper && c < i;
                 if out_of_range || unsorted || below {
-                    return Err(PatternError::Column { row: i, column: c, columns: self.columns_count, upper });
+                    return Err(PatternError::Column {
+                        row: i,
+                        column: c,
+                        columns: self.columns_count,
+                        upper,
+                    });
                 }
             }
         }
@@ -86,7 +91,9 @@ impl Pattern<'_> {
 #[non_exhaustive]
 pub enum PatternError {
     /// `row_starts` does not run from 0 to the number of entries.
-    #[error("row_starts must run from 0 to the number of entries ({entries}), but runs from {first:?} to {last:?}")]
+    #[error(
+        "row_starts must run from 0 to the number of entries ({entries}), but runs from {first:?} to {last:?}"
+    )]
     Bounds {
         /// The first row start, if any.
         first: Option<usize>,
@@ -229,11 +236,7 @@ pub fn bidiagonal_parts<T>(m: usize, values: &[T]) -> (&[T], &[T]) {
 #[inline(never)]
 #[track_caller]
 fn wrong_values(len: usize, expected: usize, what: &str, rows: usize, unit: &str) -> ! {
-    panic!(
-        "values has {}, {what} of {} needs {expected}",
-        Counted(len, "value"),
-        Counted(rows, unit)
-    )
+    panic!("values has {}, {what} of {} needs {expected}", Counted(len, "value"), Counted(rows, unit))
 }
 
 #[cfg(test)]

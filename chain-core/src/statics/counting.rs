@@ -171,7 +171,11 @@ pub fn maxwell_calladine<M: SpringNetwork + ?Sized>(
     let rows = Rows::of(model, theta)?;
     // The square matrix of the vectors' decomposition holds max(n, m)^2 numbers.
     let side = n.max(m);
-    validate::at_most("rotors x springs of the dense SVD", side.saturating_mul(side), super::MAX_DENSE_VALUES)?;
+    validate::at_most(
+        "rotors x springs of the dense SVD",
+        side.saturating_mul(side),
+        super::MAX_DENSE_VALUES,
+    )?;
     let c = rows.to_dense();
     // nalgebra's `singular_values()` iterates without a bound; LAPACK's `dbdsqr` allows
     // 6 n^2 sweeps, which is what this gives.

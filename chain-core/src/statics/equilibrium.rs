@@ -317,8 +317,8 @@ pub fn relax<M: Stiffness + ?Sized>(
     let gamma = options.damping * bound.omega;
     let range = moving(n, options.hold_ends);
     let rates = vec![gamma; n];
-    let mut stepper =
-        Verlet::damped(model, State::at_rest(theta.to_vec()), dt, &rates).map_err(|_| no_convergence(0, f64::NAN))?;
+    let mut stepper = Verlet::damped(model, State::at_rest(theta.to_vec()), dt, &rates)
+        .map_err(|_| no_convergence(0, f64::NAN))?;
     for i in (0..n).filter(|i| !range.contains(i)) {
         stepper.hold(i);
     }

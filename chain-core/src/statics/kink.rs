@@ -21,9 +21,9 @@ use alloc::vec::Vec;
 
 use super::error::StaticsError;
 use super::walls::{Charge, count_walls};
+use crate::model::ChainGeometry;
 #[cfg(feature = "alloc")]
 use crate::model::ChainModel;
-use crate::model::ChainGeometry;
 use crate::real::Real;
 
 /// The most bisection steps for a fractional centre: each halves the bracket, so 200 reach the
@@ -142,7 +142,6 @@ fn wall_into<T: Real, M: ChainGeometry<T> + ?Sized>(
     }
     Ok(())
 }
-
 
 /// The zero-energy kink of `model` centred at `centre` (in rotor indices, `0 <= centre <= n - 1`).
 /// At `centre = 0` or `n - 1` the wall sits on the end rotor, which stands vertical: the wall has

@@ -141,7 +141,6 @@ mod tests {
         assert_eq!(DomainWalls::<f64>::of(&[]).count(), 0);
     }
 
-
     #[test]
     fn walls_are_interpolated_sign_changes() {
         let theta = [0.5, 0.5, 0.25, -0.75, -0.5, -0.5, 0.0, 0.5];

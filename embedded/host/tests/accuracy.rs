@@ -10,7 +10,7 @@
 use embedded_check::Scenario;
 use embedded_check::report::Header;
 use embedded_check::{
-    Chain16, Chain16F32, DomainWalls, Real, State, Verlet, kink_into, kink_launch_velocities,
+    Chain16, Chain16F32, DomainWalls, Phase, Real, Verlet, kink_into, kink_launch_velocities,
 };
 use embedded_host::{Tolerated, compare_accuracy, host_run};
 use rotor_chain::prelude::*;
@@ -180,7 +180,7 @@ fn trajectory<T: Real, M: ChainGeometry<T>>(chain: &M, steps: u32) -> Trajectory
     let mut theta = [T::ZERO; N];
     kink_into(chain, T::of(centre), &mut theta).unwrap();
     let omega = kink_launch_velocities(chain, &theta, T::of(v0)).unwrap();
-    let mut stepper = Verlet::new(chain, State { time: T::ZERO, theta, omega }, T::of(dt)).unwrap();
+    let mut stepper = Verlet::new(chain, Phase { time: T::ZERO, theta, omega }, T::of(dt)).unwrap();
     let energy = |s: &Verlet<T, [T; N]>| (s.kinetic_energy(chain) + s.potential_energy(chain)).widen();
     let energy0 = energy(&stepper);
     let (mut walls, mut max_drift) = (Vec::new(), 0.0f64);

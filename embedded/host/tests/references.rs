@@ -3,14 +3,15 @@
 //! eigenvector of the tangent stiffness, the library's Verlet and its DOP853.
 
 use embedded_check::{
-    Chain16, ChainGeometry, Scenario, Verlet, DomainWalls, kink_into, kink_launch_velocities, run, kink_translation_mode,
+    Chain16, ChainGeometry, DomainWalls, Scenario, Verlet, kink_into, kink_launch_velocities,
+    kink_translation_mode, run,
 };
-use rotor_chain::integrate::{self, AdaptiveOptions, Flow, State, VerletOptions};
+use rotor_chain::SpringNetwork;
 use rotor_chain::dynamics::launch::{Direction, launch};
 use rotor_chain::integrate::IntegrateError;
+use rotor_chain::integrate::{self, AdaptiveOptions, Flow, Phase, State, VerletOptions};
 use rotor_chain::statics::walls::Charge;
 use rotor_chain::{ChainModel, RuntimeChain};
-use rotor_chain::SpringNetwork;
 
 /// A second chain unlike `Chain16`: longer, another angle, one shorter rotor with its springs' rest
 /// lengths left at the default (so those springs are not at rest in the uniform state).
@@ -57,10 +58,10 @@ fn kink_has_every_spring_at_rest_at_integer_and_fractional_centres() {
 fn a_centre_outside_the_chain_is_an_error_with_the_numbers() {
     let mut theta = [0.0; 16];
     let error = kink_into(&Chain16, 15.5, &mut theta).unwrap_err();
-    assert_eq!(error.to_string(), "kink centre 15.5 is outside the chain: need 0 <= centre <= 15");
+    assert_eq!(error.to_string(), "centre 15.5 is outside the chain: it must lie in [0, 15] for 16 rotors");
     assert!(kink_into(&Chain16, f64::NAN, &mut theta).is_err());
     let error = kink_into(&Chain16, 3.0, &mut [0.0; 15]).unwrap_err();
-    assert_eq!(error.to_string(), "the chain has 16 rotors, but the arrays hold 15 angles");
+    assert_eq!(error.to_string(), "theta has 15 values, the chain needs 16");
 }
 
 #[test]
@@ -207,20 +208,20 @@ fn a_non_finite_state_or_step_is_an_error_with_the_numbers() {
     let mut theta = [0.0; 16];
     kink_into(&Chain16, 4.25, &mut theta).unwrap();
     let mut omega = kink_launch_velocities(&Chain16, &theta, 2.0).unwrap();
-    let error = Verlet::new(&Chain16, State { time: 0.0, theta, omega }, 0.0).unwrap_err();
+    let error = Verlet::new(&Chain16, Phase { time: 0.0, theta, omega }, 0.0).unwrap_err();
     assert_eq!(error.to_string(), "dt = 0 is invalid: it must be positive and finite");
     omega[3] = f64::NAN;
-    let error = Verlet::new(&Chain16, State { time: 0.0, theta, omega }, 1e-3).unwrap_err();
+    let error = Verlet::new(&Chain16, Phase { time: 0.0, theta, omega }, 1e-3).unwrap_err();
     assert_eq!(error.to_string(), "omega[3] is not finite (NaN) at t = 0");
     theta[5] = f64::INFINITY;
-    assert!(Verlet::new(&Chain16, State { time: 0.0, theta, omega }, 1e-3).is_err());
+    assert!(Verlet::new(&Chain16, Phase { time: 0.0, theta, omega }, 1e-3).is_err());
 }
 
 #[test]
 fn an_unstable_step_is_caught_by_the_energy_check_before_any_number_overflows() {
     let launched = |dt: f64| {
         let start = embedded_check::launched_kink::<f64, _, 16>(&Chain16, &Scenario::FIRMWARE).unwrap();
-        Verlet::new(&Chain16, State { time: 0.0, theta: *start.theta(), omega: *start.omega() }, dt).unwrap()
+        Verlet::new(&Chain16, Phase { time: 0.0, theta: *start.theta(), omega: *start.omega() }, dt).unwrap()
     };
     let reference = launched(Scenario::FIRMWARE.dt).check_energy(&Chain16, 0.0, f64::INFINITY).unwrap();
     let tolerance = 0.05 * reference;
@@ -266,7 +267,8 @@ fn a_negative_launch_speed_sends_the_kink_the_other_way() {
     assert!(right.iter().zip(&left).all(|(r, l)| *l == -*r));
     // Followed for t = 0.5, the two walls move by the same distance in opposite directions.
     let walk = |omega: [f64; 16]| {
-        let mut stepper = Verlet::new(&Chain16, State { time: 0.0, theta, omega }, Scenario::FIRMWARE.dt).unwrap();
+        let mut stepper =
+            Verlet::new(&Chain16, Phase { time: 0.0, theta, omega }, Scenario::FIRMWARE.dt).unwrap();
         for _ in 0..256 {
             stepper.step(&Chain16).unwrap();
         }

@@ -13,6 +13,10 @@
 
 use std::io::Read;
 
+use rotor_chain::ChainGeometry;
+use rotor_chain::Potential;
+use rotor_chain::SpringNetwork;
+use rotor_chain::Stiffness;
 use rotor_chain::dynamics::integrate::State;
 use rotor_chain::dynamics::launch::{Direction, launch};
 use rotor_chain::dynamics::run::{ABSORBING_ENDS, Method, RunOptions, propagate};
@@ -26,10 +30,6 @@ use rotor_chain::statics::walls::Charge;
 use rotor_chain::{ChainModel, Law, RuntimeChain};
 use serde::Deserialize;
 use serde_json::{Value, json};
-use rotor_chain::ChainGeometry;
-use rotor_chain::Potential;
-use rotor_chain::SpringNetwork;
-use rotor_chain::Stiffness;
 
 #[derive(Deserialize)]
 struct ChainSpec {
@@ -159,11 +159,7 @@ fn method(name: &str) -> Method {
     if name == "dop853" { Method::dop853() } else { Method::Verlet }
 }
 
-fn banded(
-    c: &RuntimeChain,
-    theta: &[f64],
-    f: impl Fn(&RuntimeChain, &[f64], &mut [f64]),
-) -> Value {
+fn banded(c: &RuntimeChain, theta: &[f64], f: impl Fn(&RuntimeChain, &[f64], &mut [f64])) -> Value {
     let n = c.rotor_count();
     let mut values = vec![0.0; 2 * n - 1];
     f(c, theta, &mut values);

@@ -5,9 +5,9 @@
 use std::io::Write;
 use std::process::{Command, Stdio};
 
+use rotor_chain::Potential;
 use rotor_chain::{ChainModel, RuntimeChain};
 use serde_json::{Value, json};
-use rotor_chain::Potential;
 
 fn reference(cases: &Value) -> Vec<Value> {
     let mut child = Command::new(env!("CARGO_BIN_EXE_rotor-chain-reference"))

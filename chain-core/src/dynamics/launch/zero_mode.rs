@@ -53,11 +53,8 @@ pub fn kink_translation_mode<T: Real, M: ChainGeometry<T> + ?Sized, const N: usi
         flat.copy_within(N - 1..2 * (N - 1), N);
     }
     let [left, right] = bands;
-    let no_mode = |p: usize| DynamicsError::NoZeroMode {
-        spring: p,
-        left: left[p].widen(),
-        right: right[p].widen(),
-    };
+    let no_mode =
+        |p: usize| DynamicsError::NoZeroMode { spring: p, left: left[p].widen(), right: right[p].widen() };
     // The rotor nearest the wall: the smallest |theta|.
     let start = (0..N).fold(0, |best, i| if theta[i].abs() < theta[best].abs() { i } else { best });
     let mut e = [zero; N];

@@ -35,7 +35,7 @@ mod options;
 #[cfg(feature = "alloc")]
 pub use options::{VerletOptions, verlet};
 
-use super::state::{State, Storage};
+use super::state::{Phase, Storage};
 use super::{IntegrateError, check_option, not_finite};
 use crate::model::Potential;
 use crate::real::Real;
@@ -47,14 +47,14 @@ use crate::real::Real;
 ///
 /// ```
 /// use rotor_chain::prelude::*;
-/// use rotor_chain::integrate::{State, Verlet};
+/// use rotor_chain::integrate::{Phase, Verlet};
 ///
 /// #[rotor_chain(n = 16, r = 0.8, theta_bar = 0.58, k = 1.0e4)]
 /// struct Chain;
 ///
 /// let mut theta = [0.58f64; 16];
 /// theta[8] = 0.5;                                         // a small disturbance
-/// let mut v = Verlet::new(&Chain, State { time: 0.0, theta, omega: [0.0; 16] }, 1e-4)?;
+/// let mut v = Verlet::new(&Chain, Phase { time: 0.0, theta, omega: [0.0; 16] }, 1e-4)?;
 /// let e0 = v.kinetic_energy(&Chain) + v.potential_energy(&Chain);
 /// for _ in 0..1000 {
 ///     v.step(&Chain)?;
@@ -65,7 +65,7 @@ use crate::real::Real;
 /// ```
 #[derive(Clone, Debug)]
 pub struct Verlet<T, S> {
-    state: State<T, S>,
+    state: Phase<T, S>,
     /// The time of the first state: [`Verlet::step`] sets `t0 + steps dt`, free of accumulated
     /// rounding.
     t0: T,
@@ -91,7 +91,11 @@ impl<T: Real, S: Storage<T>> Verlet<T, S> {
     /// A state that does not fit the model or is not finite, a `dt` that is not positive and
     /// finite, an inertia that is not positive and finite with a finite inverse, or a gradient
     /// that is not finite at the start.
-    pub fn new<M: Potential<T> + ?Sized>(model: &M, state: State<T, S>, dt: T) -> Result<Self, IntegrateError> {
+    pub fn new<M: Potential<T> + ?Sized>(
+        model: &M,
+        state: Phase<T, S>,
+        dt: T,
+    ) -> Result<Self, IntegrateError> {
         Self::build(model, state, dt, None, false)
     }
 
@@ -103,7 +107,7 @@ impl<T: Real, S: Storage<T>> Verlet<T, S> {
     /// As [`Verlet::new`], or rates of the wrong length or not finite and `>= 0`.
     pub fn damped<M: Potential<T> + ?Sized>(
         model: &M,
-        state: State<T, S>,
+        state: Phase<T, S>,
         dt: T,
         rates: &[T],
     ) -> Result<Self, IntegrateError> {
@@ -112,7 +116,7 @@ impl<T: Real, S: Storage<T>> Verlet<T, S> {
 
     fn build<M: Potential<T> + ?Sized>(
         model: &M,
-        state: State<T, S>,
+        state: Phase<T, S>,
         dt: T,
         rates: Option<&[T]>,
         track_potential: bool,
@@ -138,7 +142,11 @@ impl<T: Real, S: Storage<T>> Verlet<T, S> {
             None => None,
             Some(rates) => {
                 if rates.len() != n {
-                    return Err(IntegrateError::WrongLength { what: "damping rates", len: rates.len(), expected: n });
+                    return Err(IntegrateError::WrongLength {
+                        what: "damping rates",
+                        len: rates.len(),
+                        expected: n,
+                    });
                 }
                 if let Some(&bad) = rates.iter().find(|r| !(**r >= T::ZERO && r.is_finite())) {
                     return Err(IntegrateError::InvalidOption {
@@ -199,7 +207,9 @@ impl<T: Real, S: Storage<T>> Verlet<T, S> {
         // multiplications by 1 are skipped, which leaves the same bits.
         match &self.decay {
             None => {
-                for (((t, w), g), c) in theta.iter_mut().zip(omega.iter_mut()).zip(gradient.iter()).zip(half_kick) {
+                for (((t, w), g), c) in
+                    theta.iter_mut().zip(omega.iter_mut()).zip(gradient.iter()).zip(half_kick)
+                {
                     *w -= *c * *g;
                     *t += dt * *w;
                 }
@@ -225,7 +235,9 @@ impl<T: Real, S: Storage<T>> Verlet<T, S> {
                 }
             }
             Some(decay) => {
-                for (((w, g), c), d) in omega.iter_mut().zip(gradient.iter()).zip(half_kick).zip(decay.as_ref()) {
+                for (((w, g), c), d) in
+                    omega.iter_mut().zip(gradient.iter()).zip(half_kick).zip(decay.as_ref())
+                {
                     *w = (*w - *c * *g) * *d;
                     finite &= w.is_finite();
                 }
@@ -241,12 +253,12 @@ impl<T: Real, S: Storage<T>> Verlet<T, S> {
     }
 
     /// The state after the steps taken so far.
-    pub fn state(&self) -> &State<T, S> {
+    pub fn state(&self) -> &Phase<T, S> {
         &self.state
     }
 
     /// The state, giving up the stepper.
-    pub fn into_state(self) -> State<T, S> {
+    pub fn into_state(self) -> Phase<T, S> {
         self.state
     }
 

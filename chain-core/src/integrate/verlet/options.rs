@@ -60,7 +60,11 @@ impl VerletOptions {
     /// `dt = safety * 2 / omega_max`, no damping, with `omega_max` bounded from the tangent
     /// stiffness at `x` ([`omega_bound`]). `safety` must lie in `(0, 1]`; `1` is the stability
     /// limit for the bound, which lies above the true `omega_max`.
-    pub fn stable_for<M: Stiffness + ?Sized>(model: &M, x: &[f64], safety: f64) -> Result<Self, IntegrateError> {
+    pub fn stable_for<M: Stiffness + ?Sized>(
+        model: &M,
+        x: &[f64],
+        safety: f64,
+    ) -> Result<Self, IntegrateError> {
         check_option("safety", safety, safety > 0.0 && safety <= 1.0, "in (0, 1]")?;
         Ok(Self::new(safety * 2.0 / omega_bound(model, x)?.omega))
     }
@@ -97,7 +101,12 @@ pub fn verlet<M: Potential + ?Sized>(
     let span = t_end - t0;
     let count = step_count(span, options.dt);
     if count > options.max_steps as f64 {
-        return Err(IntegrateError::StepBudget { steps: count, dt: options.dt, span, budget: options.max_steps });
+        return Err(IntegrateError::StepBudget {
+            steps: count,
+            dt: options.dt,
+            span,
+            budget: options.max_steps,
+        });
     }
     let steps = count as u64;
     let dt = if steps == 0 { options.dt } else { span / steps as f64 };
