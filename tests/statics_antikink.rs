@@ -329,7 +329,6 @@ fn counting_returns_null_vectors_to_rounding() {
 /// fractional centres; the profile has zero energy to rounding throughout.
 #[test]
 fn a_wide_kink_sits_at_its_centre_to_the_documented_bound() {
-    use rotor_chain::ChainModel;
     use rotor_chain::statics::walls::domain_walls;
     let eps = f64::EPSILON;
     for r in [0.3, 0.8, 1.5] {
@@ -357,7 +356,6 @@ fn a_wide_kink_sits_at_its_centre_to_the_documented_bound() {
 /// here with the chain's gradient rather than the solver's own numbers.
 #[test]
 fn antikink_at_solves_centrings_only_and_says_when_it_held_the_translation() {
-    use rotor_chain::ChainModel;
     use rotor_chain::statics::StaticsError;
     let model = chain(60, 0.58);
     let options = AntikinkOptions::default();

@@ -7,7 +7,7 @@
 use chain_core::ChainGeometry;
 use chain_core::Potential;
 use chain_core::simd::{self, Level};
-use chain_core::{ChainModel, Law, RuntimeChain, batch};
+use chain_core::{Law, RuntimeChain, batch};
 
 /// A chain of `n` rotors with one softer, longer spring and one shorter rotor where it has room.
 fn chain(n: usize, law: Law) -> RuntimeChain {

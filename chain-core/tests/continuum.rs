@@ -4,13 +4,13 @@
 
 use std::f64::consts::PI;
 
+use chain_core::RuntimeChain;
 use chain_core::geometry::{ParameterError, spring_length};
 use chain_core::linalg::SymmetricMatrix;
 use chain_core::statics::continuum::{
     ContinuumChain, ContinuumError, PN_ASYMPTOTIC_LOG_SLOPE, sech4_fourier_transform,
 };
 use chain_core::statics::walls::Charge;
-use chain_core::{ChainModel, RuntimeChain};
 use nalgebra::{DMatrix, SymmetricEigen};
 
 const A: f64 = 1.0;

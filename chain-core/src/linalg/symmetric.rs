@@ -193,7 +193,8 @@ impl SymmetricMatrix {
                 rows[j] += v.abs();
             }
         }
-        rows.into_iter().fold(0.0, |m, r| if m != m || r != r { f64::NAN } else { m.max(r) })
+        rows.into_iter()
+            .fold(0.0, |m: f64, r: f64| if m.is_nan() || r.is_nan() { f64::NAN } else { m.max(r) })
     }
 
     /// `y = K x`.
@@ -229,10 +230,11 @@ impl SymmetricMatrix {
             Form::Upper { row_starts, columns } => {
                 let (mut starts, mut cols, mut values) = (vec![0], Vec::new(), Vec::new());
                 for i in keep.clone() {
-                    for k in row_starts[i]..row_starts[i + 1] {
-                        if keep.contains(&columns[k]) {
-                            cols.push(columns[k] - keep.start);
-                            values.push(self.values[k]);
+                    let row = row_starts[i]..row_starts[i + 1];
+                    for (&j, &value) in columns[row.clone()].iter().zip(&self.values[row]) {
+                        if keep.contains(&j) {
+                            cols.push(j - keep.start);
+                            values.push(value);
                         }
                     }
                     starts.push(cols.len());
@@ -260,9 +262,9 @@ impl SymmetricMatrix {
             }
             Form::Upper { row_starts, columns } => {
                 for i in 0..self.n {
-                    for k in row_starts[i]..row_starts[i + 1] {
-                        let j = columns[k];
-                        out.values[k] /= if i == j { inertia[i] } else { root[i] * root[j] };
+                    let row = row_starts[i]..row_starts[i + 1];
+                    for (value, &j) in out.values[row.clone()].iter_mut().zip(&columns[row]) {
+                        *value /= if i == j { inertia[i] } else { root[i] * root[j] };
                     }
                 }
             }

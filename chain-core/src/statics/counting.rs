@@ -144,9 +144,9 @@ impl Rows {
     /// `|C^T u|^2` for `u` with one entry per row (and any more, ignored).
     fn transpose_residual(&self, u: &[f64]) -> f64 {
         let mut out = vec![0.0; self.columns];
-        for p in 0..self.rows() {
+        for (p, &up) in u.iter().enumerate().take(self.rows()) {
             for &(i, c) in self.row(p) {
-                out[i] += c * u[p];
+                out[i] += c * up;
             }
         }
         out.iter().map(|x| x * x).sum()

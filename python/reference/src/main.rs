@@ -27,7 +27,7 @@ use rotor_chain::statics::counting::maxwell_calladine;
 use rotor_chain::statics::kink::kink;
 use rotor_chain::statics::modes::{ModeOptions, modes};
 use rotor_chain::statics::walls::Charge;
-use rotor_chain::{ChainModel, Law, RuntimeChain};
+use rotor_chain::{Law, RuntimeChain};
 use serde::Deserialize;
 use serde_json::{Value, json};
 

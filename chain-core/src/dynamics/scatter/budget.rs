@@ -154,7 +154,7 @@ pub fn scatter_within_budget<M: ChainModel + ?Sized>(
 ) -> Result<Budgeted, BudgetError> {
     let first = setup.run.method;
     let run = |method: Method| -> Result<Scattering, BudgetError> {
-        let mut setup = setup.clone();
+        let mut setup = *setup;
         setup.run.method = method;
         scatter(model, &setup).map_err(|source| BudgetError::Run { integrator: method, source })
     };
