@@ -27,7 +27,7 @@ the unit of ``k`` times that length unit squared (the barrier above is 0.668 for
 in parallel. Results pickle (multiprocessing, Dask).
 """
 
-from . import errors, sweep
+from . import errors, plot, sweep
 from ._native import (
     Antikink,
     Chain,
@@ -66,6 +66,7 @@ __all__ = [
     "Scattering",
     "domain_walls",
     "sweep",
+    "plot",
     "errors",
     "RotorChainError",
     "ParameterError",
