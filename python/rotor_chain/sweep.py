@@ -43,6 +43,7 @@ __all__ = [
     "point",
     "read_results",
     "outcome_grid",
+    "to_dataset",
     "axis",
 ]
 
@@ -336,6 +337,30 @@ def outcome_grid(records: Iterable[Record]):
     for r in records:
         grid[row[r["v0"]], col[r["ki"]]] = r["outcome"] if r["error"] is None else "failed"
     return np.array(ki), np.array(v0), grid
+
+
+def to_dataset(records: Iterable[Record]):
+    """The records as an ``xarray.Dataset`` (xarray must be installed): dimensions ``v0`` and
+    ``ki`` (``k_i/k``), their sorted values as coordinates, and one variable per column of the
+    records: ``outcome`` (``"failed"`` for a failed point, ``""`` for a point not in
+    ``records``), ``t_decided``, ``confirmed``, ``later``, ``t_later``, ``kinks_final``,
+    ``antikinks_final``, ``energy_error``, ``integrator`` and ``error`` (the message of a failed
+    point, else ``""``), with ``long_name`` and ``units`` attributes. A cell without a record
+    holds ``NaN`` (times, ``energy_error``), ``-1`` (the counts), ``False`` (``confirmed``) or
+    ``""``.
+
+    >>> ds = sweep.to_dataset(records)                                  # doctest: +SKIP
+    >>> ds.outcome.sel(ki=0.7, v0=4.0, method="nearest").item()         # doctest: +SKIP
+    'trapped'
+
+    Raises:
+        ImportError: xarray is not installed.
+        GridError: the records span more than ``MAX_GRID_POINTS`` cells (as ``outcome_grid``).
+        ValueError: two records at the same ``(ki, v0)``.
+    """
+    from ._dataset import to_dataset as build
+
+    return build(records)
 
 
 # --- running the points -----------------------------------------------------------------------
