@@ -34,6 +34,7 @@ import uuid
 from typing import Any, Callable, Dict, Iterable, List, Optional, Sequence, Tuple, Union
 
 from . import _native
+from ._progress import Progress, progress_bar
 from .errors import ConfigError
 
 __all__ = [
@@ -49,7 +50,6 @@ __all__ = [
 
 Record = Dict[str, Any]
 AxisSpec = Union[str, Sequence[float]]
-Progress = Union[None, bool, Callable[[int, int], None]]
 
 #: Every outcome, in the order of the paper's regimes then the others (docs/dynamics.md §5).
 OUTCOMES: Tuple[str, ...] = (
@@ -216,8 +216,11 @@ def phase_diagram(
         chunk_size: points per chunk (an int >= 1; default: about 8 chunks per worker thread with
             ``client``, ``8 x threads`` without).
         retry_failed: compute again the points ``out`` records as failed.
-        progress: ``True`` prints ``done/total`` on stderr, ``False`` nothing, a callable is
-            called as ``progress(done, total)``; ``None`` (default) prints only to a terminal.
+        progress: a progress bar (``tqdm.auto``: a widget in Jupyter, text in a terminal)
+            where someone watches (``None``, the default: stderr is a terminal or a Jupyter
+            kernel's), always (``True``) or never (``False``); a callable is called as
+            ``progress(done, total)`` after each chunk instead. Without tqdm installed there is
+            no bar, only a ``done/total`` line on stderr where the bar would be.
         max_resubmits: how often a chunk is submitted again after Dask gave up on it
             (``KilledWorker``: it killed its worker each time it ran); after that its points are
             recorded as failed with the reason (an int >= 0).
@@ -281,12 +284,13 @@ def phase_diagram(
             records.append(record)
         written += 1
 
-    report = _progress(progress, len(points), f"{defect} phase diagram")
     try:
-        if client is None:
-            _run_local(d, points, threads, chunk_size, sink, report)
-        else:
-            _run_dask(client, settings, points, chunk_size, sink, report, max_resubmits)
+        # The bar is closed (where it stopped) before a Ctrl-C's message below.
+        with progress_bar(progress, len(points), f"{defect} phase diagram") as report:
+            if client is None:
+                _run_local(d, points, threads, chunk_size, sink, report)
+            else:
+                _run_dask(client, settings, points, chunk_size, sink, report, max_resubmits)
     except KeyboardInterrupt:
         # Say what was kept before Python's traceback.
         total = len(xs) * len(ys)
@@ -364,22 +368,6 @@ def to_dataset(records: Iterable[Record]):
 
 
 # --- running the points -----------------------------------------------------------------------
-
-
-def _progress(progress: Progress, total: int, name: str) -> Callable[[int], None]:
-    """A function of the number of points done so far."""
-    if callable(progress):
-        return lambda done: progress(done, total)  # type: ignore[misc,operator]
-    show = sys.stderr.isatty() if progress is None else bool(progress)
-    if not show or total == 0:
-        return lambda done: None
-
-    def report(done: int) -> None:
-        end = "\n" if done >= total else ""
-        sys.stderr.write(f"\r{name}: {done}/{total} points{end}")
-        sys.stderr.flush()
-
-    return report
 
 
 def _run_local(
