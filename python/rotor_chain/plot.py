@@ -131,6 +131,7 @@ def phase_diagram(
     Returns:
         The ``Axes``; the cells are ``ax.collections[0]`` (a ``QuadMesh``).
     """
+    _pyplot()  # ImportError with what to install, before any other import of matplotlib
     from matplotlib.colors import BoundaryNorm, ListedColormap
     from matplotlib.patches import Patch
 
@@ -234,6 +235,7 @@ def _draw_chain(
     colorbar: bool,
     window: Optional[Sequence[float]] = None,
 ) -> Any:
+    _pyplot()  # ImportError with what to install, before any other import of matplotlib
     from matplotlib.collections import LineCollection
     from matplotlib.colors import LinearSegmentedColormap, Normalize
 
@@ -355,6 +357,7 @@ def space_time(
     Raises:
         ValueError: the run kept no angles (it ran without ``space_time=True``).
     """
+    _pyplot()  # ImportError with what to install, before any other import of matplotlib
     from matplotlib.colors import Normalize
 
     run = getattr(run, "run", run)  # a Scattering's run

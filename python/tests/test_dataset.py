@@ -9,11 +9,10 @@ import sys
 
 import numpy as np
 import pytest
+import xarray  # noqa: F401  (the test requirements have it)
 
 import rotor_chain as rc
 from rotor_chain import sweep
-
-xr = pytest.importorskip("xarray")
 
 FIELDS = ("t_decided", "confirmed", "later", "t_later", "kinks_final", "antikinks_final", "energy_error", "integrator")
 

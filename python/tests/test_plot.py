@@ -265,3 +265,22 @@ def test_each_helper_draws_into_the_axes_it_is_given():
     assert plot.chain(c, c.kink(29.5), ax=axes[0], colorbar=False) is axes[0]
     assert plot.phase_diagram(records(), ax=axes[1], legend=False) is axes[1]
     assert axes[1].get_legend() is None
+
+
+def test_the_package_works_without_matplotlib_and_the_helpers_say_what_to_install():
+    import subprocess
+    import sys
+
+    code = (
+        "import sys; sys.modules['matplotlib'] = None\n"
+        "import rotor_chain as rc\n"
+        "c = rc.Chain(20, 0.8, 1e4, 0.58)\n"
+        "assert c.energy(c.kink(9.5)) < 1e-20\n"
+        "try:\n"
+        "    rc.plot.chain(c, c.kink(9.5))\n"
+        "except ImportError as e:\n"
+        "    print(e)\n"
+    )
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
+    assert done.returncode == 0, done.stderr
+    assert done.stdout.strip() == "rotor_chain.plot needs matplotlib: pip install matplotlib"

@@ -11,7 +11,9 @@ import sys
 import threading
 import time
 
+import distributed
 import pytest
+import tqdm  # noqa: F401  (the test requirements have it: a bar is what is tested)
 
 from rotor_chain import sweep
 from cli_results import line_count
@@ -20,7 +22,6 @@ GRID = ("antikink", "0.05:3:4:log", "0.5:12:4")  # 16 points
 
 
 def test_a_bar_on_stderr_when_asked(capsys):
-    pytest.importorskip("tqdm")
     sweep.phase_diagram(*GRID, progress=True)
     err = capsys.readouterr().err
     assert "antikink phase diagram" in err and "16/16" in err and "100%" in err, err
@@ -53,7 +54,6 @@ KernelStream.__module__ = "ipykernel.iostream"
 
 
 def test_a_jupyter_kernels_stream_gets_a_bar_by_default(monkeypatch):
-    pytest.importorskip("tqdm")
     stream = KernelStream()
     monkeypatch.setattr(sys, "stderr", stream)
     sweep.phase_diagram(*GRID)
@@ -95,7 +95,6 @@ def python_sigint():
 
 
 def test_ctrl_c_stops_a_local_sweep_within_a_chunk(tmp_path, capsys, python_sigint):
-    pytest.importorskip("tqdm")
     out = tmp_path / "big.csv"
     grid = ("antikink", "0.01:3:60:log", "0.5:12:60")  # 3600 points: many seconds of work
     timer, sent = _interrupt_after(0.5)
@@ -116,7 +115,6 @@ def test_ctrl_c_stops_a_local_sweep_within_a_chunk(tmp_path, capsys, python_sigi
 
 
 def test_ctrl_c_stops_a_dask_sweep(tmp_path, capsys, python_sigint):
-    distributed = pytest.importorskip("distributed")
     out = tmp_path / "dask.csv"
     grid = ("antikink", "0.01:3:40:log", "0.5:12:40")  # 1600 points
     with distributed.LocalCluster(
