@@ -192,9 +192,11 @@ def phase_diagram(
         ki: impurity stiffness ratios ``k_i/k`` (every value > 0): ``"0.01:3:40:log"``,
             ``"0.1:1:10"`` or a sequence of floats.
         v0: launch speeds (``a/t``, every value >= 0), likewise.
-        theta_bar, n, r, k, mass: the chain (paper Sec. VI: 0.28, 60, 0.8, 1e4, 1); ``n`` must
-            hold the experiment, the defect starting 15.5 sites right of the middle spring
-            (``n >= 38``; shorter: ``ConfigError`` with ``variant == "Experiment"``).
+        theta_bar, n, r, k, mass: the chain (paper Sec. VI: 0.28, 60, 0.8, 1e4, 1), as
+            ``rotor_chain.Chain`` takes them with the lattice spacing ``a = 1`` (so ``r`` is the
+            paper's ``r/a``); ``n`` must hold the experiment, the defect starting 15.5 sites
+            right of the middle spring (``n >= 38``; shorter: ``ConfigError`` with
+            ``variant == "Experiment"``).
         ends: ``"free"`` (the paper's) or ``"absorbing"`` (a damping sponge at each end).
         integrator: ``"verlet"`` (default; recomputed with DOP853 over the energy budget) or
             ``"dop853"``.
