@@ -43,12 +43,14 @@ struct Spec {
 /// which ``k`` is given (``M / t^2``), so with ``a = M = 1`` energies are in ``M a^2 / t^2``.
 ///
 /// Args:
-///     n: number of rotors, at least 2.
-///     r: rotor length (``2 r sin(theta_bar) < a``: the flipper phase).
-///     k: spring stiffness, > 0.
-///     theta_bar: equilibrium angle, ``0 < theta_bar < pi/2``.
-///     a: lattice spacing (default 1).
-///     mass: tip mass ``M`` (default 1).
+///     n: number of rotors, an int, at least 2.
+///     r: rotor length, a length in the unit of ``a`` (the paper's ``r/a`` only when ``a = 1``,
+///         the default).
+///     k: spring stiffness, an energy per length squared, > 0.
+///     theta_bar: equilibrium angle in radians, with ``2 r sin(theta_bar) < a`` (the flipper
+///         phase).
+///     a: lattice spacing, the distance between pivots (default 1).
+///     mass: tip mass ``M`` (default 1); time is in the unit ``t`` with ``k`` in ``M / t^2``.
 ///     law: ``"harmonic"`` (``k (l - l0)^2 / 2``, the default) or ``"quartic"``
 ///         (``k (l^2 - l0^2)^2 / (8 l0^2)``).
 ///     springs: per-spring overrides ``{p: {"k": k_p, "l0": l0_p}}`` (either key may be left out),
