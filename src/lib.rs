@@ -167,7 +167,7 @@ pub mod __private {
         panic!("#[rotor_chain] stub called: the chain's declaration has compile errors")
     }
 
-    /// `theta` as a fixed-size array, for the slice-based [`ChainModel`] methods.
+    /// `theta` as a fixed-size array, for the slice-based model-trait methods.
     ///
     /// # Panics
     /// If `theta` does not have exactly `N` angles (a programming error: the chain has `N` rotors).

@@ -25,7 +25,7 @@
 //!
 //! **One stepper.** [`Verlet`] is generic over the float type (`f64`, or `f32` for a chain
 //! declared with `float = f32`) and over the storage ([`Storage`]: a `Vec`, or an array for a
-//! microcontroller without a heap). It serves the runs ([`verlet`], through the [`Integrator`]
+//! microcontroller without a heap). It serves the runs ([`verlet`], through the [`Integrator`](super::Integrator)
 //! trait), the statics' dissipative relaxation (damping, held degrees of freedom) and the
 //! firmware (each `#[rotor_chain]` chain's `verlet()`), with the same arithmetic in the same order.
 
@@ -336,7 +336,7 @@ impl<T: Real, S: Storage<T>> Verlet<T, S> {
 ///
 /// # Panics
 /// If `omega` has fewer than `dof_count()` entries (a programming error, as for the slice
-/// methods of [`Potential`]; [`State::check`] tells beforehand).
+/// methods of [`Potential`]; [`Phase::check`] tells beforehand).
 pub fn kinetic_energy<T: Real, M: Potential<T> + ?Sized>(model: &M, omega: &[T]) -> T {
     let n = model.dof_count();
     T::of(0.5) * omega[..n].iter().enumerate().fold(T::ZERO, |s, (i, &w)| s + model.inertia(i) * w * w)
