@@ -91,15 +91,9 @@ fn chain(n: usize) -> RuntimeChain {
     RuntimeChain::builder(n, R, K, TB).build().unwrap()
 }
 
-/// A deterministic pseudo-random sequence in `[-1, 1)` (a 64-bit LCG), for broadband kicks.
+/// A reproducible pseudo-random sequence in `[-1, 1)`, for broadband kicks.
 fn noise(n: usize, seed: u64) -> Vec<f64> {
-    let mut x = seed;
-    (0..n)
-        .map(|_| {
-            x = x.wrapping_mul(6_364_136_223_846_793_005).wrapping_add(1_442_695_040_888_963_407);
-            (x >> 11) as f64 / (1u64 << 52) as f64 - 1.0
-        })
-        .collect()
+    test_support::random::SplitMix(seed).fill(n, -1.0, 1.0)
 }
 
 /// The paper's moving kink (Sec. V, Appendix B): the zero-energy kink at `centre`, with a

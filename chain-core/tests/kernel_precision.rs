@@ -16,12 +16,10 @@
 //! `k |l - l0| (|dx| + |dy| + l0)` because `l - l0` cancels. A kernel that lost digits to a
 //! poorly chosen formula (a cancellation the problem does not have) would exceed it.
 
-mod support;
-
 use chain_core::kernel::{SpringFn, harmonic, quartic};
-use dashu_float::FBig;
-use dashu_float::round::mode::HalfEven;
-use support::random::SplitMix;
+use test_support::dashu_float::FBig;
+use test_support::dashu_float::round::mode::HalfEven;
+use test_support::random::SplitMix;
 
 type Big = FBig<HalfEven, 2>;
 

@@ -186,6 +186,19 @@ impl SymmetricMatrix {
     /// `max_i sum_j |K_ij|`, the infinity norm, a bound on every eigenvalue (Gershgorin); NaN if
     /// an entry is NaN.
     pub fn inf_norm(&self) -> f64 {
+        let nan_max = |m: f64, r: f64| if m.is_nan() || r.is_nan() { f64::NAN } else { m.max(r) };
+        if let Some((diag, off)) = self.bands() {
+            // Row i: |d_i| + |e_{i-1}| + |e_i|, without the general path's row buffer (this runs
+            // once per Newton solve, relaxation and mode search of a chain).
+            let mut left = 0.0;
+            let mut norm = 0.0;
+            for (i, d) in diag.iter().enumerate() {
+                let right = off.get(i).map_or(0.0, |e| e.abs());
+                norm = nan_max(norm, d.abs() + left + right);
+                left = right;
+            }
+            return norm;
+        }
         let mut rows = vec![0.0; self.n];
         for (i, j, v) in self.entries() {
             rows[i] += v.abs();
@@ -193,8 +206,7 @@ impl SymmetricMatrix {
                 rows[j] += v.abs();
             }
         }
-        rows.into_iter()
-            .fold(0.0, |m: f64, r: f64| if m.is_nan() || r.is_nan() { f64::NAN } else { m.max(r) })
+        rows.into_iter().fold(0.0, nan_max)
     }
 
     /// `y = K x`.

@@ -14,26 +14,9 @@ use embedded_check::{
 };
 use embedded_host::{Tolerated, compare_accuracy, host_run};
 use rotor_chain::prelude::*;
+use test_support::random::SplitMix;
 
 const EPS: f64 = f32::EPSILON as f64;
-
-/// A SplitMix64 generator: reproducible random configurations without a dependency.
-struct SplitMix(u64);
-
-impl SplitMix {
-    fn next_u64(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    }
-
-    /// Uniform in `[lo, hi)`.
-    fn uniform(&mut self, lo: f64, hi: f64) -> f64 {
-        lo + (hi - lo) * (self.next_u64() >> 11) as f64 / (1u64 << 53) as f64
-    }
-}
 
 /// The shortest spring the random configurations allow, in units of `a`. With `a = 1` and
 /// `r = 0.8` two tips can meet (`l = 0`), where the derivatives of `l` carry `1 / l` and every
@@ -54,10 +37,10 @@ fn configurations(count: usize) -> Vec<[f32; 16]> {
         }
         let theta: [f32; 16] = core::array::from_fn(|_| {
             let theta = if k % 2 == 0 {
-                rng.uniform(-core::f64::consts::PI, core::f64::consts::PI)
+                rng.range(-core::f64::consts::PI, core::f64::consts::PI)
             } else {
-                let sign = if rng.uniform(0.0, 1.0) < 0.5 { -1.0 } else { 1.0 };
-                sign * 0.58 + rng.uniform(-0.05, 0.05)
+                let sign = if rng.range(0.0, 1.0) < 0.5 { -1.0 } else { 1.0 };
+                sign * 0.58 + rng.range(-0.05, 0.05)
             };
             theta as f32
         });
@@ -274,8 +257,8 @@ fn other_declarations_agree_with_f64_too() {
             break;
         }
         let theta: [f32; 12] = core::array::from_fn(|_| {
-            let sign = if rng.uniform(0.0, 1.0) < 0.5 { -1.0 } else { 1.0 };
-            (sign * 0.58 + rng.uniform(-0.2, 0.2)) as f32
+            let sign = if rng.range(0.0, 1.0) < 0.5 { -1.0 } else { 1.0 };
+            (sign * 0.58 + rng.range(-0.2, 0.2)) as f32
         });
         let wide = widen(&theta);
         if c64.spring_lengths(&wide).iter().any(|&l| l < SHORTEST_SPRING) {
