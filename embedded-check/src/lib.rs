@@ -23,7 +23,7 @@ pub mod report;
 pub mod run;
 
 pub use rotor_chain::embedded::{
-    ChainGeometry, Charge, DomainWalls, DynamicsError, Phase, Real, Verlet, Wall, kink_into,
+    ChainGeometry, Charge, DomainWalls, DynamicsError, Phase, Potential, Real, Verlet, Wall, kink_into,
     kink_launch_velocities, kink_translation_mode,
 };
 pub use run::{MAX_WALLS, Sample, Scenario, Summary, launched_kink, run};

@@ -20,7 +20,7 @@ use cortex_m::peripheral::SYST;
 use cortex_m::peripheral::syst::SystClkSource;
 use cortex_m_rt::entry;
 use cortex_m_semihosting::hprintln;
-use embedded_check::{DynamicsError, ChainGeometry, Real, Scenario, launched_kink};
+use embedded_check::{DynamicsError, Potential, Real, Scenario, launched_kink};
 use kink_firmware::{Chain, Float, N, exit, peak_stack_bytes};
 use panic_semihosting as _;
 
@@ -80,11 +80,11 @@ fn measure() -> Result<Costs, DynamicsError> {
     let calibration = calibration_ticks();
     let overhead = ticks_of(|| Ok(()))?;
     let mut stepper = launched_kink::<Float, _, N>(&Chain, &Scenario::FIRMWARE)?;
-    let step = ticks_of(|| stepper.step(&Chain))?;
+    let step = ticks_of(|| Ok(stepper.step(&Chain)?))?;
     let theta = *stepper.theta();
     let mut out = [Float::of(0.0); N];
     let gradient = ticks_of(|| {
-        ChainGeometry::gradient_into(&Chain, black_box(&theta), &mut out);
+        Potential::gradient_into(&Chain, black_box(&theta), &mut out);
         black_box(&out);
         Ok(())
     })?;
