@@ -201,7 +201,7 @@ fn springs(count: usize, seed: u64) -> Vec<[f64; 9]> {
             continue; // a spring of no length has no direction: outside every law's domain
         }
         let l0 = if out.len() % 2 == 0 {
-            let sign = if u.next() < 0.5 { -1.0 } else { 1.0 };
+            let sign = if u.uniform() < 0.5 { -1.0 } else { 1.0 };
             l * (1.0 + sign * 10f64.powf(u.range(-12.0, -2.0)))
         } else {
             u.range(0.1, 3.0)

@@ -20,13 +20,13 @@ impl SplitMix {
     }
 
     /// The next uniform number in `[0, 1)`.
-    pub fn next(&mut self) -> f64 {
+    pub fn uniform(&mut self) -> f64 {
         Self::unit(self.bits())
     }
 
     /// The next uniform number in `[lo, hi)`.
     pub fn range(&mut self, lo: f64, hi: f64) -> f64 {
-        lo + (hi - lo) * self.next()
+        lo + (hi - lo) * self.uniform()
     }
 
     /// The next uniform number in `[-1, 1)`.
