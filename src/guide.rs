@@ -10,6 +10,7 @@
 //! | [`readme`] | `README.md` | set-up, the two commands, what is where, measured numbers |
 //! | [`theory`] | `docs/theory.md` | the model, sign conventions, which wall is the kink, the branch solve |
 //! | [`macros`] | `docs/macro.md` | every key of `#[rotor_chain]`, every generated item, every compile error |
+//! | [`models`] | `docs/models.md` | the model ladder, and a model of your own (a Frenkel–Kontorova chain) through every analysis |
 //! | [`statics`] | `docs/statics.md` | kink, antikink, Peierls–Nabarro barrier, modes, counting, impurity, linkage, continuum |
 //! | [`dynamics`] | `docs/dynamics.md` | integrators, launching, wall tracking, scattering, phase diagrams |
 //! | [`paper`] | `docs/paper.md` | the one-command reproduction of the paper's figures and numbers |
@@ -30,6 +31,9 @@ pub mod theory {}
 
 #[doc = include_str!("../docs/macro.md")]
 pub mod macros {}
+
+#[doc = include_str!("../docs/models.md")]
+pub mod models {}
 
 #[doc = include_str!("../docs/statics.md")]
 pub mod statics {}

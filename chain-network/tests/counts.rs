@@ -107,11 +107,11 @@ fn small_periodic_patches_are_refused() {
 }
 
 /// The paper's chain as a rotor network: its compatibility matrix equals the chain code's
-/// (`ChainModel::compatibility_into`, per `r_i theta_i`) up to the column signs
+/// (`SpringNetwork::compatibility_into`, per `r_i theta_i`) up to the column signs
 /// `dphi = -dtheta` (up rotors, even i) and `+dtheta` (down rotors, odd i), to 1e-12.
 #[test]
 fn the_paper_chain_matches_the_chain_code() {
-    use chain_core::ChainModel;
+    use chain_core::SpringNetwork;
     for (theta_bar, r) in [(0.58, 0.8), (-0.58, 0.8), (0.3, 0.55), (-0.1, 1.2)] {
         let cell = ready::rotor_chain(1.0, r, theta_bar).unwrap();
         let cells = 7;
@@ -121,8 +121,10 @@ fn the_paper_chain_matches_the_chain_code() {
         assert_eq!((c.nrows(), c.ncols()), (n - 1, n));
         let chain = chain_core::RuntimeChain::builder(n, r, 1.0, theta_bar.abs()).build().unwrap();
         let theta = vec![theta_bar; n];
-        let (mut left, mut right) = (vec![0.0; n - 1], vec![0.0; n - 1]);
-        chain.compatibility_into(&theta, &mut left, &mut right);
+        // The chain's bidiagonal layout: the n - 1 entries C[p][p], then the n - 1 entries C[p][p + 1].
+        let mut values = vec![0.0; 2 * (n - 1)];
+        chain.compatibility_into(&theta, &mut values);
+        let (left, right) = values.split_at(n - 1);
         for p in 0..n - 1 {
             for i in 0..n {
                 let chain_entry = if i == p {

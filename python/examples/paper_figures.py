@@ -16,11 +16,10 @@ import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
-from matplotlib.colors import ListedColormap  # noqa: E402
 import numpy as np  # noqa: E402
 
 import rotor_chain as rc  # noqa: E402
-from rotor_chain import sweep  # noqa: E402
+from rotor_chain import plot, sweep  # noqa: E402
 
 
 def akenergy(out: Path, quick: bool) -> Path:
@@ -49,20 +48,9 @@ def phasediagram(out: Path, quick: bool, client=None) -> Path:
         out=out / f"antikink-{count}x{count}.csv",
         client=client,
     )
-    ki, v0, outcomes = sweep.outcome_grid(records)
-    names = [o for o in sweep.OUTCOMES if (outcomes == o).any()] + (["failed"] if (outcomes == "failed").any() else [])
-    codes = np.vectorize(names.index)(outcomes)
-    fig, ax = plt.subplots(figsize=(5.5, 4))
-    # One colour per outcome whichever outcomes occur, so that figures of two runs compare.
-    every = list(sweep.OUTCOMES) + ["failed"]
-    cmap = ListedColormap([plt.get_cmap("tab10")(every.index(name) % 10) for name in names])
-    mesh = ax.pcolormesh(ki, v0, codes, cmap=cmap, vmin=-0.5, vmax=len(names) - 0.5, shading="nearest")
-    ax.set(xscale="log", xlabel=r"$k_i / k$", ylabel=r"$v_0$ ($a/t$)", title="Antikink scattering (fig:phasediagram)")
-    bar = fig.colorbar(mesh, ticks=range(len(names)))
-    bar.ax.set_yticklabels(names)
+    ax = plot.phase_diagram(records, title="Antikink scattering (fig:phasediagram)")
     path = out / "phasediagram.png"
-    fig.tight_layout()
-    fig.savefig(path, dpi=150)
+    ax.figure.savefig(path, dpi=150)
     return path
 
 

@@ -4,7 +4,7 @@ The paper *Kink-antikink asymmetry and impurity interactions in topological mech
 (Zhou, Chen, Upadhyaya, Vitelli), computed by the Rust library ``rotor-chain`` through PyO3:
 
 >>> import numpy as np, rotor_chain as rc
->>> chain = rc.Chain(60, 0.8, 1e4, 0.58)          # n, r/a, k, theta_bar
+>>> chain = rc.Chain(60, 0.8, 1e4, 0.58)          # n, r, k, theta_bar (r = 0.8 a; a = 1)
 >>> theta = chain.kink(29.5)                       # the zero-energy kink (radians)
 >>> bool(chain.energy(theta) < 1e-20)
 True
@@ -17,6 +17,8 @@ True
   ``maxwell_calladine``) and dynamics (``launch``, ``propagate``, ``scatter``) as methods.
 - :mod:`rotor_chain.sweep`: scattering phase diagrams (Fig. ``fig:phasediagram``) on one machine
   or a Dask cluster, resumable CSV files shared with the ``phase-diagram`` command.
+- :mod:`rotor_chain.plot`: pictures with matplotlib (a phase diagram, a chain, a run's space-time
+  image, a mode).
 - :class:`Network`: periodic spring and rotor networks (issue 33) from a cell file, TOML text,
   keyword arguments or a ready lattice: Maxwell-Calladine counts, zero modes, Bloch matrices,
   bands, winding numbers and the polarization, strips with edge modes, Guest modes.
@@ -30,7 +32,7 @@ the unit of ``k`` times that length unit squared (the barrier above is 0.668 for
 in parallel. Results pickle (multiprocessing, Dask).
 """
 
-from . import errors, sweep
+from . import errors, plot, sweep
 from ._native import (
     Antikink,
     Chain,
@@ -73,6 +75,7 @@ __all__ = [
     "Scattering",
     "domain_walls",
     "sweep",
+    "plot",
     "errors",
     "RotorChainError",
     "ParameterError",

@@ -31,7 +31,12 @@ MAX_AXIS_COUNT: int
 MAX_GRID_POINTS: int
 
 class Chain:
-    """A rotor chain of runtime size (see ``help(rotor_chain.Chain)``)."""
+    """A rotor chain of runtime size (see ``help(rotor_chain.Chain)``): ``n`` rotors (at least 2)
+    of length ``r`` on pivots ``a`` apart, tips of mass ``mass`` joined by springs of stiffness
+    ``k`` that rest where every rotor stands at ``theta_bar`` or ``-theta_bar``. ``r`` and ``a``
+    are lengths in one unit (``r`` is the paper's ``r/a`` only when ``a = 1``, the default);
+    ``k`` is an energy per length squared; ``theta_bar`` is in radians, with
+    ``2 r sin(theta_bar) < a``."""
 
     def __init__(
         self,

@@ -34,6 +34,7 @@ import uuid
 from typing import Any, Callable, Dict, Iterable, List, Optional, Sequence, Tuple, Union
 
 from . import _native
+from ._progress import Progress, progress_bar
 from .errors import ConfigError
 
 __all__ = [
@@ -43,12 +44,12 @@ __all__ = [
     "point",
     "read_results",
     "outcome_grid",
+    "to_dataset",
     "axis",
 ]
 
 Record = Dict[str, Any]
 AxisSpec = Union[str, Sequence[float]]
-Progress = Union[None, bool, Callable[[int, int], None]]
 
 #: Every outcome, in the order of the paper's regimes then the others (docs/dynamics.md §5).
 OUTCOMES: Tuple[str, ...] = (
@@ -191,9 +192,11 @@ def phase_diagram(
         ki: impurity stiffness ratios ``k_i/k`` (every value > 0): ``"0.01:3:40:log"``,
             ``"0.1:1:10"`` or a sequence of floats.
         v0: launch speeds (``a/t``, every value >= 0), likewise.
-        theta_bar, n, r, k, mass: the chain (paper Sec. VI: 0.28, 60, 0.8, 1e4, 1); ``n`` must
-            hold the experiment, the defect starting 15.5 sites right of the middle spring
-            (``n >= 38``; shorter: ``ConfigError`` with ``variant == "Experiment"``).
+        theta_bar, n, r, k, mass: the chain (paper Sec. VI: 0.28, 60, 0.8, 1e4, 1), as
+            ``rotor_chain.Chain`` takes them with the lattice spacing ``a = 1`` (so ``r`` is the
+            paper's ``r/a``); ``n`` must hold the experiment, the defect starting 15.5 sites
+            right of the middle spring (``n >= 38``; shorter: ``ConfigError`` with
+            ``variant == "Experiment"``).
         ends: ``"free"`` (the paper's) or ``"absorbing"`` (a damping sponge at each end).
         integrator: ``"verlet"`` (default; recomputed with DOP853 over the energy budget) or
             ``"dop853"``.
@@ -215,8 +218,11 @@ def phase_diagram(
         chunk_size: points per chunk (an int >= 1; default: about 8 chunks per worker thread with
             ``client``, ``8 x threads`` without).
         retry_failed: compute again the points ``out`` records as failed.
-        progress: ``True`` prints ``done/total`` on stderr, ``False`` nothing, a callable is
-            called as ``progress(done, total)``; ``None`` (default) prints only to a terminal.
+        progress: a progress bar (``tqdm.auto``: a widget in Jupyter, text in a terminal)
+            where someone watches (``None``, the default: stderr is a terminal or a Jupyter
+            kernel's), always (``True``) or never (``False``); a callable is called as
+            ``progress(done, total)`` after each chunk instead. Without tqdm installed there is
+            no bar, only a ``done/total`` line on stderr where the bar would be.
         max_resubmits: how often a chunk is submitted again after Dask gave up on it
             (``KilledWorker``: it killed its worker each time it ran); after that its points are
             recorded as failed with the reason (an int >= 0).
@@ -280,12 +286,13 @@ def phase_diagram(
             records.append(record)
         written += 1
 
-    report = _progress(progress, len(points), f"{defect} phase diagram")
     try:
-        if client is None:
-            _run_local(d, points, threads, chunk_size, sink, report)
-        else:
-            _run_dask(client, settings, points, chunk_size, sink, report, max_resubmits)
+        # The bar is closed (where it stopped) before a Ctrl-C's message below.
+        with progress_bar(progress, len(points), f"{defect} phase diagram") as report:
+            if client is None:
+                _run_local(d, points, threads, chunk_size, sink, report)
+            else:
+                _run_dask(client, settings, points, chunk_size, sink, report, max_resubmits)
     except KeyboardInterrupt:
         # Say what was kept before Python's traceback.
         total = len(xs) * len(ys)
@@ -338,23 +345,31 @@ def outcome_grid(records: Iterable[Record]):
     return np.array(ki), np.array(v0), grid
 
 
+def to_dataset(records: Iterable[Record]):
+    """The records as an ``xarray.Dataset`` (xarray must be installed): dimensions ``v0`` and
+    ``ki`` (``k_i/k``), their sorted values as coordinates, and one variable per column of the
+    records: ``outcome`` (``"failed"`` for a failed point, ``""`` for a point not in
+    ``records``), ``t_decided``, ``confirmed``, ``later``, ``t_later``, ``kinks_final``,
+    ``antikinks_final``, ``energy_error``, ``integrator`` and ``error`` (the message of a failed
+    point, else ``""``), with ``long_name`` and ``units`` attributes. A cell without a record
+    holds ``NaN`` (times, ``energy_error``), ``-1`` (the counts), ``False`` (``confirmed``) or
+    ``""``.
+
+    >>> ds = sweep.to_dataset(records)                                  # doctest: +SKIP
+    >>> ds.outcome.sel(ki=0.7, v0=4.0, method="nearest").item()         # doctest: +SKIP
+    'trapped'
+
+    Raises:
+        ImportError: xarray is not installed.
+        GridError: the records span more than ``MAX_GRID_POINTS`` cells (as ``outcome_grid``).
+        ValueError: two records at the same ``(ki, v0)``.
+    """
+    from ._dataset import to_dataset as build
+
+    return build(records)
+
+
 # --- running the points -----------------------------------------------------------------------
-
-
-def _progress(progress: Progress, total: int, name: str) -> Callable[[int], None]:
-    """A function of the number of points done so far."""
-    if callable(progress):
-        return lambda done: progress(done, total)  # type: ignore[misc,operator]
-    show = sys.stderr.isatty() if progress is None else bool(progress)
-    if not show or total == 0:
-        return lambda done: None
-
-    def report(done: int) -> None:
-        end = "\n" if done >= total else ""
-        sys.stderr.write(f"\r{name}: {done}/{total} points{end}")
-        sys.stderr.flush()
-
-    return report
 
 
 def _run_local(

@@ -4,7 +4,7 @@
 //! Rust variant, and every number the variant carries is an attribute (and an entry of
 //! `details`). A wrapped error is `details["source"]` and the exception's `__cause__`.
 
-use chain_sweep::scattering::{ConfigError, PointError, VerletBreach};
+use chain_sweep::scattering::{BudgetError, ConfigError, PointError, VerletBreach};
 use chain_sweep::{GridError, SweepError};
 use pyo3::prelude::*;
 use pyo3::sync::PyOnceLock;
@@ -341,31 +341,41 @@ pub fn point(py: Python<'_>, e: &PointError) -> PyErr {
     let d = match e {
         PointError::Config(c) => Details { variant: "Config", ..d }.source(config(py, c)),
         PointError::Chain(p) => Details { variant: "Chain", ..d }.source(parameter(py, p)),
-        PointError::Run { integrator, source } => {
+        PointError::Scatter(b) => budget(py, b, d),
+        _ => Details { variant: "Other", ..d },
+    };
+    d.raise("PointError", e.to_string())
+}
+
+/// The details of a point that broke its energy budget (the dynamics' `BudgetError`), under the
+/// variant names Python has always seen (`Run`, `EnergyBudget`, `Recomputed`, ...).
+fn budget<'py>(py: Python<'py>, e: &BudgetError, d: Details<'py>) -> Details<'py> {
+    match e {
+        BudgetError::Run { integrator, source } => {
             Details { variant: "Run", ..d }.f("integrator", integrator.name()).source(dynamics(py, source))
         }
-        &PointError::EnergyBudget { error, tolerance, integrator } => {
+        &BudgetError::EnergyBudget { error, tolerance, integrator } => {
             Details { variant: "EnergyBudget", ..d }
                 .f("error", error)
                 .f("tolerance", tolerance)
                 .f("integrator", integrator.name())
         }
-        PointError::Recomputed { verlet, dop853 } => {
+        BudgetError::Recomputed { verlet, dop853 } => {
             let d = Details { variant: "Recomputed", ..d }.f("verlet", verlet.to_string());
             let d = match verlet {
                 VerletBreach::EnergyError { error } => d.f("verlet_energy_error", *error),
                 VerletBreach::Failed { source } => d.f("verlet_error", dynamics(py, source).value(py)),
                 _ => d,
             };
-            d.source(point(py, dop853))
+            let inner = budget(py, dop853, Details::new(py, "")).raise("PointError", dop853.to_string());
+            d.source(inner)
         }
-        &PointError::SpunThroughPi { time, outputs } => {
+        &BudgetError::SpunThroughPi { time, outputs } => {
             Details { variant: "SpunThroughPi", ..d }.f("time", time).f("outputs", outputs)
         }
-        PointError::NothingRecorded => Details { variant: "NothingRecorded", ..d },
+        BudgetError::NothingRecorded => Details { variant: "NothingRecorded", ..d },
         _ => Details { variant: "Other", ..d },
-    };
-    d.raise("PointError", e.to_string())
+    }
 }
 
 pub fn grid(py: Python<'_>, e: &GridError) -> PyErr {

@@ -443,7 +443,7 @@ mod demo {
         };
         let outcomes = ["transmitted", "reflected", "trapped"];
         let model = rotor_chain::RuntimeChain::builder(12, p.r, p.k, 0.5)
-            .spring(5, None, Some(1.8))
+            .spring_rest_length(5, 1.8)
             .build()
             .map_err(FigureError::on("fig:demo-maps"))?;
         let theta: Vec<f64> = (0..12).map(|i| 0.5 * (0.6 * (i as f64 - 5.5)).tanh()).collect();

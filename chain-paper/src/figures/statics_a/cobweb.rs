@@ -12,6 +12,8 @@ use rotor_chain::{ChainModel, RuntimeChain};
 use super::{THETA_BAR, profile, uniform_levels};
 use crate::figures::{FigureError, Params, chain, continuum, grid};
 use crate::model::{ChainDrawing, Chart, Figure, Panel, Quality, Quantity, Series, Style};
+use rotor_chain::ChainGeometry;
+use rotor_chain::SpringNetwork;
 
 /// The chain of the cobweb pictures: the paper's core "rotors 8 and 9", "8th spring" (Sec. II).
 const COBWEB_ROTORS: usize = 16;

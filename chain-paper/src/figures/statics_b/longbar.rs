@@ -2,7 +2,6 @@
 //! mode, drawn on the chain and plotted, and the paper's numbers about them.
 
 use rotor_chain::RuntimeChain;
-use rotor_chain::prelude::ChainModel;
 use rotor_chain::statics::counting::maxwell_calladine;
 use rotor_chain::statics::impurity::{impurity_analysis, two_kink_configuration};
 use rotor_chain::statics::kink::kink;
@@ -16,6 +15,7 @@ use crate::figures::{FigureError, Params, chain, continuum};
 use crate::model::{
     ChainDrawing, Chart, Figure, Panel, Quality, Quantity, Row, Series, Style, format_number,
 };
+use rotor_chain::SpringNetwork;
 
 /// The impurity's rest length of Fig. `fig:longbar`.
 const LONGBAR_L0: f64 = 2.30;

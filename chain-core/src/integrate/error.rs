@@ -5,7 +5,7 @@
 #[non_exhaustive]
 pub enum IntegrateError {
     /// A slice with the wrong length for the chain.
-    #[error("{what} has {}, the chain has {expected} rotors", chain_geometry::Counted(*len, "value"))]
+    #[error("{what} has {}, the model has {expected} degrees of freedom", chain_geometry::Counted(*len, "value"))]
     WrongLength {
         /// Which input.
         what: &'static str,
@@ -137,7 +137,9 @@ pub enum IntegrateError {
     },
     /// A rotor whose inertia `M r_i^2` is not positive and finite, or so small that its inverse
     /// overflows.
-    #[error("rotor {index} has inertia {inertia}: it must be positive and finite, with a finite inverse")]
+    #[error(
+        "degree of freedom {index} has inertia {inertia}: it must be positive and finite, with a finite inverse"
+    )]
     BadInertia {
         /// The rotor.
         index: usize,
@@ -163,5 +165,25 @@ pub enum IntegrateError {
         norm: f64,
         /// The largest inverse inertia `1 / (M r^2)`.
         inverse_inertia: f64,
+    },
+    /// The energy of a stepper left the tolerance around its reference
+    /// ([`Verlet::check_energy`](super::Verlet::check_energy)): a step past the stability limit
+    /// grows the energy while every number stays finite.
+    #[error(
+        "energy {energy} after step {step} is {} from the reference {reference}, more than the \
+         tolerance {tolerance}: is dt = {dt} within the stability limit omega_max dt < 2?",
+        (energy - reference).abs()
+    )]
+    EnergyDrift {
+        /// Steps taken.
+        step: u64,
+        /// The energy now.
+        energy: f64,
+        /// The reference energy.
+        reference: f64,
+        /// The tolerance.
+        tolerance: f64,
+        /// The step.
+        dt: f64,
     },
 }

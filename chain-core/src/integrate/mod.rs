@@ -1,11 +1,16 @@
-//! Time integration of the equations of motion (paper Secs. V, VI and Appendix B):
+//! Time integration of the equations of motion of any [`Potential`] (paper Secs. V, VI and
+//! Appendix B):
 //!
-//! `I_i thetadd_i = -dV/dtheta_i - gamma I_i thetadot_i`, with `I_i = M r_i^2`,
+//! `I_i thetadd_i = -dV/dtheta_i - gamma I_i thetadot_i`, with `I_i = M r_i^2` for a rotor chain,
 //!
 //! the Newtonian dynamics of the free chain, and with `gamma > 0` the paper's dissipative
 //! dynamics. Units as in `docs/theory.md` §3: `a = 1`, `M = 1`, time in the unit `t` of paper
-//! Appendix B, `k` in `M / t^2`, so `gamma` is a rate in `1 / t`. The state is the angles and
-//! the angular velocities `omega = dtheta/dt`; the energy is `E = sum_i I_i omega_i^2 / 2 + V`.
+//! Appendix B, `k` in `M / t^2`, so `gamma` is a rate in `1 / t`. The state is the degrees of
+//! freedom (a chain's angles) and their rates `omega = dtheta/dt`; the energy is
+//! `E = sum_i I_i omega_i^2 / 2 + V`.
+//!
+//! This module sits between the model traits and the analyses (model -> integrate -> statics ->
+//! dynamics): the statics' relaxation and the dynamics' runs both step with its [`Verlet`].
 //!
 //! One algorithm per file:
 //!
@@ -13,12 +18,16 @@
 //!   and symplectic, so the energy error stays bounded over arbitrarily long runs instead of
 //!   drifting; with damping the decay is applied exactly and the map stays conformally
 //!   symplectic. One gradient evaluation per step: the workhorse for long runs and big chains.
+//!   Its stepper [`Verlet`] is generic over the float type and the storage (no heap needed).
+//! - [`bound`]: the one bound on the fastest mode that steps are chosen from.
+//! - [`method`]: [`Method`], the one way to choose an integrator (runs, scattering, sweeps, the
+//!   command line and Python).
 //! - [`dop853`]: the Dormand-Prince 8(5,3) Runge-Kutta pair of Hairer, Norsett and Wanner,
 //!   *Solving Ordinary Differential Equations I* (2nd ed.), Secs. II.4-II.6, with step-size
 //!   control and 7th-order dense output: errors controlled to a tolerance, for scattering runs
 //!   that must be accurate (paper Sec. VI) and for references.
 //!
-//! Both run generic over [`ChainModel`], reuse their buffers (no allocation per step), check
+//! Both run generic over [`Potential`], reuse their buffers (no allocation per step), check
 //! their input (wrong lengths and non-finite numbers are [`IntegrateError`]s, never a panic), and
 //! stop with an error instead of carrying a NaN. After each output they hand the [`State`] to an
 //! observer, which answers [`Flow::Continue`] or [`Flow::Stop`] (a scattering outcome decided),
@@ -26,7 +35,7 @@
 //!
 //! ```
 //! use chain_core::RuntimeChain;
-//! use chain_core::dynamics::integrate::{self, AdaptiveOptions, Flow, State, VerletOptions};
+//! use chain_core::integrate::{self, AdaptiveOptions, Flow, State, VerletOptions};
 //!
 //! // The paper's chain (Sec. V): 60 rotors, r/a = 0.8, k = 1e4, theta_bar = 0.58; a smooth
 //! // disturbance of the uniform state, released at rest.
@@ -55,61 +64,35 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
+#[cfg(feature = "alloc")]
+pub mod bound;
+#[cfg(feature = "alloc")]
 pub mod dop853;
 pub mod error;
+pub mod method;
+mod state;
+#[cfg(feature = "alloc")]
 mod tableau;
 pub mod verlet;
 
-use alloc::vec;
+#[cfg(feature = "alloc")]
 use alloc::vec::Vec;
 
+#[cfg(feature = "alloc")]
+pub use bound::{OmegaBound, omega_bound};
+#[cfg(feature = "alloc")]
 pub use dop853::{AdaptiveOptions, adaptive};
 pub use error::IntegrateError;
+pub use method::Method;
+#[cfg(feature = "alloc")]
+pub use state::State;
+pub use state::{Phase, Storage};
+pub use verlet::{Verlet, kinetic_energy};
+#[cfg(feature = "alloc")]
 pub use verlet::{VerletOptions, verlet};
 
-use crate::model::ChainModel;
-
-/// A point of a trajectory: the angles and angular velocities at a time.
-#[derive(Clone, Debug, PartialEq)]
-pub struct State {
-    /// Time, in `t`.
-    pub time: f64,
-    /// Rotor angles in radians, measured from the vertical (docs/theory.md §1), one per rotor.
-    pub theta: Vec<f64>,
-    /// `dtheta/dt`.
-    pub omega: Vec<f64>,
-}
-
-impl State {
-    /// The angles `theta` at rest at time 0.
-    pub fn at_rest(theta: Vec<f64>) -> Self {
-        let omega = vec![0.0; theta.len()];
-        Self { time: 0.0, theta, omega }
-    }
-
-    /// `Ok` if the state fits `model` (one angle and one velocity per rotor) and every number in
-    /// it is finite. The integrators check this before they start.
-    pub fn check<M: ChainModel + ?Sized>(&self, model: &M) -> Result<(), IntegrateError> {
-        let n = model.rotor_count();
-        for (what, v) in [("theta", &self.theta), ("omega", &self.omega)] {
-            if v.len() != n {
-                return Err(IntegrateError::WrongLength { what, len: v.len(), expected: n });
-            }
-        }
-        if !self.time.is_finite() {
-            return Err(IntegrateError::NotFinite {
-                what: "time",
-                time: self.time,
-                index: 0,
-                value: self.time,
-            });
-        }
-        for (what, v) in [("theta", &self.theta), ("omega", &self.omega)] {
-            not_finite(what, self.time, v)?;
-        }
-        Ok(())
-    }
-}
+#[cfg(feature = "alloc")]
+use crate::model::Potential;
 
 /// What an observer returns after each output: keep going or stop (e.g. once a scattering
 /// outcome is decided).
@@ -143,9 +126,10 @@ pub struct Report {
     pub stopped_early: bool,
     /// Whether the equations of motion had any damping.
     pub damped: bool,
-    /// The smallest energy scale of the chain: `1e-12 k_max a^2`, the energy of a spring
-    /// stretched by a millionth of the lattice spacing. A chain whose energy `E0` is below it (a
-    /// zero-energy kink at rest has `E0 ~ 1e-27`, rounding) measures errors against it instead.
+    /// The smallest energy scale of the model ([`Potential::energy_floor`]: `1e-12 k_max a^2`
+    /// for a chain, the energy of a spring stretched by a millionth of the lattice spacing). A
+    /// state whose energy `E0` is below it (a zero-energy kink at rest has `E0 ~ 1e-27`,
+    /// rounding) measures errors against it instead.
     pub energy_floor: f64,
 }
 
@@ -169,29 +153,19 @@ fn energy_scale(e0: f64, floor: f64) -> f64 {
     if scale > 0.0 { scale } else { 1.0 }
 }
 
-/// `1e-12 k_max a^2` (see [`Report::energy_floor`]), 0 if not finite.
-fn energy_floor<M: ChainModel + ?Sized>(model: &M) -> f64 {
-    let k = (0..model.spring_count()).map(|p| model.stiffness(p).abs()).fold(0.0, f64::max);
-    let a = model.lattice_spacing();
-    let floor = 1e-12 * k * a * a;
-    if floor.is_finite() { floor } else { 0.0 }
-}
-
-/// `T = sum_i I_i omega_i^2 / 2`.
-///
-/// # Panics
-/// If `omega` has fewer than `n` entries (a programming error, as for the `*_into` methods of
-/// [`ChainModel`]; [`State::check`] tells beforehand).
-pub fn kinetic_energy<M: ChainModel + ?Sized>(model: &M, omega: &[f64]) -> f64 {
-    let n = model.rotor_count();
-    0.5 * omega[..n].iter().enumerate().map(|(i, w)| model.inertia(i) * w * w).sum::<f64>()
+/// The model's [`Potential::energy_floor`], 0 if it is not finite and positive.
+#[cfg(feature = "alloc")]
+fn energy_floor<M: Potential + ?Sized>(model: &M) -> f64 {
+    let floor = model.energy_floor();
+    if floor.is_finite() && floor > 0.0 { floor } else { 0.0 }
 }
 
 /// `E = T + V` of a state.
 ///
 /// # Panics
-/// As [`kinetic_energy`], and as [`ChainModel::energy`] if `theta` has the wrong length.
-pub fn total_energy<M: ChainModel + ?Sized>(model: &M, state: &State) -> f64 {
+/// As [`kinetic_energy`], and as [`Potential::energy`] if `theta` has the wrong length.
+#[cfg(feature = "alloc")]
+pub fn total_energy<M: Potential + ?Sized>(model: &M, state: &State) -> f64 {
     kinetic_energy(model, &state.omega) + model.energy(&state.theta)
 }
 
@@ -221,7 +195,9 @@ impl Sponge {
     }
 }
 
-/// The damping rate of each of `n` rotors: `uniform` everywhere plus the sponge's, checked.
+/// The damping rate of each of `n` degrees of freedom: `uniform` everywhere plus the sponge's,
+/// checked.
+#[cfg(feature = "alloc")]
 pub fn damping_rates(n: usize, uniform: f64, sponge: Option<Sponge>) -> Result<Vec<f64>, IntegrateError> {
     check_non_negative("damping", uniform)?;
     if let Some(s) = sponge {
@@ -279,7 +255,8 @@ impl Schedule {
 
 /// A time integrator of the equations of motion: [`VerletOptions`] (fixed step, symplectic) and
 /// [`AdaptiveOptions`] (DOP853) implement it, so a run, a scattering experiment or a sweep takes
-/// either alike.
+/// either alike. [`Method`] chooses one by name.
+#[cfg(feature = "alloc")]
 pub trait Integrator {
     /// A short name for reports: `verlet`, `dop853`.
     fn name(&self) -> &'static str;
@@ -287,7 +264,7 @@ pub trait Integrator {
     /// Integrates `state` over `schedule`, calling `observer` with the state at its start and at
     /// every output time, and stopping early when it answers [`Flow::Stop`]. On return `state`
     /// holds the last state the observer saw.
-    fn integrate<M: ChainModel + ?Sized>(
+    fn integrate<M: Potential + ?Sized>(
         &self,
         model: &M,
         state: &mut State,
@@ -297,16 +274,17 @@ pub trait Integrator {
 }
 
 /// `Err(NotFinite)` naming the first non-finite entry of `v`.
-fn not_finite(what: &'static str, time: f64, v: &[f64]) -> Result<(), IntegrateError> {
+fn not_finite<T: crate::real::Real>(what: &'static str, time: f64, v: &[T]) -> Result<(), IntegrateError> {
     match v.iter().position(|x| !x.is_finite()) {
-        Some(index) => Err(IntegrateError::NotFinite { what, time, index, value: v[index] }),
+        Some(index) => Err(IntegrateError::NotFinite { what, time, index, value: v[index].widen() }),
         None => Ok(()),
     }
 }
 
 /// `1 / I_i`, checked: a zero, negative or non-finite inertia has no dynamics.
-fn inverse_inertia<M: ChainModel + ?Sized>(model: &M) -> Result<Vec<f64>, IntegrateError> {
-    (0..model.rotor_count())
+#[cfg(feature = "alloc")]
+fn inverse_inertia<M: Potential + ?Sized>(model: &M) -> Result<Vec<f64>, IntegrateError> {
+    (0..model.dof_count())
         .map(|i| {
             let inertia = model.inertia(i);
             // A subnormal inertia is positive and finite, but its inverse overflows.
@@ -323,6 +301,7 @@ fn inverse_inertia<M: ChainModel + ?Sized>(model: &M) -> Result<Vec<f64>, Integr
 /// outputs): a span that is a whole number of
 /// steps up to rounding takes exactly that many, and a positive span takes at least one (so the
 /// time always reaches the end). As a float: the caller checks it against its budget.
+#[cfg_attr(not(feature = "alloc"), allow(dead_code))]
 pub(crate) fn step_count(span: f64, dt: f64) -> f64 {
     if span <= 0.0 {
         return 0.0;
@@ -339,30 +318,35 @@ fn check_option(name: &'static str, value: f64, ok: bool, rule: &'static str) ->
 }
 
 /// `value > 0`, finite.
+#[cfg_attr(not(feature = "alloc"), allow(dead_code))]
 fn check_positive(name: &'static str, value: f64) -> Result<(), IntegrateError> {
     check_option(name, value, value > 0.0 && value.is_finite(), "positive and finite")
 }
 
 /// `value >= 0`, finite.
+#[cfg_attr(not(feature = "alloc"), allow(dead_code))]
 fn check_non_negative(name: &'static str, value: f64) -> Result<(), IntegrateError> {
     check_option(name, value, value >= 0.0 && value.is_finite(), "non-negative and finite")
 }
 
 /// The energy limit: positive (infinite switches the check off).
+#[cfg_attr(not(feature = "alloc"), allow(dead_code))]
 fn check_energy_limit(limit: f64) -> Result<(), IntegrateError> {
     check_option("energy_limit", limit, limit > 0.0, "positive (infinite: no check)")
 }
 
 /// Hands a state to the observer after recording its energy in the report, and stops a run
 /// whose energy left the limit.
+#[cfg(feature = "alloc")]
 struct Monitor {
     report: Report,
     limit: f64,
 }
 
+#[cfg(feature = "alloc")]
 impl Monitor {
     /// Starts the report from `state`; its energy must be finite.
-    fn new<M: ChainModel + ?Sized>(
+    fn new<M: Potential + ?Sized>(
         model: &M,
         state: &State,
         damped: bool,
@@ -389,7 +373,7 @@ impl Monitor {
 
     /// Records the energy of `state`, checks it, and asks the observer; `Ok(true)` if it said
     /// stop.
-    fn output<M: ChainModel + ?Sized>(
+    fn output<M: Potential + ?Sized>(
         &mut self,
         model: &M,
         state: &State,
@@ -399,7 +383,7 @@ impl Monitor {
     }
 
     /// [`Monitor::output`] with the potential energy of `state` already known.
-    fn output_with<M: ChainModel + ?Sized>(
+    fn output_with<M: Potential + ?Sized>(
         &mut self,
         model: &M,
         state: &State,

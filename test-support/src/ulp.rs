@@ -6,7 +6,7 @@ use std::cell::RefCell;
 use dashu_float::round::mode::HalfEven;
 use dashu_float::{ConstCache, Context, FBig};
 
-use super::random::SplitMix;
+use crate::random::SplitMix;
 
 std::thread_local! {
     /// pi at the working precisions, kept between calls (recomputing it dominated the time).

@@ -37,7 +37,7 @@ use super::{
     check_energy_limit, check_non_negative, check_option, check_positive, damping_rates, inverse_inertia,
     not_finite,
 };
-use crate::model::ChainModel;
+use crate::model::Potential;
 
 /// Settings of [`adaptive`]. Times in the unit `t` of paper Appendix B.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -74,13 +74,20 @@ pub struct AdaptiveOptions {
     /// [`IntegrateError::EnergyNotConserved`] (checked at every output). Default
     /// [`DEFAULT_ENERGY_LIMIT`]; infinite switches it off.
     pub energy_limit: f64,
+    /// A bound on the fastest mode's angular frequency at the start, in `1 / t`
+    /// ([`omega_bound`](super::bound::omega_bound), from the tangent stiffness): a run that could
+    /// not fit [`AdaptiveOptions::max_steps`] at DOP853's stability limit is then refused before
+    /// its first step ([`IntegrateError::StepBudget`]). Default `None`: the run is bounded by
+    /// `max_steps` alone (a model with only a [`Potential`] has no stiffness to bound it from);
+    /// the dynamics' runs fill it in.
+    pub omega_max: Option<f64>,
 }
 
 impl Default for AdaptiveOptions {
     fn default() -> Self {
         Self {
-            rtol: 1e-10,
-            atol: 1e-11,
+            rtol: super::Method::DOP853_RTOL,
+            atol: super::Method::DOP853_ATOL,
             initial_step: None,
             max_step: f64::INFINITY,
             min_step: 0.0,
@@ -88,6 +95,7 @@ impl Default for AdaptiveOptions {
             damping: 0.0,
             sponge: None,
             energy_limit: DEFAULT_ENERGY_LIMIT,
+            omega_max: None,
         }
     }
 }
@@ -104,6 +112,9 @@ impl AdaptiveOptions {
         check_option("min_step", self.min_step, ok, "non-negative, finite and at most max_step")?;
         check_option("max_steps", self.max_steps as f64, self.max_steps > 0, "at least 1")?;
         check_non_negative("damping", self.damping)?;
+        if let Some(omega) = self.omega_max {
+            check_positive("omega_max", omega)?;
+        }
         check_energy_limit(self.energy_limit)
     }
 }
@@ -130,7 +141,7 @@ const ALPHA: f64 = 1.0 / 8.0 - 0.2 * BETA;
 /// On return `state` holds the last state the observer saw: the one at the last output, or where
 /// it stopped the run. On [`IntegrateError::StepSizeTooSmall`], [`IntegrateError::TooManySteps`]
 /// and [`IntegrateError::NotFinite`] it holds the last accepted step, from which a run can resume.
-pub fn adaptive<M: ChainModel + ?Sized>(
+pub fn adaptive<M: Potential + ?Sized>(
     model: &M,
     state: &mut State,
     outputs: &[f64],
@@ -144,7 +155,7 @@ pub fn adaptive<M: ChainModel + ?Sized>(
 }
 
 /// [`adaptive`] with the output times given by `output(k)`, `k < count` (checked by the caller).
-fn run<M: ChainModel + ?Sized>(
+fn run<M: Potential + ?Sized>(
     model: &M,
     state: &mut State,
     output: &dyn Fn(usize) -> f64,
@@ -152,7 +163,7 @@ fn run<M: ChainModel + ?Sized>(
     options: &AdaptiveOptions,
     observer: &mut dyn FnMut(&State) -> Flow,
 ) -> Result<Report, IntegrateError> {
-    let rates = damping_rates(model.rotor_count(), options.damping, options.sponge)?;
+    let rates = damping_rates(model.dof_count(), options.damping, options.sponge)?;
     let damped = rates.iter().any(|&r| r > 0.0);
     let mut monitor = Monitor::new(model, state, damped, options.energy_limit)?;
     let f = EquationsOfMotion { model, inverse_inertia: inverse_inertia(model)?, damping: rates };
@@ -170,7 +181,7 @@ fn run<M: ChainModel + ?Sized>(
     // An explicit Runge-Kutta method needs h omega_max below its stability limit (about 6 for
     // DOP853 on oscillations, generously): a run that would need more steps than its budget at
     // that step is refused before it starts, instead of after max_steps.
-    if let Ok(omega) = super::verlet::omega_bound(model, &state.theta, 1.0) {
+    if let Some(omega) = options.omega_max {
         let needed = (t_end - state.time) * omega / STABILITY_LIMIT;
         if needed > options.max_steps as f64 {
             return Err(IntegrateError::StepBudget {
@@ -265,7 +276,7 @@ impl Integrator for AdaptiveOptions {
     }
 
     /// The outputs come from the dense output; they never shorten the steps.
-    fn integrate<M: ChainModel + ?Sized>(
+    fn integrate<M: Potential + ?Sized>(
         &self,
         model: &M,
         state: &mut State,
@@ -314,7 +325,7 @@ struct EquationsOfMotion<'a, M: ?Sized> {
     damping: Vec<f64>,
 }
 
-impl<M: ChainModel + ?Sized> EquationsOfMotion<'_, M> {
+impl<M: Potential + ?Sized> EquationsOfMotion<'_, M> {
     /// `dy = (omega, -I^-1 dV/dtheta - gamma omega)`.
     fn eval(&self, y: &[f64], dy: &mut [f64]) {
         let n = self.inverse_inertia.len();
@@ -403,7 +414,7 @@ impl Stepper {
 
     /// Hairer's starting step (HNW I Sec. II.4, "Starting step size"): a step with
     /// `h^8 max(||f'||, ||f||) = 0.01`, from one explicit Euler step of length `0.01 ||y||/||f||`.
-    fn initial_step<M: ChainModel + ?Sized>(
+    fn initial_step<M: Potential + ?Sized>(
         &mut self,
         f: &EquationsOfMotion<'_, M>,
         options: &AdaptiveOptions,
@@ -432,7 +443,7 @@ impl Stepper {
 
     /// Stages 1-11 of a step of size `h` from `y` (with `k_0 = f(y)`), the trial `y_new`, and the
     /// scaled error estimate (`<= 1` to accept).
-    fn attempt<M: ChainModel + ?Sized>(
+    fn attempt<M: Potential + ?Sized>(
         &mut self,
         f: &EquationsOfMotion<'_, M>,
         h: f64,
@@ -460,7 +471,7 @@ impl Stepper {
     }
 
     /// The interpolant of the accepted step `y -> y_new` of size `h` (needs `k_12 = f(y_new)`).
-    fn prepare_dense<M: ChainModel + ?Sized>(&mut self, f: &EquationsOfMotion<'_, M>, h: f64) {
+    fn prepare_dense<M: Potential + ?Sized>(&mut self, f: &EquationsOfMotion<'_, M>, h: f64) {
         for (s, row) in A.iter().enumerate().skip(13) {
             stage_point(&mut self.stage, &self.y, h, row, &self.k);
             f.eval(&self.stage, &mut self.k[s]);
