@@ -113,6 +113,23 @@ pub enum SweepError {
         /// Grid points along y.
         ny: usize,
     },
+    /// A point appended to a [`crate::ResultsFile`] whose coordinates are not, bit for bit, those
+    /// of the grid point its index names: it would be read back as the physics of another point.
+    #[error(
+        "point {index:?} was computed at ({}, {}) but the grid of {} has it at ({}, {}): \
+         a point is filed only under its own coordinates",
+        given.0, given.1, path.display(), grid.0, grid.1
+    )]
+    WrongCoordinates {
+        /// The results file.
+        path: PathBuf,
+        /// The point's grid index `(i, j)`.
+        index: (usize, usize),
+        /// The coordinates the point was computed at.
+        given: (f64, f64),
+        /// The grid's coordinates of `index`.
+        grid: (f64, f64),
+    },
     /// A point appended to a [`crate::ResultsFile`] that already holds it.
     #[error("point {index:?} is already in {}: a point is written once", path.display())]
     AlreadyDone {

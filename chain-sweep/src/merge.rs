@@ -170,11 +170,7 @@ pub fn merge_shards<R: Record>(shards: &[PathBuf], out: &Path) -> Result<MergeSu
 
     // The axes from the points' coordinates; their signature must be the files' (which hashes
     // every value), so every point sits exactly where the grid has it.
-    let grid = rebuild_grid(&seen, nx, ny, &first.grid).map_err(|reason| SweepError::Parse {
-        path: first.path.clone(),
-        line: 0,
-        reason,
-    })?;
+    let grid = rebuild_grid(&seen, (nx, ny), (&first.path, &first.grid))?;
 
     check_replaceable::<R>(out, &first.grid, &first.run, shards)?;
     let mut text = file::preamble::<R>(&grid, &first.run, None).into_bytes();
@@ -187,29 +183,50 @@ pub fn merge_shards<R: Record>(shards: &[PathBuf], out: &Path) -> Result<MergeSu
     Ok(MergeSummary { total, failed, shards: count, run: first.run.clone() })
 }
 
-fn rebuild_grid(seen: &Seen<'_>, nx: usize, ny: usize, signature: &str) -> Result<Grid, String> {
-    let (mut xs, mut ys) = (vec![f64::NAN; nx], vec![f64::NAN; ny]);
-    for (&(i, j), &(path, point)) in seen {
+/// The grid of the points' coordinates. A row's x (a column's y) is the value most of its points
+/// have; a point that differs is [`SweepError::WrongCoordinates`], naming the point, its
+/// coordinates and those of its row and column: a point filed under another point's index.
+fn rebuild_grid(
+    seen: &Seen<'_>,
+    (nx, ny): (usize, usize),
+    (first, signature): (&Path, &str),
+) -> Result<Grid, SweepError> {
+    let (mut x_votes, mut y_votes) = (vec![HashMap::new(); nx], vec![HashMap::new(); ny]);
+    for (&(i, j), (_, point)) in seen {
+        *x_votes[i].entry(point.coords.0.to_bits()).or_insert(0_usize) += 1;
+        *y_votes[j].entry(point.coords.1.to_bits()).or_insert(0_usize) += 1;
+    }
+    // Ties go to the smaller bit pattern, so the choice does not depend on the hash order.
+    let most = |votes: &HashMap<u64, usize>| {
+        votes
+            .iter()
+            .max_by_key(|&(bits, count)| (*count, std::cmp::Reverse(*bits)))
+            .map(|(b, _)| f64::from_bits(*b))
+    };
+    let xs: Vec<f64> = x_votes.iter().map(|v| most(v).unwrap_or(f64::NAN)).collect();
+    let ys: Vec<f64> = y_votes.iter().map(|v| most(v).unwrap_or(f64::NAN)).collect();
+    let mut indices: Vec<&(usize, usize)> = seen.keys().collect();
+    indices.sort_unstable();
+    for &(i, j) in indices {
+        let (path, point) = seen[&(i, j)];
         let (x, y) = point.coords;
-        for (axis, k, value, name) in [(&mut xs, i, x, "x"), (&mut ys, j, y, "y")] {
-            if axis[k].is_nan() {
-                axis[k] = value;
-            } else if axis[k].to_bits() != value.to_bits() {
-                return Err(format!(
-                    "point ({i}, {j}) of {} has {name} = {value:?}, other points of the same row have {:?}",
-                    path.display(),
-                    axis[k]
-                ));
-            }
+        if xs[i].to_bits() != x.to_bits() || ys[j].to_bits() != y.to_bits() {
+            return Err(SweepError::WrongCoordinates {
+                path: path.to_owned(),
+                index: (i, j),
+                given: (x, y),
+                grid: (xs[i], ys[j]),
+            });
         }
     }
-    let axis = |values: Vec<f64>| Axis::from_values(values).map_err(|e| e.to_string());
-    let grid = Grid::new(axis(xs)?, axis(ys)?).map_err(|e| e.to_string())?;
+    let unparsed = |reason: String| SweepError::Parse { path: first.to_owned(), line: 0, reason };
+    let axis = |values: Vec<f64>| Axis::from_values(values).map_err(|e| unparsed(e.to_string()));
+    let grid = Grid::new(axis(xs)?, axis(ys)?).map_err(|e| unparsed(e.to_string()))?;
     if grid.signature() != signature {
-        return Err(format!(
+        return Err(unparsed(format!(
             "the points' coordinates make the grid `{}`, but the files were written for `{signature}`",
             grid.signature()
-        ));
+        )));
     }
     Ok(grid)
 }

@@ -152,7 +152,7 @@ where
             }
             // A thread that panicked while holding the lock cannot have left a half line in the
             // file (`append` does not panic), so a poisoned lock is still usable.
-            file.lock().unwrap_or_else(|e| e.into_inner()).append((i, j), &result)?;
+            file.lock().unwrap_or_else(|e| e.into_inner()).append((i, j), coords, &result)?;
             written.fetch_add(1, Ordering::Relaxed);
             bar.inc(1);
             Ok::<_, SweepError>(())
@@ -247,13 +247,19 @@ impl<R: Record> ResultsFile<R> {
             .collect()
     }
 
-    /// Append point `index` with its record or its error message. A point outside the sweep
-    /// (the grid, or the shard) or already in the file is refused, and nothing is written.
-    pub fn append(&mut self, index: (usize, usize), outcome: &Result<R, String>) -> Result<(), SweepError> {
+    /// Append point `index`, computed at `coords`, with its record or its error message. A point
+    /// outside the sweep (the grid, or the shard), already in the file, or whose `coords` are not
+    /// bit for bit the grid's coordinates of `index` ([`SweepError::WrongCoordinates`]: the
+    /// reader would file its physics under the other point) is refused, and nothing is written.
+    pub fn append(
+        &mut self,
+        index: (usize, usize),
+        coords: (f64, f64),
+        outcome: &Result<R, String>,
+    ) -> Result<(), SweepError> {
         let (i, j) = index;
-        let coords =
-            self.grid.point(i, j).filter(|_| self.shard.is_none_or(|s| s.contains(&self.grid, index)));
-        let Some(coords) = coords else {
+        let grid = self.grid.point(i, j).filter(|_| self.shard.is_none_or(|s| s.contains(&self.grid, index)));
+        let Some(grid) = grid else {
             return Err(SweepError::NotInSweep {
                 path: self.appender.path.clone(),
                 index,
@@ -262,10 +268,18 @@ impl<R: Record> ResultsFile<R> {
                 ny: self.grid.ys().len(),
             });
         };
+        if grid.0.to_bits() != coords.0.to_bits() || grid.1.to_bits() != coords.1.to_bits() {
+            return Err(SweepError::WrongCoordinates {
+                path: self.appender.path.clone(),
+                index,
+                given: coords,
+                grid,
+            });
+        }
         if self.done.contains_key(&index) {
             return Err(SweepError::AlreadyDone { path: self.appender.path.clone(), index });
         }
-        self.appender.append(&format_point(index, coords, outcome))?;
+        self.appender.append(&format_point(index, grid, outcome))?;
         self.done.insert(index, outcome.is_err());
         Ok(())
     }

@@ -215,6 +215,21 @@ fn bad_shard_sets_are_refused_with_the_reason_and_nothing_written() {
     let (code, stderr) = merge(&[bad, s(1, 2)], &out);
     assert_eq!(code, Some(1));
     assert!(stderr.contains("does not belong to shard 0/2"), "{stderr}");
+    // A point filed under its index with other coordinates (k_i/k edited to 0.55): refused with
+    // both coordinates, whichever shard's row it disagrees with.
+    let edited = d.join("edited.shard-0-of-2.csv");
+    let mut lines: Vec<String> = text.lines().map(str::to_owned).collect();
+    let mut fields: Vec<String> = lines[2].split(',').map(str::to_owned).collect();
+    let grid_x = fields[2].clone();
+    fields[2] = "0.55".to_owned();
+    lines[2] = fields.join(",");
+    fs::write(&edited, lines.join("\n") + "\n").unwrap();
+    let (code, stderr) = merge(&[edited, s(1, 2)], &out);
+    assert_eq!(code, Some(1), "{stderr}");
+    let expected = format!("was computed at (0.55, {}) but the grid", fields[3]);
+    assert!(stderr.contains(&expected), "{stderr}");
+    assert!(stderr.contains(&format!("has it at ({grid_x}, {})", fields[3])), "{stderr}");
+    assert!(!out.exists());
     // The output must not clobber a file of another kind.
     let notes = d.join("notes.csv");
     fs::write(&notes, "name,score\n").unwrap();

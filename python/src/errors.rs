@@ -437,6 +437,13 @@ pub fn sweep(py: Python<'_>, e: &SweepError) -> PyErr {
         SweepError::NotInSweep { path: p, index, .. } => {
             Details { variant: "NotInSweep", ..d }.f("path", path(p)).f("index", *index)
         }
+        SweepError::WrongCoordinates { path: p, index, given, grid } => {
+            Details { variant: "WrongCoordinates", ..d }
+                .f("path", path(p))
+                .f("index", *index)
+                .f("given", *given)
+                .f("grid", *grid)
+        }
         SweepError::AlreadyDone { path: p, index } => {
             Details { variant: "AlreadyDone", ..d }.f("path", path(p)).f("index", *index)
         }

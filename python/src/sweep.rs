@@ -230,11 +230,15 @@ fn item<'py, T: FromPyObjectOwned<'py>>(d: &Bound<'py, PyDict>, key: &str) -> Py
     args::item(d, "record", key)
 }
 
-/// A record dict back into the point and its outcome.
-fn record_of(d: &Bound<'_, PyDict>) -> PyResult<((usize, usize), Result<PointRecord, String>)> {
+/// A record dict's grid index, the coordinates it was computed at, and its outcome.
+type RecordOf = ((usize, usize), (f64, f64), Result<PointRecord, String>);
+
+/// A record dict back into the point, its coordinates and its outcome.
+fn record_of(d: &Bound<'_, PyDict>) -> PyResult<RecordOf> {
     let index = (item(d, "i")?, item(d, "j")?);
+    let coords = (item(d, "ki")?, item(d, "v0")?);
     if let Some(error) = item::<Option<String>>(d, "error")? {
-        return Ok((index, Err(error)));
+        return Ok((index, coords, Err(error)));
     }
     let outcome: String = item(d, "outcome")?;
     let outcome = Outcome::from_str(&outcome).map_err(|e| value_error(e.to_string()))?;
@@ -246,6 +250,7 @@ fn record_of(d: &Bound<'_, PyDict>) -> PyResult<((usize, usize), Result<PointRec
     let integrator = Recomputed::from_str(&item::<String>(d, "integrator")?).map_err(value_error)?;
     Ok((
         index,
+        coords,
         Ok(PointRecord {
             outcome,
             t_decided: item(d, "t_decided")?,
@@ -345,11 +350,13 @@ impl ResultsFile {
         Ok(d)
     }
 
-    /// Append one record dict as one whole line. A point outside the grid or already in the file
-    /// raises SweepError and writes nothing.
+    /// Append one record dict as one whole line. A point outside the grid, already in the file,
+    /// or whose ``ki`` and ``v0`` are not bit for bit the grid's coordinates of its ``(i, j)``
+    /// (``variant == "WrongCoordinates"``, with ``given`` and ``grid``) raises SweepError and
+    /// writes nothing.
     fn append(&mut self, py: Python<'_>, record: &Bound<'_, PyDict>) -> PyResult<()> {
-        let (index, outcome) = record_of(record)?;
-        self.open()?.append(index, &outcome).map_err(|e| errors::sweep(py, &e))
+        let (index, coords, outcome) = record_of(record)?;
+        self.open()?.append(index, coords, &outcome).map_err(|e| errors::sweep(py, &e))
     }
 
     /// Sync the file to disk and release its lock.

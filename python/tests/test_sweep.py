@@ -282,3 +282,28 @@ def test_a_t_max_past_the_output_budget_is_a_config_error_before_any_point(tmp_p
     assert (e.t_max, e.output_interval, e.budget) == (1e9, 0.01, 1_000_000)
     assert e.outputs == pytest.approx(1e11)
     assert not out.exists()
+
+
+def test_a_record_is_appended_only_under_its_own_coordinates(tmp_path):
+    out = tmp_path / "r.csv"
+    xs, ys = [0.25, 1.0], [2.0]
+    d = _native.PhaseDiagram("antikink")
+    record = dict(i=1, j=0, ki=1.0, v0=2.0, outcome=None, t_decided=None, confirmed=None, later=None,
+                  t_later=None, kinks_final=None, antikinks_final=None, energy_error=None,
+                  integrator=None, error="computed elsewhere")
+    with _native.ResultsFile(xs, ys, str(out), d.run_label) as f:
+        # Computed at k_i/k = 0.5 (or NaN, or one ulp off 1.0), filed as point (1, 0) at 1.0.
+        for ki in (0.5, float("nan"), np.nextafter(1.0, 2.0), 0.25):
+            with pytest.raises(rc.SweepError) as info:
+                f.append({**record, "ki": float(ki)})
+            e = info.value
+            assert e.variant == "WrongCoordinates" and e.index == (1, 0) and e.grid == (1.0, 2.0)
+            assert np.array_equal(e.given, (ki, 2.0), equal_nan=True)
+            assert f"but the grid of {out} has it at (1, 2)" in str(e)
+        with pytest.raises(rc.SweepError, match=r"computed at \(1, 3\)"):
+            f.append({**record, "v0": 3.0})
+        assert f.missing() == [(0, 0), (1, 0)]
+        f.append(record)
+    [point] = _native.read_points(str(out))
+    assert (point["i"], point["j"], point["ki"], point["v0"], point["error"]) == (1, 0, 1.0, 2.0,
+                                                                                  "computed elsewhere")

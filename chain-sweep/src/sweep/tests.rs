@@ -318,3 +318,35 @@ fn a_stop_finishes_the_points_started_and_says_how_many_the_file_holds() {
     assert_eq!(summary.computed + summary.skipped, 64);
     assert_complete(&g, &path);
 }
+
+#[test]
+fn a_point_is_appended_only_under_its_own_coordinates() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("r.csv");
+    let grid = grid("0:1:3", "1:2:2");
+    let mut file = ResultsFile::<Probe>::open(&grid, &path, &options()).unwrap();
+    let (x1, y0) = grid.point(1, 0).unwrap();
+    assert_eq!((x1, y0), (0.5, 1.0));
+    // Computed at x = 0.0 (the coordinates of point (0, 0)) but filed as point (1, 0); then at
+    // NaN, then one ulp off, then the sign of a zero: each refused with both coordinates.
+    let next_up = f64::from_bits(x1.to_bits() + 1);
+    for given in [(0.0, y0), (f64::NAN, y0), (next_up, y0), (x1, 2.0)] {
+        let err = file.append((1, 0), given, &probe(given.0, given.1)).unwrap_err();
+        match err {
+            SweepError::WrongCoordinates { index, given: g, grid: at, .. } => {
+                assert_eq!(index, (1, 0));
+                assert_eq!((g.0.to_bits(), g.1.to_bits()), (given.0.to_bits(), given.1.to_bits()));
+                assert_eq!(at, (0.5, 1.0));
+            }
+            other => panic!("expected WrongCoordinates, got {other}"),
+        }
+    }
+    let err = file.append((0, 0), (-0.0, 1.0), &probe(0.0, 1.0)).unwrap_err();
+    assert!(err.to_string().contains("computed at (-0, 1) but the grid"), "{err}");
+    // Nothing was written, and the right coordinates are accepted.
+    file.append((1, 0), (x1, y0), &probe(x1, y0)).unwrap();
+    file.finish().unwrap();
+    let points = read_points::<Probe>(&path).unwrap();
+    assert_eq!(points.len(), 1);
+    assert_eq!((points[0].index, points[0].coords), ((1, 0), (0.5, 1.0)));
+}
