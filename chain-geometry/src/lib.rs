@@ -24,7 +24,7 @@ pub enum ParameterError {
         n: usize,
     },
     /// A length, stiffness or mass that must be positive is not (or is not finite).
-    #[error("`{key}` must be a finite number > 0, got {value}")]
+    #[error("`{key}` must be a finite number > 0, got {}", Short(*value))]
     NotPositive {
         /// Which parameter.
         key: Key,
@@ -47,8 +47,9 @@ pub enum ParameterError {
     },
     /// A rest length that no uniform state `theta_i = theta_bar` can have.
     #[error(
-        "rest_length = {rest_length} admits no uniform state: need a < rest_length < \
-         sqrt(a^2 + 4 r^2) = {max:.6} (a = {a}, r = {r})"
+        "rest_length = {} admits no uniform state: need a < rest_length < \
+         sqrt(a^2 + 4 r^2) = {:.6} (a = {}, r = {})",
+        Short(*rest_length), Short(*max), Short(*a), Short(*r)
     )]
     RestLengthOutOfRange {
         /// Rest length `l0`, in units of length (lattice spacing `a` = 1 in the paper).
@@ -183,12 +184,14 @@ struct PhaseMessage {
 impl fmt::Display for PhaseMessage {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let Self { theta_bar, a, r, two_r_sin, limit } = *self;
+        let (theta_bar, a, r, two_r_sin, limit) =
+            (Short(theta_bar), Short(a), Short(r), Short(two_r_sin), Short(limit));
         write!(f, "theta_bar = {theta_bar} is outside the flipper phase: ")?;
-        if theta_bar.is_nan() {
+        if theta_bar.0.is_nan() {
             write!(f, "it must be a number (the uniform states are theta_i = +theta_bar and -theta_bar)")
-        } else if theta_bar <= 0.0 {
+        } else if theta_bar.0 <= 0.0 {
             write!(f, "it must be > 0 (the uniform states are theta_i = +theta_bar and -theta_bar)")
-        } else if two_r_sin >= a {
+        } else if two_r_sin.0 >= a.0 {
             write!(
                 f,
                 "need 2 r sin(theta_bar) < a, here 2 r sin(theta_bar) = {two_r_sin:.6} with a = {a}, r = {r}; \
@@ -196,6 +199,32 @@ impl fmt::Display for PhaseMessage {
             )
         } else {
             write!(f, "need theta_bar < pi/2 (the angle is measured from the vertical)")
+        }
+    }
+}
+
+/// A number in an error message, in a short exact form: the shortest decimal that reads back to
+/// the same `f64` (Rust's `{}`), in exponent form (`5e-324`, `1e300`) where the plain form would
+/// spell out hundreds of zeros. A precision (`{:.6}`) is honoured in either form. Every message
+/// of the chain's rules prints its numbers through it, so no message holds a 300-digit decimal.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Short(pub f64);
+
+impl Short {
+    /// Magnitudes printed plainly: from 1e-5 up to (not including) 1e16, as Rust's `{:?}` does.
+    fn plain(x: f64) -> bool {
+        !x.is_finite() || x == 0.0 || (1e-5..1e16).contains(&x.abs())
+    }
+}
+
+impl fmt::Display for Short {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let x = self.0;
+        match (Self::plain(x), f.precision()) {
+            (true, None) => write!(f, "{x}"),
+            (true, Some(p)) => write!(f, "{x:.p$}"),
+            (false, None) => write!(f, "{x:e}"),
+            (false, Some(p)) => write!(f, "{x:.p$e}"),
         }
     }
 }
@@ -336,6 +365,39 @@ pub fn spring_length(a: f64, r1: f64, r2: f64, theta1: f64, theta2: f64) -> f64 
 #[cfg(test)]
 mod tests {
     use super::*;
+    extern crate std;
+    use std::format;
+    use std::string::ToString;
+
+    #[test]
+    fn numbers_in_messages_are_short_and_exact() {
+        for (x, text) in [
+            (5e-324, "5e-324"),
+            (1e300, "1e300"),
+            (-1e-300, "-1e-300"),
+            (f64::MAX, "1.7976931348623157e308"),
+            (0.1, "0.1"),
+            (20.0, "20"),
+            (1e15, "1000000000000000"),
+            (1e16, "1e16"),
+            (1e-5, "0.00001"),
+            (f64::NAN, "NaN"),
+            (f64::NEG_INFINITY, "-inf"),
+            (-0.0, "-0"),
+        ] {
+            assert_eq!(Short(x).to_string(), text);
+            if x.is_finite() {
+                assert_eq!(Short(x).to_string().parse::<f64>().unwrap().to_bits(), x.to_bits(), "{text}");
+            }
+        }
+        assert_eq!(format!("{:.3}", Short(1e300)), "1.000e300");
+        assert_eq!(format!("{:.3}", Short(2.5)), "2.500");
+        // The builder's messages: no 300-digit decimals.
+        let e = ParameterError::NotPositive { key: Key::RotorLength, value: 5e-324 };
+        assert!(e.to_string().ends_with("got 5e-324"), "{e}");
+        let e = ParameterError::RestLengthOutOfRange { rest_length: 1e300, a: 1.0, r: 0.8, max: 1.886796 };
+        assert!(e.to_string().starts_with("rest_length = 1e300 admits"), "{e}");
+    }
 
     #[test]
     fn rest_length_and_its_inverse_agree() {

@@ -303,3 +303,26 @@ fn exit_codes_are_documented_and_kept() {
     assert_eq!(paper(&["--demo-pause-writes", "5"]).0, Some(2), "a test flag without --demo");
     assert_eq!(paper(&["--demo", "--quick", "--out", out]).0, Some(3));
 }
+
+/// `paper` writing into a pipe whose reader has gone (`paper --list | head -0`), on stdout or on
+/// stderr: it ends quietly, by SIGPIPE's default action, never with the panic "failed printing to
+/// stdout" (status 101).
+#[cfg(unix)]
+#[test]
+fn a_reader_that_goes_away_ends_paper_quietly() {
+    use std::os::unix::process::ExitStatusExt;
+    for (args, on_stdout) in [(&["--list"][..], true), (&["--out", "/proc/forbidden", "--demo"][..], false)] {
+        let (reader, writer) = std::io::pipe().unwrap();
+        drop(reader);
+        let mut command = Command::new(env!("CARGO_BIN_EXE_paper"));
+        command.args(args).stdin(Stdio::null());
+        if on_stdout {
+            command.stdout(writer).stderr(Stdio::piped());
+        } else {
+            command.stdout(Stdio::null()).stderr(writer);
+        }
+        let output = command.output().unwrap();
+        assert_eq!(output.status.signal(), Some(libc::SIGPIPE), "{args:?}: {:?}", output.status);
+        assert!(output.stderr.is_empty(), "{args:?}: {}", String::from_utf8_lossy(&output.stderr));
+    }
+}

@@ -76,3 +76,19 @@ fn bad_input_exits_2_and_gapless_exits_3() {
     let out = network(&["counts", &kagome, "--cells", "4", "--boundary", "free"]);
     assert_eq!(out.status.code(), Some(2));
 }
+
+/// `network cell square | head -0`: the command ends quietly (SIGPIPE), never with a panic.
+#[cfg(unix)]
+#[test]
+fn a_reader_that_goes_away_ends_network_quietly() {
+    use std::os::unix::process::ExitStatusExt;
+    let (reader, writer) = std::io::pipe().unwrap();
+    drop(reader);
+    let out = Command::new(env!("CARGO_BIN_EXE_network"))
+        .args(["cell", "square"])
+        .stdout(writer)
+        .output()
+        .expect("the network binary runs");
+    assert_eq!(out.status.signal(), Some(libc::SIGPIPE), "{:?}", out.status);
+    assert!(out.stderr.is_empty(), "{}", String::from_utf8_lossy(&out.stderr));
+}

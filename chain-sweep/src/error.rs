@@ -4,6 +4,8 @@
 use std::io;
 use std::path::PathBuf;
 
+use rotor_chain::geometry::Short;
+
 use crate::grid::GridError;
 
 /// Why a sweep could not run, or a results file could not be read. Errors of a single point's
@@ -118,7 +120,7 @@ pub enum SweepError {
     #[error(
         "point {index:?} was computed at ({}, {}) but the grid of {} has it at ({}, {}): \
          a point is filed only under its own coordinates",
-        given.0, given.1, path.display(), grid.0, grid.1
+        Short(given.0), Short(given.1), path.display(), Short(grid.0), Short(grid.1)
     )]
     WrongCoordinates {
         /// The results file.
@@ -209,6 +211,19 @@ pub enum SweepError {
     InvalidRecord {
         /// What is wrong with the columns.
         reason: String,
+    },
+    #[error(
+        "{requested} worker threads asked for; at most {max} ({} per core, {cores} cores), and at least 1",
+        crate::threads::THREADS_PER_CORE
+    )]
+    /// A thread count of 0 or above [`crate::threads::max_threads`].
+    Threads {
+        /// The threads asked for.
+        requested: usize,
+        /// The most a sweep starts on this machine.
+        max: usize,
+        /// The machine's cores.
+        cores: usize,
     },
     #[error("cannot start {threads} worker threads: {source}")]
     /// The worker threads could not be started.

@@ -68,6 +68,8 @@
 //! | [`file`](mod@file) | the results file format, [`read_points`], [`read_results`] |
 //! | [`sweep`] | [`run_sweep`], [`SweepOptions`], [`Summary`], [`ResultsFile`]; the crash-safety rules |
 //! | [`shard`] | [`Shard`]: one of `N` interleaved parts of a grid, for job arrays; `--shard slurm` |
+//! | [`threads`] | [`threads::worker_threads`]: never more threads than points, at most four per core |
+//! | [`pipe`] | [`pipe::exit_quietly_on_broken_pipe`]: the commands end quietly when their reader goes away |
 //! | [`merge`] | [`merge_shards`]: the shard files of a split sweep joined into the whole diagram |
 //! | [`scattering`] | [`scattering::PhaseDiagram`]: one point of the scattering phase diagram, its energy budget, and [`scattering::PointRecord`], its record |
 #![deny(missing_docs)]
@@ -76,10 +78,12 @@ pub mod error;
 pub mod file;
 pub mod grid;
 pub mod merge;
+pub mod pipe;
 pub mod record;
 pub mod scattering;
 pub mod shard;
 pub mod sweep;
+pub mod threads;
 
 pub use error::SweepError;
 pub use file::{Point, ResultRow, read_points, read_results};

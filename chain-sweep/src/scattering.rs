@@ -15,8 +15,9 @@ use rotor_chain::dynamics::DynamicsError;
 use rotor_chain::dynamics::run::{ABSORBING_ENDS, RunOptions};
 pub use rotor_chain::dynamics::scatter::budget::{BudgetError, DEFAULT_ENERGY_TOLERANCE, VerletBreach};
 use rotor_chain::dynamics::scatter::{EnergyBudget, ScatterSetup, paper_time_unit, scatter_within_budget};
+use rotor_chain::geometry::Short;
 pub use rotor_chain::integrate::Method;
-use rotor_chain::integrate::{IntegrateError, Schedule};
+use rotor_chain::integrate::{IntegrateError, Schedule, VerletOptions};
 use rotor_chain::statics::walls::Charge;
 use rotor_chain::{ParameterError, RuntimeChain};
 
@@ -144,7 +145,7 @@ pub enum ConfigError {
     #[error("invalid chain: {0}")]
     /// The chain breaks a parameter rule.
     Chain(#[from] ParameterError),
-    #[error("invalid {name}: {value} must be {rule}")]
+    #[error("invalid {name}: {} must be {rule}", Short(*value))]
     /// A setting out of its range.
     Value {
         /// The setting.
@@ -155,8 +156,9 @@ pub enum ConfigError {
         rule: &'static str,
     },
     #[error(
-        "t_max = {t_max} needs {outputs:e} outputs of the run every {output_interval}, more than its budget of \
-         {budget}: shorten t_max"
+        "t_max = {} needs {outputs:e} outputs of the run every {}, more than its budget of \
+         {budget}: shorten t_max",
+        Short(*t_max), Short(*output_interval)
     )]
     /// `t_max` asks every point's run for more output times than a run allows
     /// ([`RunOptions::max_outputs`]): refused with the settings, not at every point.
@@ -169,6 +171,23 @@ pub enum ConfigError {
         outputs: f64,
         /// The most outputs a run allows.
         budget: usize,
+    },
+    #[error(
+        "dt = {} needs {steps:e} Verlet steps to reach t_max = {}, more than a run's budget of {budget}: \
+         lengthen dt or leave it to the default",
+        Short(*dt), Short(*t_max)
+    )]
+    /// The Verlet step `dt` is so short that no run could reach `t_max` within the run's step
+    /// budget ([`RunOptions::max_steps`]): refused with the settings, before any point.
+    StepBudget {
+        /// The step asked for.
+        dt: f64,
+        /// The end of each run.
+        t_max: f64,
+        /// The steps a run would need.
+        steps: f64,
+        /// The most steps a run allows.
+        budget: u64,
     },
     #[error("a chain of {n} rotors cannot hold the experiment: {source}")]
     /// The experiment of [`PhaseDiagram::setup`] does not fit on the chain (too short for the
@@ -276,6 +295,20 @@ impl PhaseDiagram {
                 outputs,
                 budget,
             });
+        }
+        // The step budget every Verlet run would meet (the run's own check, at its start): a
+        // step too short to reach t_max is refused here, not found at every point (each of which
+        // would then be recomputed with DOP853).
+        if let (Method::Verlet, Some(dt), Ok(schedule)) = (
+            self.integrator,
+            self.dt,
+            Schedule::covering(0.0, self.t_max, run.output_interval, run.max_outputs),
+        ) {
+            let verlet = VerletOptions { max_steps: run.max_steps, ..VerletOptions::new(dt) };
+            if let Err(IntegrateError::StepBudget { steps, budget, .. }) = verlet.steps_per_output(&schedule)
+            {
+                return Err(ConfigError::StepBudget { dt, t_max: self.t_max, steps, budget });
+            }
         }
         // The experiment itself (the defect starts 15.5 sites right of the middle spring, more
         // than `edge_margin` from the end): refused here, not at every point of the grid.

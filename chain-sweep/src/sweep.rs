@@ -33,6 +33,7 @@ use crate::file::{
 use crate::grid::Grid;
 use crate::record::Record;
 use crate::shard::Shard;
+use crate::threads::worker_threads;
 
 /// How a sweep runs. Build with [`SweepOptions::new`] and change fields as needed.
 #[derive(Clone, Debug)]
@@ -44,7 +45,9 @@ pub struct SweepOptions {
     /// in the file's first line; resuming refuses a file written with another label.
     pub run: String,
     /// Worker threads; `None` uses every core (rayon's default, which honours
-    /// `RAYON_NUM_THREADS`).
+    /// `RAYON_NUM_THREADS`). Never more threads start than there are points to compute, and more
+    /// than [`crate::threads::max_threads`] (or 0) is [`SweepError::Threads`]
+    /// ([`crate::threads::worker_threads`]).
     pub threads: Option<usize>,
     /// Compute again the points the file records as failed (their lines are removed first).
     /// Off by default: a failure is a result, and most failures repeat.
@@ -104,6 +107,9 @@ pub struct Summary {
     pub repaired_bytes: usize,
     /// Wall-clock time of the sweep.
     pub elapsed: Duration,
+    /// Worker threads the sweep ran on: [`SweepOptions::threads`] clamped to the points to
+    /// compute ([`crate::threads::worker_threads`]); 0 when no point was left.
+    pub threads: usize,
 }
 
 /// Compute `compute(x, y)` at every point of `grid` that `path` does not have yet, in parallel,
@@ -127,10 +133,12 @@ where
     F: Fn(f64, f64) -> Result<R, E> + Sync,
 {
     let start = Instant::now();
-    let pool = thread_pool(options.threads)?;
+    // A bad count is refused before the file is touched; the pool is sized by the work left.
+    worker_threads(options.threads, usize::MAX)?;
     let file = ResultsFile::<R>::open(grid, path, options)?;
     let mut summary = file.summary.clone();
     let todo = file.missing();
+    let pool = thread_pool(options.threads, todo.len())?;
 
     let bar = progress_bar(&options.name, summary.total, summary.skipped, todo.len(), options.progress);
     let path = file.path().to_owned();
@@ -173,6 +181,7 @@ where
     summary.computed = todo.len();
     summary.failed = failed.into_inner();
     summary.elapsed = start.elapsed();
+    summary.threads = if todo.is_empty() { 0 } else { pool.current_num_threads() };
     Ok(summary)
 }
 
@@ -306,7 +315,7 @@ where
     E: Display,
     F: Fn(f64, f64) -> Result<R, E> + Sync,
 {
-    let pool = thread_pool(threads)?;
+    let pool = thread_pool(threads, grid.len())?;
     let indices: Vec<(usize, usize)> = grid.indices().collect();
     Ok(pool.install(|| {
         indices
@@ -319,12 +328,14 @@ where
     }))
 }
 
-fn thread_pool(threads: Option<usize>) -> Result<rayon::ThreadPool, SweepError> {
-    let mut builder = rayon::ThreadPoolBuilder::new().thread_name(|k| format!("sweep-{k}"));
-    if let Some(threads) = threads {
-        builder = builder.num_threads(threads);
-    }
-    builder.build().map_err(|source| SweepError::ThreadPool { threads: threads.unwrap_or(0), source })
+/// A pool of [`worker_threads`] threads for `points` points.
+fn thread_pool(requested: Option<usize>, points: usize) -> Result<rayon::ThreadPool, SweepError> {
+    let threads = worker_threads(requested, points)?;
+    rayon::ThreadPoolBuilder::new()
+        .thread_name(|k| format!("sweep-{k}"))
+        .num_threads(threads)
+        .build()
+        .map_err(|source| SweepError::ThreadPool { threads, source })
 }
 
 /// One point; a panic becomes the point's error instead of ending the sweep.

@@ -82,6 +82,14 @@ fn bad_arguments_exit_2_before_anything_is_written() {
         (&[("--dt=-1e-3", "")], "dt: -0.001 must be positive and finite"),
         (&[("--energy-tolerance", "0")], "energy tolerance: 0 must be positive and finite"),
         (&[("--t-max", "inf")], "t_max: inf must be positive and finite"),
+        // A step no run could take to t_max within its budget: refused before any point, as
+        // t_max past the output budget is (1e-300 and 1e-7: 2e301 and 2e8 steps against 1e8).
+        (
+            &[("--dt", "1e-300")],
+            "dt = 1e-300 needs 1.9999999999999999e301 Verlet steps to reach t_max = 20, more than a run's budget of 100000000",
+        ),
+        (&[("--dt", "1e-7")], "dt = 1e-7 needs 2e8 Verlet steps"),
+        (&[("--t-max", "1e300")], "t_max = 1e300 needs"),
         (&[("--ki", "0.01:1:1000"), ("--v0", "0:1:100000")], "more than the limit"),
     ];
     for &(changes, expected) in cases {
@@ -200,4 +208,48 @@ fn real_points_come_with_their_energy_budget() {
     outcomes.sort_by(|a, b| a.0.total_cmp(&b.0));
     assert_eq!(outcomes.iter().map(|o| o.1).collect::<Vec<_>>(), ["trapped", "transmitted"]);
     assert!(outcomes.iter().all(|o| o.2 > 0.0 && o.2 < 1e-3), "{outcomes:?}");
+}
+
+#[test]
+fn threads_are_bounded_by_the_cores_and_clamped_to_the_points() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("r.csv");
+    let out = out.to_str().unwrap();
+    let max = chain_sweep::threads::max_threads();
+    // 20 000 threads on any machine this runs on: refused at once, nothing written.
+    let start = Instant::now();
+    let (code, stderr) = phase_diagram(out, &[("--threads", "20000")]);
+    assert_eq!(code, Some(2), "{stderr}");
+    let expected = format!("invalid --threads: 20000 worker threads asked for; at most {max} (4 per core");
+    assert!(stderr.contains(&expected), "{stderr}");
+    assert!(start.elapsed() < Duration::from_secs(10) && !dir.path().join("r.csv").exists());
+    // The most allowed, on one point: one thread, and the clamp is reported.
+    let max = max.to_string();
+    let (code, stderr) = phase_diagram(out, &[("--threads", &max), ("--ki", "0.5:0.5:1"), ("--v0", "1:1:1")]);
+    assert_eq!(code, Some(0), "{stderr}");
+    let expected = format!("ran on 1 worker thread(s), not the {max} asked for");
+    assert!(stderr.contains(&expected), "{stderr}");
+}
+
+/// The reader of stderr gone (`phase-diagram ... 2>&1 | head -0`): the sweep ends quietly by
+/// SIGPIPE when it first reports, never with a panic, and the results file holds whole points.
+#[cfg(unix)]
+#[test]
+fn a_reader_that_goes_away_ends_phase_diagram_quietly() {
+    use std::os::unix::process::ExitStatusExt;
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("r.csv");
+    let (reader, writer) = std::io::pipe().unwrap();
+    drop(reader);
+    let status = Command::new(env!("CARGO_BIN_EXE_phase-diagram"))
+        .args(["--defect", "kink", "--ki", "0.1:1:3", "--v0", "0.5:12:3", "--fake-delay-ms", "0", "--out"])
+        .arg(&out)
+        .stdin(Stdio::null())
+        .stdout(Stdio::null())
+        .stderr(writer)
+        .status()
+        .unwrap();
+    assert_eq!(status.signal(), Some(libc::SIGPIPE), "{status:?}");
+    let points = chain_sweep::read_points::<chain_sweep::scattering::PointRecord>(&out).unwrap();
+    assert_eq!(points.len(), 9);
 }

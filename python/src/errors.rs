@@ -321,6 +321,11 @@ pub fn config(py: Python<'_>, e: &ConfigError) -> PyErr {
                 .f("outputs", outputs)
                 .f("budget", budget)
         }
+        &ConfigError::StepBudget { dt, t_max, steps, budget } => Details { variant: "StepBudget", ..d }
+            .f("dt", dt)
+            .f("t_max", t_max)
+            .f("steps", steps)
+            .f("budget", budget),
         ConfigError::Experiment { n, source } => {
             Details { variant: "Experiment", ..d }.f("n", *n).source(dynamics(py, source))
         }

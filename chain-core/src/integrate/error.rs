@@ -1,4 +1,7 @@
-//! Errors of the integrators. Each carries the numbers that explain it.
+//! Errors of the integrators. Each carries the numbers that explain it, printed short and exact
+//! ([`Short`]).
+
+use chain_geometry::Short;
 
 /// A run that could not be started or completed.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
@@ -17,7 +20,7 @@ pub enum IntegrateError {
     /// A non-finite number: in the input, or in the state or the accelerations during the run
     /// (a force law that returned NaN, or a fixed step beyond the stability limit). `time` is the
     /// time of the state concerned (0 for [`VerletOptions::stable_for`](super::VerletOptions::stable_for)).
-    #[error("{what}[{index}] is not finite ({value}) at t = {time}")]
+    #[error("{what}[{index}] is not finite ({}) at t = {}", Short(*value), Short(*time))]
     NotFinite {
         /// Which input.
         what: &'static str,
@@ -30,7 +33,7 @@ pub enum IntegrateError {
     },
     /// The error control asked for a step too short to be taken: below `min_step`, or so short
     /// that `t + step` rounds to `t`.
-    #[error("the step size fell to {step:e} at t = {time}, below what can be taken there")]
+    #[error("the step size fell to {step:e} at t = {}, below what can be taken there", Short(*time))]
     StepSizeTooSmall {
         /// Time of the event, in the unit `t` of Appendix B.
         time: f64,
@@ -38,7 +41,7 @@ pub enum IntegrateError {
         step: f64,
     },
     /// The step budget ran out before the last output time.
-    #[error("gave up at t = {time} after {steps} steps (accepted and rejected): raise max_steps")]
+    #[error("gave up at t = {} after {steps} steps (accepted and rejected): raise max_steps", Short(*time))]
     TooManySteps {
         /// Time of the event, in the unit `t` of Appendix B.
         time: f64,
@@ -92,8 +95,9 @@ pub enum IntegrateError {
     /// `limit * |E0|`. A fixed step past the stability limit, or forces that are not the
     /// energy's gradient; the state is the one that broke the limit.
     #[error(
-        "the energy changed from {initial} to {energy} at t = {time}: {relative:e} of |E0|, beyond the \
-         limit {limit:e} (a step past the stability limit, or forces that are not the energy's gradient)"
+        "the energy changed from {} to {} at t = {}: {relative:e} of |E0|, beyond the \
+         limit {limit:e} (a step past the stability limit, or forces that are not the energy's gradient)",
+        Short(*initial), Short(*energy), Short(*time)
     )]
     EnergyNotConserved {
         /// Time of the event, in the unit `t` of Appendix B.
@@ -108,7 +112,7 @@ pub enum IntegrateError {
         limit: f64,
     },
     /// An option outside its range.
-    #[error("{name} = {value} is invalid: it must be {rule}")]
+    #[error("{name} = {} is invalid: it must be {rule}", Short(*value))]
     InvalidOption {
         /// The name of the setting.
         name: &'static str,

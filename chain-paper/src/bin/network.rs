@@ -148,7 +148,7 @@ enum Command {
         /// draw the figure.
         #[arg(long)]
         merge: bool,
-        /// Worker threads (default: every core).
+        /// Worker threads, at most 4 per core, never more than the points (default: every core).
         #[arg(long)]
         threads: Option<usize>,
     },
@@ -195,6 +195,7 @@ fn fail(status: u8, message: impl Into<String>) -> Failure {
 }
 
 fn main() -> ExitCode {
+    chain_sweep::pipe::exit_quietly_on_broken_pipe();
     let cli = Cli::parse();
     if let Err(e) = output::stop_on_signals("network", || {}) {
         eprintln!("network: error: cannot install the signal handlers: {e}");
@@ -370,6 +371,8 @@ fn run(command: Command) -> Result<(), Failure> {
                 return Err(fail(2, "--x3 and --z must be finite"));
             }
             let params = DiagramParams { x3, z };
+            chain_sweep::threads::worker_threads(threads, grid.len())
+                .map_err(|e| fail(2, format!("invalid --threads: {e}")))?;
             prepare(&out)?;
             let path = out.join("diagram.csv");
             if merge {

@@ -116,6 +116,7 @@ impl Failed {
 static BAR: OnceLock<ProgressBar> = OnceLock::new();
 
 fn main() -> ExitCode {
+    chain_sweep::pipe::exit_quietly_on_broken_pipe();
     let code = run();
     // Interrupted: the signal handler is finishing the writes in flight and exits with the
     // signal's status; the main thread must not end the process first with its own.

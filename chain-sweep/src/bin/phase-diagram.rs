@@ -35,6 +35,7 @@ use std::time::Duration;
 use chain_sweep::scattering::{
     DEFAULT_ENERGY_TOLERANCE, Defect, Ends, Method, PhaseDiagram, PointRecord, fake_point,
 };
+use chain_sweep::threads::worker_threads;
 use chain_sweep::{
     Axis, Grid, MergeSummary, Shard, Summary, SweepError, SweepOptions, find_shards, merge_shards, run_sweep,
 };
@@ -109,7 +110,8 @@ struct Cli {
     /// (SLURM_ARRAY_TASK_ID of SLURM_ARRAY_TASK_COUNT). `phase-diagram merge` joins the shards
     #[arg(long, value_name = "I/N|slurm")]
     shard: Option<String>,
-    /// Worker threads [default: every core]
+    /// Worker threads, at most 4 per core; never more are started than there are points to
+    /// compute [default: every core]
     #[arg(long)]
     threads: Option<NonZeroUsize>,
     /// Compute again the points the file records as failed
@@ -202,6 +204,7 @@ fn diagram(cli: &Cli, ki: &Axis, v0: &Axis) -> Result<PhaseDiagram, Failure> {
 }
 
 fn main() -> ExitCode {
+    chain_sweep::pipe::exit_quietly_on_broken_pipe();
     // clap prints usage errors itself and exits with status 2.
     let cli = Cli::parse();
     let result = match &cli.command {
@@ -305,6 +308,8 @@ fn run(cli: &Cli) -> Result<(Summary, PathBuf), Failure> {
     let d = diagram(cli, ki, v0)?;
     let grid = Grid::new(ki.clone(), v0.clone()).map_err(|e| Failure::Usage(e.to_string()))?;
     let shard = shard(cli)?;
+    let threads = cli.threads.map(NonZeroUsize::get);
+    worker_threads(threads, grid.len()).map_err(|e| Failure::Usage(format!("invalid --threads: {e}")))?;
     let out = match shard {
         Some(s) => s.file_name(out),
         None => out.clone(),
@@ -316,7 +321,7 @@ fn run(cli: &Cli) -> Result<(Summary, PathBuf), Failure> {
         d.run_label()
     };
     let mut options = SweepOptions::new(format!("{} phase diagram", d.defect.name()), label);
-    options.threads = cli.threads.map(NonZeroUsize::get);
+    options.threads = threads;
     options.retry_failed = cli.retry_failed;
     options.shard = shard;
     let stop = Arc::new(AtomicBool::new(false));
@@ -365,6 +370,12 @@ fn report(cli: &Cli, out: &std::path::Path, s: &Summary) {
         s.failed_before,
         s.elapsed.as_secs_f64()
     );
+    if let Some(asked) = cli.threads.map(NonZeroUsize::get).filter(|&t| s.threads > 0 && t > s.threads) {
+        eprintln!(
+            "phase-diagram: ran on {} worker thread(s), not the {asked} asked for: never more threads than points to compute",
+            s.threads
+        );
+    }
     if s.repaired_bytes > 0 {
         eprintln!(
             "phase-diagram: cut off an unfinished last line ({} bytes) left by a stopped run",

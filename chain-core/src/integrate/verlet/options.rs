@@ -149,19 +149,12 @@ pub fn verlet<M: Potential + ?Sized>(
     outcome.map(|()| monitor.report)
 }
 
-impl Integrator for VerletOptions {
-    fn name(&self) -> &'static str {
-        "verlet"
-    }
-
-    /// A whole number of equal steps per output interval, each at most `dt`.
-    fn integrate<M: Potential + ?Sized>(
-        &self,
-        model: &M,
-        state: &mut State,
-        schedule: &Schedule,
-        observer: &mut dyn FnMut(&State) -> Flow,
-    ) -> Result<Report, IntegrateError> {
+impl VerletOptions {
+    /// The steps per output interval of a run through `schedule`: a whole number of equal steps,
+    /// each at most `dt`. A run that needs more than [`VerletOptions::max_steps`] in all is
+    /// [`IntegrateError::StepBudget`] before its first step; callers that check settings before
+    /// any run (a phase diagram) ask the same question here.
+    pub fn steps_per_output(&self, schedule: &Schedule) -> Result<f64, IntegrateError> {
         check_positive("dt", self.dt)?;
         check_positive("output_interval", schedule.interval)?;
         let per_output = libm::ceil(schedule.interval / self.dt - 1e-9).max(1.0);
@@ -175,6 +168,24 @@ impl Integrator for VerletOptions {
                 budget: self.max_steps,
             });
         }
+        Ok(per_output)
+    }
+}
+
+impl Integrator for VerletOptions {
+    fn name(&self) -> &'static str {
+        "verlet"
+    }
+
+    /// A whole number of equal steps per output interval, each at most `dt`.
+    fn integrate<M: Potential + ?Sized>(
+        &self,
+        model: &M,
+        state: &mut State,
+        schedule: &Schedule,
+        observer: &mut dyn FnMut(&State) -> Flow,
+    ) -> Result<Report, IntegrateError> {
+        let per_output = self.steps_per_output(schedule)?;
         let t_end = schedule.time(state.time, schedule.count);
         let options = VerletOptions { dt: schedule.interval / per_output, ..*self };
         verlet(model, state, t_end, &options, per_output as usize, observer)
