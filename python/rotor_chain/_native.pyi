@@ -322,4 +322,8 @@ class ResultsFile:
 def axis(spec: Union[str, Sequence[float]]) -> List[float]: ...
 def check_grid(xs: Sequence[float], ys: Sequence[float]) -> None:
     """GridError unless ``xs`` x ``ys`` is within the limits (``MAX_GRID_POINTS``, ...)."""
+def check_threads(threads: int) -> None:
+    """ValueError unless ``1 <= threads <= max_threads()``."""
+def max_threads() -> int:
+    """The most worker threads a sweep starts here: 4 per core."""
 def read_points(path: Union[str, PathLike[str]]) -> List[Record]: ...

@@ -264,6 +264,8 @@ def phase_diagram(
     for y in ys:
         _check_v0(y)
     threads = None if threads is None else _count("threads", threads, 1)
+    if threads is not None:
+        _native.check_threads(threads)  # ValueError above max_threads(): 4 per core
     chunk_size = None if chunk_size is None else _count("chunk_size", chunk_size, 1)
     max_resubmits = _count("max_resubmits", max_resubmits, 0)
     if client is not None and not all(callable(getattr(client, m, None)) for m in ("submit", "nthreads")):
@@ -387,9 +389,8 @@ def _run_local(
     done = 0
     for start in range(0, len(points), size):
         chunk = points[start : start + size]
-        # More threads than points would have nothing to do (and no machine integer holds 10**20).
-        used = None if threads is None else min(threads, len(chunk))
-        for record in d.compute_points(chunk, used):
+        # compute_points starts no more threads than the chunk has points.
+        for record in d.compute_points(chunk, threads):
             sink(record)
         done += len(chunk)
         report(done)

@@ -44,7 +44,7 @@ fn floats(x: &Bound<'_, PyAny>, what: &str) -> PyResult<Vec<f64>> {
     if let Ok(array) = x.cast::<PyArray1<f64>>()
         && let Ok(values) = numpy::PyArrayMethods::try_readonly(array)
     {
-        return Ok(values.as_array().to_vec());
+        return copied(values.as_array(), what);
     }
     if x.is_none() {
         return Err(not_real("None".to_owned()));
@@ -68,9 +68,22 @@ fn floats(x: &Bound<'_, PyAny>, what: &str) -> PyResult<Vec<f64>> {
         )));
     }
     match array.extract::<PyArrayLike1<'_, f64, AllowTypeChange>>() {
-        Ok(array) => Ok(array.as_array().to_vec()),
+        Ok(array) => copied(array.as_array(), what),
         Err(e) => Err(not_real(format!("{} ({})", type_name(x), e))),
     }
+}
+
+/// A copy of an argument's values, made fallibly: memory that cannot be allocated (a large
+/// array under a memory limit) is Python's `MemoryError` with the bytes asked for, never an
+/// abort of the interpreter.
+fn copied(values: numpy::ndarray::ArrayView1<'_, f64>, what: &str) -> PyResult<Vec<f64>> {
+    let mut copy = Vec::new();
+    copy.try_reserve_exact(values.len()).map_err(|_| {
+        let bytes = values.len().saturating_mul(size_of::<f64>());
+        pyo3::exceptions::PyMemoryError::new_err(format!("cannot allocate {bytes} bytes to copy {what}"))
+    })?;
+    copy.extend(values.iter().copied());
+    Ok(copy)
 }
 
 /// The name of `x`'s type, for messages (`str`, `NoneType`, `ndarray`).

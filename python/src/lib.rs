@@ -39,6 +39,8 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(sweep::axis, m)?)?;
     m.add_function(wrap_pyfunction!(sweep::read_points, m)?)?;
     m.add_function(wrap_pyfunction!(sweep::check_grid, m)?)?;
+    m.add_function(wrap_pyfunction!(sweep::check_threads, m)?)?;
+    m.add_function(wrap_pyfunction!(sweep::max_threads_py, m)?)?;
     m.add_function(wrap_pyfunction!(pickle::restore, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     m.add("DEFAULT_ENERGY_TOLERANCE", chain_sweep::scattering::DEFAULT_ENERGY_TOLERANCE)?;

@@ -14,6 +14,7 @@ use std::str::FromStr;
 use chain_sweep::scattering::{
     Defect, Ends, LaterEvent, Outcome, PhaseDiagram as Diagram, PointRecord, Recomputed, method_by_name,
 };
+use chain_sweep::threads::{max_threads, worker_threads};
 use chain_sweep::{Axis, Grid, Point, ResultsFile as File, SweepOptions};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyString, PyTuple};
@@ -114,28 +115,25 @@ impl PhaseDiagram {
 
     /// The records of ``points`` (``(i, j, ki, v0)`` tuples), computed on ``threads`` threads
     /// (default: every core) with the GIL released, in the order given. A point that fails (or
-    /// panics) has its message in ``error``; nothing is raised for it.
+    /// panics) has its message in ``error``; nothing is raised for it. Never more threads start
+    /// than there are points; ``threads`` above ``max_threads()`` (4 per core) or 0 is a
+    /// ``ValueError`` before any point.
     #[pyo3(signature = (points, threads = None))]
     fn compute_points<'py>(
         &self,
         py: Python<'py>,
         points: Vec<GridPoint>,
-        threads: Option<usize>,
+        threads: Option<&Bound<'py, PyAny>>,
     ) -> PyResult<Vec<Bound<'py, PyDict>>> {
-        if threads == Some(0) {
-            return Err(value_error("threads must be at least 1"));
-        }
+        let threads = threads.map(thread_count).transpose()?;
+        let threads = worker_threads(threads, points.len()).map_err(|e| value_error(e.to_string()))?;
         let results =
             py.detach(|| -> Result<Vec<Result<PointRecord, String>>, rayon::ThreadPoolBuildError> {
                 let one = |&(_, _, ki, v0): &GridPoint| compute_one(&self.d, ki, v0);
-                if threads == Some(1) {
+                if threads == 1 {
                     return Ok(points.iter().map(one).collect());
                 }
-                let mut builder = rayon::ThreadPoolBuilder::new();
-                if let Some(t) = threads {
-                    builder = builder.num_threads(t);
-                }
-                let pool = builder.build()?;
+                let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build()?;
                 Ok(pool.install(|| points.par_iter().map(one).collect()))
             });
         let results = results
@@ -165,6 +163,45 @@ impl PhaseDiagram {
         kwargs.set_item("t_max", d.t_max)?;
         Ok((args, kwargs))
     }
+}
+
+/// A thread count as Python gives it: an int (not a bool or a float: `TypeError`); one that no
+/// machine integer holds is above any bound, so it is the same `ValueError` as chain-sweep's
+/// `SweepError::Threads`, with the number as given.
+fn thread_count(x: &Bound<'_, PyAny>) -> PyResult<usize> {
+    if x.is_instance_of::<pyo3::types::PyBool>() {
+        return Err(pyo3::exceptions::PyTypeError::new_err(format!(
+            "threads must be an int, got {}",
+            args::described(x)
+        )));
+    }
+    let beyond = || {
+        value_error(format!(
+            "{x} worker threads asked for; at most {} ({} per core, {} cores), and at least 1",
+            max_threads(),
+            chain_sweep::threads::THREADS_PER_CORE,
+            chain_sweep::threads::cores()
+        ))
+    };
+    match args::int(x)? {
+        args::Int::Fits(n) => usize::try_from(n).map_err(|_| beyond()),
+        args::Int::Above | args::Int::Below => Err(beyond()),
+    }
+}
+
+/// Checks a thread count as ``compute_points`` would (a ValueError above ``max_threads()`` or
+/// below 1, a TypeError for what is not an int): ``rotor_chain.sweep.phase_diagram`` calls it
+/// before any point.
+#[pyfunction]
+pub fn check_threads(threads: &Bound<'_, PyAny>) -> PyResult<()> {
+    let threads = thread_count(threads)?;
+    worker_threads(Some(threads), 1).map(|_| ()).map_err(|e| value_error(e.to_string()))
+}
+
+/// The most worker threads a sweep starts on this machine (4 per core).
+#[pyfunction(name = "max_threads")]
+pub fn max_threads_py() -> usize {
+    max_threads()
 }
 
 /// One point; a panic becomes its error, as in chain-sweep's sweeps.

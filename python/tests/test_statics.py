@@ -160,3 +160,34 @@ def test_continuum_profile_refuses_what_it_cannot_compute():
     assert (info.value.variant, info.value.n, info.value.max) == ("TooManyRotors", 10**12, 100_000_000)
     with pytest.raises(ValueError, match="x0 = NaN is not finite"):
         continuum.angle_profile("antikink", 60, float("nan"))
+
+
+def test_a_copy_that_cannot_be_allocated_is_a_memory_error_not_an_abort():
+    """Under an address-space limit, a 1.2 GB argument whose copy does not fit: ``MemoryError``
+    with the bytes requested, and the interpreter goes on (an abort would be exit status 134)."""
+    import subprocess
+    import sys
+    import textwrap
+
+    script = textwrap.dedent(
+        """
+        import resource
+        import numpy as np
+        import rotor_chain as rc
+        from rotor_chain import _native
+        theta = np.zeros(150_000_000)                        # 1.2 GB, mapped
+        with open("/proc/self/status") as f:
+            vm = next(int(l.split()[1]) * 1024 for l in f if l.startswith("VmSize:"))
+        # Room for everything already mapped and 0.5 GB more, not for a second copy of theta.
+        resource.setrlimit(resource.RLIMIT_AS, (vm + 2**29, resource.RLIM_INFINITY))
+        try:
+            _native.domain_walls(theta)
+        except MemoryError as e:
+            print("MemoryError:", e)
+        print("still running")
+        """
+    )
+    done = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, timeout=120)
+    assert done.returncode == 0, done.stderr
+    assert done.stdout.splitlines() == ["MemoryError: cannot allocate 1200000000 bytes to copy theta",
+                                        "still running"], done.stdout + done.stderr

@@ -4,7 +4,9 @@ with their numbers; the GIL released during long computations."""
 
 from __future__ import annotations
 
+import os
 import pickle
+import re
 import threading
 import time
 import tracemalloc
@@ -267,9 +269,27 @@ def test_a_setting_of_the_wrong_type_or_range_is_refused_by_name_before_any_poin
     assert not out.exists()
 
 
-def test_a_thread_count_beyond_any_machine_integer_runs_on_as_many_threads_as_there_are_points():
-    records = sweep.phase_diagram("antikink", [0.5], [1.0], threads=10**20)
-    assert [(r["i"], r["j"], r["error"]) for r in records] == [(0, 0, None)]
+def test_a_thread_count_past_four_per_core_is_refused_before_any_point(tmp_path):
+    most, cores = _native.max_threads(), os.cpu_count()
+    assert most >= 4 and most % 4 == 0 and cores >= 1
+    out = tmp_path / "never.csv"
+    d = _native.PhaseDiagram("antikink")
+    for threads in (most + 1, 20_000, 10**20):
+        bound = f"{threads} worker threads asked for; at most {most} (4 per core"
+        with pytest.raises(ValueError, match=re.escape(bound)):
+            sweep.phase_diagram("antikink", [0.5], [1.0], threads=threads, out=out)
+        assert not out.exists()
+        start = time.monotonic()
+        with pytest.raises(ValueError, match=re.escape(bound)):
+            d.compute_points([(0, 0, 0.5, 1.0)], threads)
+        assert time.monotonic() - start < 1.0
+    with pytest.raises(ValueError, match="0 worker threads asked for"):
+        d.compute_points([(0, 0, 0.5, 1.0)], 0)
+    with pytest.raises(TypeError, match="threads must be an int, got True"):
+        d.compute_points([(0, 0, 0.5, 1.0)], True)
+    # The most allowed, on one point: one thread computes it.
+    [record] = d.compute_points([(0, 0, 0.5, 1.0)], most)
+    assert record["error"] is None
 
 
 def test_a_t_max_past_the_output_budget_is_a_config_error_before_any_point(tmp_path):

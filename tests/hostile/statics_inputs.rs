@@ -187,6 +187,23 @@ fn sizes_too_large_to_hold_are_errors_before_allocating() {
 }
 
 #[test]
+fn a_chain_too_short_for_a_barrier_is_an_error_naming_the_minimum() {
+    for n in [2, 3] {
+        let model = RuntimeChain::builder(n, 0.8, 1.0e4, 0.58).build().unwrap();
+        match peierls_nabarro(&model, &AntikinkOptions::default()) {
+            Err(e @ StaticsError::InvalidValue { .. }) => {
+                let text = e.to_string();
+                assert!(text.contains(&format!("= {n} is invalid: expected at least 4")), "{text}");
+            }
+            other => panic!("n = {n}: expected InvalidValue, got {other:?}"),
+        }
+    }
+    let model = RuntimeChain::builder(4, 0.8, 1.0e4, 0.58).build().unwrap();
+    let pn = peierls_nabarro(&model, &AntikinkOptions::default()).unwrap();
+    assert!(pn.barrier > 0.0, "{}", pn.barrier);
+}
+
+#[test]
 fn the_shortest_chains_do_not_panic() {
     for n in [2, 3] {
         let model = RuntimeChain::builder(n, 0.8, 1.0e4, 0.58).build().unwrap();

@@ -273,6 +273,11 @@ impl PeierlsNabarro {
     }
 }
 
+/// The fewest rotors [`peierls_nabarro`] accepts: the spring-centred antikink at `m + 1/2`
+/// (`m = (n - 1) / 2`) needs rotors `m - 1` to `m + 2`, a rotor beyond its two core rotors on
+/// each side; on 3 rotors both centrings relax to the same state and the "barrier" would be 0.
+pub const PEIERLS_NABARRO_MIN_ROTORS: usize = 4;
+
 /// The Peierls-Nabarro barrier of `model` (paper Sec. V): the antikink centred on the middle
 /// rotor and on the neighbouring spring, and their energy difference.
 /// # Example
@@ -298,6 +303,14 @@ pub fn peierls_nabarro<M: ChainModel + ?Sized>(
     options: &AntikinkOptions,
 ) -> Result<PeierlsNabarro, StaticsError> {
     let n = model.rotor_count();
+    if n < PEIERLS_NABARRO_MIN_ROTORS {
+        return Err(StaticsError::InvalidValue {
+            what: "the rotor count of a chain for the Peierls-Nabarro barrier",
+            value: n as f64,
+            expected: "at least 4: a rotor beyond the core on each side of both centrings (n = 3 has one \
+                       antikink state, so no barrier)",
+        });
+    }
     let middle = ((n - 1) / 2) as f64;
     let rotor_centred = antikink_at(model, middle, options)?;
     let spring_centred = antikink_at(model, middle + 0.5, options)?;
