@@ -311,10 +311,16 @@ fn impossible_scattering_setups_are_refused() {
         ("impurity", 6.0, ScatterSetup { impurity: 6, start: 21.5, ..good }),
         ("impurity", 52.0, ScatterSetup { impurity: 52, start: 40.0, direction: Direction::Right, ..good }),
     ];
+    // `clear` was never checked: NaN, infinity or a negative value ran and gave `Transmitted`.
+    let mut refused = refused;
+    for clear in [f64::NAN, f64::INFINITY, -1.0, 3.9] {
+        refused.push(("clear", clear, ScatterSetup { clear, ..good }));
+    }
+    refused.push(("v0", -1.0, ScatterSetup { v0: -1.0, ..good }));
     for (name, value, setup) in refused {
         match quickly(name, || scatter(&model, &setup)) {
             Err(DynamicsError::InvalidSetup { name: got, value: v, .. }) => {
-                assert_eq!((got, v), (name, value), "{setup:?}");
+                assert_eq!((got, v.to_bits()), (name, value.to_bits()), "{setup:?}");
             }
             other => panic!("{name} = {value}: {:?}", other.map(|s| s.outcome)),
         }

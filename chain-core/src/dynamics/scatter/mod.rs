@@ -289,6 +289,41 @@ impl ScatterSetup {
     /// (`reach`) clear of the end zones, and the start beyond that range on the side the defect
     /// is launched from (otherwise no outcome would mean anything).
     pub fn check(&self, n: usize) -> Result<(), DynamicsError> {
+        // Every field is named here, without `..`: a field added to the setup does not compile
+        // until it is given its check below (or said to need none, as the enums and the count).
+        let Self {
+            charge: _,
+            v0,
+            impurity: _,
+            start: _,
+            direction: _,
+            reach: _,
+            clear,
+            edge_margin: _,
+            persistence: _,
+            progress: _,
+            trap_time: _,
+            trap_crossings: _,
+            turns: _,
+            turn_band: _,
+            entry_window: _,
+            cluster_gap: _,
+            pair_age: _,
+            pair_extent: _,
+            break_time: _,
+            grace: _,
+            max_jump: _,
+            confirm: _,
+            watch: _,
+            run: _,
+        } = *self;
+        if !(v0 >= 0.0 && v0.is_finite()) {
+            return Err(DynamicsError::InvalidSetup {
+                name: "v0",
+                value: v0,
+                rule: "non-negative and finite",
+            });
+        }
         if self.impurity >= n.saturating_sub(1) {
             return Err(DynamicsError::NoSuchSpring { spring: self.impurity, springs: n.saturating_sub(1) });
         }
@@ -318,6 +353,13 @@ impl ScatterSetup {
             if !(value > 0.0 && value.is_finite()) {
                 return Err(DynamicsError::InvalidSetup { name, value, rule: "positive and finite" });
             }
+        }
+        if !(clear >= self.reach && clear.is_finite()) {
+            return Err(DynamicsError::InvalidSetup {
+                name: "clear",
+                value: clear,
+                rule: "finite and at least reach (a wall leaves the impurity's range before it is clear of it)",
+            });
         }
         let last = n.saturating_sub(1) as f64;
         if !(self.start > self.edge_margin && self.start < last - self.edge_margin) {
