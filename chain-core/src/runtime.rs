@@ -443,6 +443,8 @@ impl ChainBuilder {
                 rest_lengths[p] = lp;
             }
         }
+        let smallest = |values: &[f64]| values.iter().copied().fold(f64::INFINITY, f64::min);
+        geo::check_scales(a, smallest(&rotor_lengths), smallest(&stiffness), mass)?;
         let mut chain = RuntimeChain {
             a,
             mass,

@@ -61,6 +61,21 @@ pub enum ParameterError {
         /// The longest rest length a uniform state admits, `sqrt(a^2 + 4 r^2)`.
         max: f64,
     },
+    /// The chain is scaled so far down that one of its scales (a squared length, the energy
+    /// unit `k a^2`, the inertia `M r^2`) is below the smallest normal `f64`: its energies,
+    /// forces or inertias would be subnormal or zero, and its analyses would fail far from the
+    /// cause (an angle that is NaN).
+    #[error(
+        "the chain's scale underflowed: {quantity} = {} is below the smallest normal number ({}), so its \
+         energies, forces or inertias would be subnormal or zero; give a, r, k and M in units nearer 1",
+        Short(*value), Short(f64::MIN_POSITIVE)
+    )]
+    ScaleUnderflow {
+        /// Which scale (`a^2`, `r^2`, `k a^2`, `M r^2`).
+        quantity: &'static str,
+        /// Its value.
+        value: f64,
+    },
     /// A spring or rotor index past the end of the chain.
     #[error("{}", CountText::OutOfRange { kind: *kind, index, count: *count })]
     IndexOutOfRange {
@@ -277,6 +292,19 @@ impl fmt::Display for IndexKind {
 /// `value` must be finite and strictly positive.
 pub fn check_positive(key: Key, value: f64) -> Result<f64, ParameterError> {
     if value.is_finite() && value > 0.0 { Ok(value) } else { Err(ParameterError::NotPositive { key, value }) }
+}
+
+/// The scales of a chain with lattice spacing `a`, shortest rotor `r_min`, softest spring
+/// `k_min` and tip mass `mass` (each already finite and positive) must be normal numbers: `a^2`,
+/// `r^2`, the energy unit `k a^2` and the inertia `M r^2` (the smallest of each), else
+/// [`ParameterError::ScaleUnderflow`] names the first that is not.
+pub fn check_scales(a: f64, r_min: f64, k_min: f64, mass: f64) -> Result<(), ParameterError> {
+    let scales =
+        [("a^2", a * a), ("r^2", r_min * r_min), ("k a^2", k_min * a * a), ("M r^2", mass * r_min * r_min)];
+    match scales.into_iter().find(|&(_, value)| value < f64::MIN_POSITIVE) {
+        Some((quantity, value)) => Err(ParameterError::ScaleUnderflow { quantity, value }),
+        None => Ok(()),
+    }
 }
 
 /// A chain needs at least two rotors, and at most [`MAX_ROTORS`].

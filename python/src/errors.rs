@@ -117,6 +117,9 @@ pub fn parameter(py: Python<'_>, e: &ParameterError) -> PyErr {
         ParameterError::OverriddenTwice { kind, index } => {
             Details { variant: "OverriddenTwice", ..d }.f("kind", kind.to_string()).f("index", index)
         }
+        ParameterError::ScaleUnderflow { quantity, value } => {
+            Details { variant: "ScaleUnderflow", ..d }.f("quantity", quantity).f("value", value)
+        }
         ParameterError::AllocationFailed { n, bytes } => {
             Details { variant: "AllocationFailed", ..d }.f("n", n).f("bytes", bytes)
         }

@@ -105,3 +105,31 @@ fn messages_count_in_the_singular_and_name_a_nan() {
     let spring = BranchError::NoSuchSpring { spring: 1, springs: 1 }.to_string();
     assert_eq!(spring, "spring index 1 is out of range: the chain has 1 spring");
 }
+
+#[test]
+fn a_chain_scaled_below_the_normal_numbers_says_its_scale_underflowed() {
+    let cases = [
+        ("a^2", RuntimeChain::builder(60, 0.8e-160, 1.0e4, 0.28).lattice_spacing(1e-160)),
+        ("k a^2", RuntimeChain::builder(60, 0.8, 1e-320, 0.28)),
+        ("k a^2", builder(60).spring_constant(7, 1e-310)),
+        ("r^2", builder(60).rotor(3, 1e-160)),
+        ("M r^2", builder(60).mass(1e-310)),
+    ];
+    for (quantity, chain) in cases {
+        match chain.build() {
+            Err(e @ ParameterError::ScaleUnderflow { .. }) => {
+                let text = e.to_string();
+                assert!(text.starts_with(&format!("the chain's scale underflowed: {quantity} = ")), "{text}");
+                assert!(
+                    text.contains("below the smallest normal number (2.2250738585072014e-308)"),
+                    "{text}"
+                );
+            }
+            other => panic!("{quantity}: expected ScaleUnderflow, got {other:?}"),
+        }
+    }
+    // Small but normal scales are a chain: a = 1e-150 (a^2 = 1e-300), the paper's proportions.
+    let small = RuntimeChain::builder(60, 0.8e-150, 1.0, 0.28).lattice_spacing(1e-150).build().unwrap();
+    let theta = vec![0.28; 60];
+    assert!(small.energy(&theta).is_finite());
+}
