@@ -12,6 +12,7 @@ use std::fmt;
 use std::str::FromStr;
 
 use rotor_chain::dynamics::DynamicsError;
+pub use rotor_chain::dynamics::launch::Direction;
 use rotor_chain::dynamics::run::{ABSORBING_ENDS, RunOptions};
 pub use rotor_chain::dynamics::scatter::budget::{BudgetError, DEFAULT_ENERGY_TOLERANCE, VerletBreach};
 use rotor_chain::dynamics::scatter::{EnergyBudget, ScatterSetup, paper_time_unit, scatter_within_budget};
@@ -189,16 +190,22 @@ pub enum ConfigError {
         /// The most steps a run allows.
         budget: u64,
     },
-    #[error("a chain of {n} rotors cannot hold the experiment: {source}")]
+    #[error("a chain of {n} rotors cannot hold the experiment ({rule}): {source}")]
     /// The experiment of [`PhaseDiagram::setup`] does not fit on the chain (too short for the
-    /// defect's start 15.5 sites right of the middle spring).
+    /// defect's start 15.5 sites right of the middle spring: `n >= 38` for the paper's).
     Experiment {
         /// Rotors.
         n: usize,
+        /// The rule it breaks: the fewest rotors that hold this experiment
+        /// ([`PhaseDiagram::shortest_chain`]).
+        rule: String,
         /// What the setup breaks.
         source: DynamicsError,
     },
 }
+
+/// How far [`PhaseDiagram::shortest_chain`] looks: a chain longer than the phase diagrams use.
+pub const MAX_ROTORS_SEARCHED: usize = 100_000;
 
 /// The version of the scattering physics and outcome rules in every run label: a results file
 /// written by other rules is refused on resume instead of mixing two rules' labels in one
@@ -240,6 +247,21 @@ pub struct PhaseDiagram {
     /// unit). Default 20 (the paper's runs; `20 * paper_time_unit(k, mass)` is the same span
     /// for another chain).
     pub t_max: f64,
+    /// The impurity spring `p` (its centre at `p + 1/2`); `None`: the middle one, `(n - 1) / 2`,
+    /// the paper's.
+    pub impurity_spring: Option<usize>,
+    /// The impurity spring's rest length `l0`, in units of `a` (a rest-length impurity, with or
+    /// without a stiffness one); `None`: the chain's `lbar`, the paper's.
+    pub impurity_rest_length: Option<f64>,
+    /// Which way the defect is launched. Default [`Direction::Left`], the paper's: from the right
+    /// of the impurity towards rotor 0.
+    pub direction: Direction,
+    /// Where the defect starts (rotor index, fractional allowed); `None`: 15 sites from the
+    /// impurity's centre on the side it comes from, the paper's.
+    pub start: Option<f64>,
+    /// Damping rate `gamma >= 0` of every rotor, in `1 / t` as given (like `t_max`, not scaled
+    /// with the chain's time unit). Default 0: the paper's undamped runs.
+    pub damping: f64,
 }
 
 impl PhaseDiagram {
@@ -260,13 +282,36 @@ impl PhaseDiagram {
             energy_tolerance: DEFAULT_ENERGY_TOLERANCE,
             recompute: true,
             t_max: RunOptions::default().t_max,
+            impurity_spring: None,
+            impurity_rest_length: None,
+            direction: Direction::Left,
+            start: None,
+            damping: 0.0,
         })
     }
 
-    /// The impurity spring: the middle one, `(n - 1) / 2` (0 for a chain without springs, which
-    /// [`PhaseDiagram::check`] refuses).
+    /// The impurity spring: [`PhaseDiagram::impurity_spring`], or the middle one, `(n - 1) / 2`
+    /// (0 for a chain without springs, which [`PhaseDiagram::check`] refuses).
     pub fn impurity(&self) -> usize {
-        self.n.saturating_sub(1) / 2
+        self.impurity_spring.unwrap_or(self.n.saturating_sub(1) / 2)
+    }
+
+    /// Where the defect starts: [`PhaseDiagram::start`], or 15 sites from the impurity's centre
+    /// on the side it is launched from.
+    pub fn start_site(&self) -> f64 {
+        let centre = self.impurity() as f64 + 0.5;
+        self.start.unwrap_or(match self.direction {
+            Direction::Left => centre + 15.0,
+            Direction::Right => centre - 15.0,
+        })
+    }
+
+    /// The fewest rotors on which this experiment fits (the same impurity, start and direction
+    /// rules as [`ScatterSetup::check`]); `None` if no chain of up to [`MAX_ROTORS_SEARCHED`]
+    /// rotors holds it (an impurity or a start far out).
+    pub fn shortest_chain(&self) -> Option<usize> {
+        (2..=MAX_ROTORS_SEARCHED)
+            .find(|&n| Self { n, ..self.clone() }.setup(1.0, self.integrator).check(n).is_ok())
     }
 
     /// Checks the settings that [`PhaseDiagram::new`] does not see.
@@ -281,6 +326,21 @@ impl PhaseDiagram {
         positive("energy tolerance", self.energy_tolerance)?;
         positive("mass", self.mass)?;
         positive("t_max", self.t_max)?;
+        if !(self.damping >= 0.0 && self.damping.is_finite()) {
+            return Err(ConfigError::Value {
+                name: "damping",
+                value: self.damping,
+                rule: "non-negative and finite",
+            });
+        }
+        if let Some(l0) = self.impurity_rest_length {
+            positive("impurity rest length", l0)?;
+        }
+        if let Some(start) = self.start
+            && !start.is_finite()
+        {
+            return Err(ConfigError::Value { name: "start", value: start, rule: "finite" });
+        }
         if let Some(dt) = self.dt {
             positive("dt", dt)?;
         }
@@ -312,9 +372,17 @@ impl PhaseDiagram {
         }
         // The experiment itself (the defect starts 15.5 sites right of the middle spring, more
         // than `edge_margin` from the end): refused here, not at every point of the grid.
-        self.setup(1.0, self.integrator)
-            .check(self.n)
-            .map_err(|source| ConfigError::Experiment { n: self.n, source })
+        self.setup(1.0, self.integrator).check(self.n).map_err(|source| ConfigError::Experiment {
+            n: self.n,
+            rule: match self.shortest_chain() {
+                Some(m) if m > self.n => format!("this experiment needs n >= {m}"),
+                Some(_) => "this impurity, start and direction do not fit this chain".to_owned(),
+                None => format!("no chain of up to {MAX_ROTORS_SEARCHED} rotors holds this experiment"),
+            },
+            source,
+        })?;
+        // The impurity's rest length must admit the chain (the builder's own check, once here).
+        self.builder(1.0).build().map(|_| ()).map_err(ConfigError::Chain)
     }
 
     /// Checks an impurity stiffness ratio: `k_i = ki_ratio * k` must be a positive, finite
@@ -355,16 +423,44 @@ impl PhaseDiagram {
             self.energy_tolerance,
             self.recompute,
             self.t_max
-        )
+        ) + &self.experiment_label()
     }
 
-    /// The chain with the impurity `k_i = ki_ratio * k` on the middle spring.
+    /// The settings of the experiment that differ from the paper's, for the run label (empty for
+    /// the paper's, so the files written before these settings existed still resume).
+    fn experiment_label(&self) -> String {
+        let mut label = String::new();
+        if let Some(p) = self.impurity_spring {
+            label += &format!(" impurity={p}");
+        }
+        if let Some(l0) = self.impurity_rest_length {
+            label += &format!(" impurity_rest_length={l0:?}");
+        }
+        if self.direction == Direction::Right {
+            label += " direction=right";
+        }
+        if let Some(start) = self.start {
+            label += &format!(" start={start:?}");
+        }
+        if self.damping != 0.0 {
+            label += &format!(" damping={:?}", self.damping);
+        }
+        label
+    }
+
+    /// The chain with the impurity `k_i = ki_ratio * k` (and the impurity's rest length, if
+    /// any) on the [impurity spring](PhaseDiagram::impurity).
     pub fn chain(&self, ki_ratio: f64) -> Result<RuntimeChain, PointError> {
         self.check_ki(ki_ratio)?;
-        Ok(RuntimeChain::builder(self.n, self.r, self.k, self.theta_bar)
-            .mass(self.mass)
-            .spring_constant(self.impurity(), ki_ratio * self.k)
-            .build()?)
+        Ok(self.builder(ki_ratio).build()?)
+    }
+
+    fn builder(&self, ki_ratio: f64) -> rotor_chain::ChainBuilder {
+        RuntimeChain::builder(self.n, self.r, self.k, self.theta_bar).mass(self.mass).spring(
+            self.impurity(),
+            Some(ki_ratio * self.k),
+            self.impurity_rest_length,
+        )
     }
 
     /// The chain's time unit relative to the paper's, [`paper_time_unit`]`(k, mass)`.
@@ -372,17 +468,21 @@ impl PhaseDiagram {
         paper_time_unit(self.k, self.mass)
     }
 
-    /// The paper's experiment (Sec. VI) for this point: the defect 15 sites to the right of the
-    /// middle spring, moving left, with this diagram's ends and `t_max`; the rules' windows, the
-    /// output interval and the absorbing ends in the chain's [time unit](PhaseDiagram::time_unit),
-    /// so that chains with the same `sqrt(M / k)`-scaled motion get the same outcomes.
+    /// The paper's experiment (Sec. VI) for this point: by default the defect 15 sites to the
+    /// right of the middle spring, moving left (else this diagram's impurity, start and
+    /// direction), with this diagram's ends, `t_max` and damping; the rules' windows, the output
+    /// interval and the absorbing ends in the chain's [time unit](PhaseDiagram::time_unit), so
+    /// that chains with the same `sqrt(M / k)`-scaled motion get the same outcomes.
     pub fn setup(&self, v0: f64, integrator: Method) -> ScatterSetup {
         let mut setup = ScatterSetup::from_the_right(self.defect.charge(), v0, self.impurity());
+        setup.start = self.start_site();
+        setup.direction = self.direction;
         if self.ends == Ends::Absorbing {
             setup.run.absorbing_ends = Some(ABSORBING_ENDS);
         }
         let mut setup = setup.in_time_unit(self.time_unit());
         setup.run.t_max = self.t_max;
+        setup.run.damping = self.damping;
         setup.run.dt = self.dt;
         setup.run.method = integrator;
         setup
@@ -593,6 +693,73 @@ mod tests {
 
     /// The shortest chains: every length that passes `check` runs a point of either defect, and
     /// every shorter one is refused by `check`, with the setup's reason, before any point runs.
+    /// The experiment off the paper's: an impurity at spring 20 that is stiff (k_i/k = 2) and
+    /// short (l0 = 1.75 against lbar = 1.834), the kink launched rightwards from site 5.0,
+    /// damped. The point equals the same run set up by hand on the library, and the settings are
+    /// in the run label (and none of them for the paper's experiment, whose label is unchanged).
+    #[test]
+    fn every_setting_of_the_experiment_reaches_the_run_and_the_label() {
+        let paper = PhaseDiagram::new(60, 0.8, 1.0e4, 0.28, Defect::Kink).unwrap();
+        assert_eq!(
+            paper.run_label(),
+            format!(
+                "defect=kink n=60 r=0.8 k=10000.0 theta_bar=0.28 ends=free integrator=verlet dt=stable \
+                 energy_tolerance={DEFAULT_ENERGY_TOLERANCE:?} recompute=true t_max=20.0 physics={PHYSICS}"
+            )
+        );
+        let mut d = paper.clone();
+        (d.impurity_spring, d.impurity_rest_length, d.start) = (Some(20), Some(1.75), Some(5.0));
+        (d.direction, d.damping, d.t_max) = (Direction::Right, 0.5, 6.0);
+        d.check().unwrap();
+        assert!(
+            d.run_label().ends_with(
+                "physics=scatter-v3 impurity=20 impurity_rest_length=1.75 direction=right start=5.0 damping=0.5"
+            ),
+            "{}",
+            d.run_label()
+        );
+        let record = d.compute_point(2.0, 1.5).unwrap();
+
+        let model =
+            RuntimeChain::builder(60, 0.8, 1.0e4, 0.28).spring(20, Some(2.0e4), Some(1.75)).build().unwrap();
+        let mut setup = ScatterSetup::from_the_right(Charge::Kink, 1.5, 20);
+        (setup.start, setup.direction) = (5.0, Direction::Right);
+        (setup.run.t_max, setup.run.damping) = (6.0, 0.5);
+        let budget = EnergyBudget { tolerance: DEFAULT_ENERGY_TOLERANCE, recompute: true };
+        let by_hand = scatter_within_budget(&model, &setup, &budget).unwrap();
+        assert_eq!(
+            (record.outcome, record.t_decided.to_bits(), record.energy_error.to_bits()),
+            (
+                by_hand.scattering.outcome,
+                by_hand.scattering.decided_at.to_bits(),
+                by_hand.energy_error.to_bits()
+            )
+        );
+        // Damping changes the run (the same point undamped decides otherwise or later).
+        let undamped = PhaseDiagram { damping: 0.0, ..d.clone() }.compute_point(2.0, 1.5).unwrap();
+        assert_ne!(
+            (undamped.outcome, undamped.t_decided.to_bits()),
+            (record.outcome, record.t_decided.to_bits())
+        );
+
+        // Settings out of range, and experiments that do not fit, name their rule.
+        let refused = |d: PhaseDiagram| d.check().unwrap_err().to_string();
+        assert!(refused(PhaseDiagram { damping: -1.0, ..d.clone() }).contains("invalid damping: -1"));
+        assert!(refused(PhaseDiagram { start: Some(f64::NAN), ..d.clone() }).contains("invalid start: NaN"));
+        let text = refused(PhaseDiagram { impurity_rest_length: Some(-0.0), ..d.clone() });
+        assert!(text.contains("invalid impurity rest length: -0 must be positive and finite"), "{text}");
+        // Spring 50, launched leftwards from 65.5: the start needs n - 4 > 65.5, so n >= 70.
+        let text = refused(PhaseDiagram { impurity_spring: Some(50), ..paper.clone() });
+        assert!(
+            text.starts_with(
+                "a chain of 60 rotors cannot hold the experiment (this experiment needs n >= 70)"
+            ),
+            "{text}"
+        );
+        let text = refused(PhaseDiagram { n: 37, ..paper.clone() });
+        assert!(text.contains("(this experiment needs n >= 38)"), "{text}");
+    }
+
     #[test]
     fn check_refuses_exactly_the_chains_too_short_for_the_experiment() {
         let mut shortest = None;
@@ -607,7 +774,8 @@ mod tests {
                         assert!(point.is_ok(), "n = {n}, {defect:?}: {point:?}");
                         shortest.get_or_insert(n);
                     }
-                    Err(ConfigError::Experiment { n: m, source }) => {
+                    Err(ConfigError::Experiment { n: m, rule, source }) => {
+                        assert!(rule == "this experiment needs n >= 38" || n < 2, "n = {n}: {rule}");
                         assert_eq!(m, n);
                         assert!(shortest.is_none(), "n = {n} refused after a shorter chain passed");
                         assert!(d.compute_point(0.5, 2.0).is_err(), "n = {n} refused, yet its point ran");

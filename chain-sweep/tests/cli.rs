@@ -75,7 +75,11 @@ fn bad_arguments_exit_2_before_anything_is_written() {
         (&[("--n", "1")], "`n` must be at least 2"),
         (&[("--n", "12")], "a chain of 12 rotors cannot hold the experiment"),
         (&[("--n", "20")], "start = 24.5 is invalid"),
-        (&[("--n", "37")], "a chain of 37 rotors cannot hold the experiment"),
+        (&[("--n", "37")], "a chain of 37 rotors cannot hold the experiment (this experiment needs n >= 38)"),
+        (&[("--impurity", "50")], "cannot hold the experiment (this experiment needs n >= 70)"),
+        (&[("--damping", "-1")], "invalid damping: -1 must be non-negative and finite"),
+        (&[("--direction", "up")], "invalid value 'up' for '--direction <DIRECTION>'"),
+        (&[("--impurity-rest-length", "0")], "invalid impurity rest length: 0 must be positive and finite"),
         (&[("--k", "-5")], "`k` must be a finite number > 0"),
         (&[("--r", "nan")], "`r` must be a finite number > 0"),
         (&[("--dt", "0")], "dt: 0 must be positive and finite"),
@@ -187,6 +191,26 @@ fn a_good_fake_sweep_writes_the_phase_diagram_columns() {
         )
     );
     assert_eq!(lines.count(), 9);
+
+    // The experiment off the paper's: every setting in the file's first line, so a file of
+    // another experiment is refused on resume; the paper's experiment's line is unchanged.
+    let other = dir.path().join("other.csv");
+    let settings = [
+        ("--impurity", "20"),
+        ("--impurity-rest-length", "1.75"),
+        ("--direction", "right"),
+        ("--start", "5"),
+        ("--damping", "0.5"),
+    ];
+    let (code, stderr) = phase_diagram(other.to_str().unwrap(), &settings);
+    assert_eq!(code, Some(0), "{stderr}");
+    let text = fs::read_to_string(&other).unwrap();
+    let first = text.lines().next().unwrap();
+    let expected = "physics=fake impurity=20 impurity_rest_length=1.75 direction=right start=5.0 damping=0.5";
+    assert!(first.ends_with(expected), "{first}");
+    let (code, stderr) = phase_diagram(other.to_str().unwrap(), &settings[..4]);
+    assert_eq!(code, Some(1), "{stderr}");
+    assert!(stderr.contains("belongs to another run"), "{stderr}");
 }
 
 #[test]

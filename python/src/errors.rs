@@ -329,9 +329,10 @@ pub fn config(py: Python<'_>, e: &ConfigError) -> PyErr {
             .f("t_max", t_max)
             .f("steps", steps)
             .f("budget", budget),
-        ConfigError::Experiment { n, source } => {
-            Details { variant: "Experiment", ..d }.f("n", *n).source(dynamics(py, source))
-        }
+        ConfigError::Experiment { n, rule, source } => Details { variant: "Experiment", ..d }
+            .f("n", *n)
+            .f("rule", rule.as_str())
+            .source(dynamics(py, source)),
         _ => Details { variant: "Other", ..d },
     };
     d.raise("ConfigError", e.to_string())

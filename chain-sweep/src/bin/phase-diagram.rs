@@ -33,7 +33,7 @@ use std::sync::atomic::{AtomicBool, AtomicI32, Ordering};
 use std::time::Duration;
 
 use chain_sweep::scattering::{
-    DEFAULT_ENERGY_TOLERANCE, Defect, Ends, Method, PhaseDiagram, PointRecord, fake_point,
+    DEFAULT_ENERGY_TOLERANCE, Defect, Direction, Ends, Method, PhaseDiagram, PointRecord, fake_point,
 };
 use chain_sweep::threads::worker_threads;
 use chain_sweep::{
@@ -64,10 +64,29 @@ struct Cli {
     /// Launch speed of the defect, evenly spaced (both ends included)
     #[arg(long, value_name = "FROM:TO:COUNT[:log]", allow_hyphen_values = true, required = true)]
     v0: Option<Axis>,
-    /// Number of rotors (the paper's phase diagram: 60); at least 38, for the defect's start 15.5
-    /// sites right of the middle spring to lie more than 3 sites from the end
+    /// Number of rotors (the paper's phase diagram: 60); at least 38 for the paper's experiment,
+    /// for the defect's start 15.5 sites right of the middle spring to lie more than 3 sites from
+    /// the end (the error names the least n for other --impurity, --start and --direction)
     #[arg(long, default_value_t = 60)]
     n: usize,
+    /// The impurity spring P, between rotors P and P + 1 [default: the middle one, (n - 1) / 2]
+    #[arg(long, value_name = "P")]
+    impurity: Option<usize>,
+    /// The impurity spring's rest length l0, in units of a (a rest-length impurity, with the
+    /// stiffness impurity of --ki; --ki 1:1:1 for a pure one) [default: the chain's]
+    #[arg(long, value_name = "L0")]
+    impurity_rest_length: Option<f64>,
+    /// Where the defect starts (rotor index, fractional allowed) [default: 15 sites from the
+    /// impurity's centre on the side it comes from]
+    #[arg(long, value_name = "SITE")]
+    start: Option<f64>,
+    /// Which way the defect is launched: left (towards rotor 0, from the right of the impurity:
+    /// the paper's) or right
+    #[arg(long, value_enum, default_value_t = DirectionArg::Left)]
+    direction: DirectionArg,
+    /// Damping rate of every rotor, in 1/t as given (the paper's runs: 0)
+    #[arg(long, default_value_t = 0.0)]
+    damping: f64,
     /// Rotor length r, in units of the lattice spacing a = 1 (paper: r/a = 0.8)
     #[arg(long, default_value_t = 0.8)]
     r: f64,
@@ -151,6 +170,14 @@ enum DefectArg {
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+enum DirectionArg {
+    /// Towards rotor 0
+    Left,
+    /// Towards rotor n - 1
+    Right,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 enum EndsArg {
     Free,
     Absorbing,
@@ -191,6 +218,14 @@ fn diagram(cli: &Cli, ki: &Axis, v0: &Axis) -> Result<PhaseDiagram, Failure> {
     d.energy_tolerance = cli.energy_tolerance;
     d.recompute = !cli.no_recompute;
     d.t_max = cli.t_max;
+    d.impurity_spring = cli.impurity;
+    d.impurity_rest_length = cli.impurity_rest_length;
+    d.start = cli.start;
+    d.direction = match cli.direction {
+        DirectionArg::Left => Direction::Left,
+        DirectionArg::Right => Direction::Right,
+    };
+    d.damping = cli.damping;
     d.check().map_err(usage)?;
     for &ki in ki.values() {
         d.check_ki(ki).map_err(|e| Failure::Usage(format!("invalid --ki: {e}")))?;
