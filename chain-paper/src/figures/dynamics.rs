@@ -23,7 +23,7 @@ use rotor_chain::dynamics::track::{Snapshot, SpaceTime};
 use rotor_chain::statics::continuum::ContinuumChain;
 use rotor_chain::statics::walls::Charge;
 
-use rotor_chain::prelude::ParameterError;
+use rotor_chain::ParameterError;
 use rotor_chain::statics::antikink::{AntikinkOptions, peierls_nabarro};
 
 use super::{Cause, FigureError, FigureFn, Params};

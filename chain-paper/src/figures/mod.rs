@@ -3,7 +3,7 @@
 
 use rotor_chain::RuntimeChain;
 use rotor_chain::dynamics::DynamicsError;
-use rotor_chain::prelude::{BranchError, ParameterError};
+use rotor_chain::{BranchError, ParameterError};
 use rotor_chain::statics::StaticsError;
 use rotor_chain::statics::continuum::{ContinuumChain, ContinuumError};
 use rotor_chain::statics::linkage::LinkageError;

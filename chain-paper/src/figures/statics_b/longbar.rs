@@ -2,7 +2,7 @@
 //! mode, drawn on the chain and plotted, and the paper's numbers about them.
 
 use rotor_chain::RuntimeChain;
-use rotor_chain::prelude::ChainModel;
+use rotor_chain::ChainModel;
 use rotor_chain::statics::counting::maxwell_calladine;
 use rotor_chain::statics::impurity::{impurity_analysis, two_kink_configuration};
 use rotor_chain::statics::kink::kink;
