@@ -156,6 +156,8 @@ mod tests {
             values: vec![vec![1.0, 7.0]],
             categories: vec!["reflected".into(), "transmitted".into()],
             value_label: String::new(),
+            log_x: false,
+            colour_limit: None,
         };
         assert_eq!(panel_csv(&Chart::Heat(map)), "x,y,value,category\n0.5,3,1,transmitted\n1,3,7,\n");
     }

@@ -14,6 +14,7 @@ pub mod data;
 pub mod drawing;
 pub mod figures;
 pub mod model;
+pub mod outcomes;
 pub mod output;
 pub mod palette;
 pub mod render;

@@ -465,6 +465,8 @@ mod demo {
             values,
             categories: Vec::new(),
             value_label: "θ (rad)".into(),
+            log_x: false,
+            colour_limit: None,
         };
         let outcomes = ["transmitted", "reflected", "trapped"];
         let model = rotor_chain::RuntimeChain::builder(12, p.r, p.k, 0.5)
@@ -485,6 +487,8 @@ mod demo {
             values: (0..10).map(|j| (0..12).map(|i| ((i + 2 * j) / 7 % 3) as f64).collect()).collect(),
             categories: outcomes.iter().map(|s| s.to_string()).collect(),
             value_label: String::new(),
+            log_x: false,
+            colour_limit: None,
         };
         Ok(Figure {
             label: "fig:demo-maps",

@@ -126,6 +126,8 @@ fn synthetic() -> Figure {
                 values: vec![vec![0.0, 1.0, 2.0], vec![f64::NAN, 4.0, 5.0]],
                 categories: Vec::new(),
                 value_label: "energy (J)".into(),
+                log_x: false,
+                colour_limit: None,
             }),
         ],
         rows: vec![Row::number("a number", "2.0", 2.2, Some(2.1), "")],

@@ -261,6 +261,8 @@ mod tests {
                 values: vec![vec![0.0]],
                 categories: Vec::new(),
                 value_label: String::new(),
+                log_x: false,
+                colour_limit: None,
             }),
         ]);
         assert_eq!(l.size, (2 * CELL.0, CHAIN_ROW + CELL.1));
