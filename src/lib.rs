@@ -171,18 +171,18 @@ pub use chain_core::{ChainBuilder, Law, RuntimeChain, dynamics, linalg, runtime,
 #[doc = include_str!("attribute.md")]
 #[doc(inline)]
 pub use chain_macros::rotor_chain;
-/// The linear-algebra crate of the matrices this crate returns, re-exported so versions match.
-pub use nalgebra;
-/// Resumable parallel sweeps and the scattering phase diagram (feature `sweep`; the crate
-/// rotor-chain-sweep, whose command is `phase-diagram`).
-#[cfg(feature = "sweep")]
-#[doc(inline)]
-pub use chain_sweep as sweep;
 /// The paper's figures as functions of any chain's parameters, outcome grids of your own sweeps,
 /// and their PNG, SVG and CSV output (feature `figures`; the crate rotor-chain-paper).
 #[cfg(feature = "figures")]
 #[doc(inline)]
 pub use chain_paper as paper;
+/// Resumable parallel sweeps and the scattering phase diagram (feature `sweep`; the crate
+/// rotor-chain-sweep, whose command is `phase-diagram`).
+#[cfg(feature = "sweep")]
+#[doc(inline)]
+pub use chain_sweep as sweep;
+/// The linear-algebra crate of the matrices this crate returns, re-exported so versions match.
+pub use nalgebra;
 
 pub mod guide;
 

@@ -38,6 +38,9 @@ pub enum Style {
     OpenPoints,
     /// A line with dots at the points.
     LinePoints,
+    /// Unfilled circles a little larger than [`Style::LinePoints`]'s dots: a series that lies on
+    /// another (a starting guess under its converged result) stays visible around its dots.
+    Rings,
 }
 
 /// One curve or set of points of a panel. Its colour is its quantity's

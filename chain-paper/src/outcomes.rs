@@ -155,6 +155,26 @@ impl OutcomeGrid {
         self.cells.iter().flatten().filter(|c| matches!(c, Cell::Failed(_))).count()
     }
 
+    /// The cells unlike each of their (up to four) neighbours along the axes, `(i, j)` in row
+    /// order: a label that holds at one grid point only, which a figure should explain (a window
+    /// narrower than the grid's spacing, or an outcome that depends on rounding).
+    pub fn isolated(&self) -> Vec<(usize, usize)> {
+        let (columns, rows) = (self.ki.len(), self.v0.len());
+        let mut found = Vec::new();
+        for j in 0..rows {
+            for i in 0..columns {
+                let cell = &self.cells[j][i];
+                let neighbours = [(i.wrapping_sub(1), j), (i + 1, j), (i, j.wrapping_sub(1)), (i, j + 1)];
+                let mut present =
+                    neighbours.iter().filter_map(|&(a, b)| self.cells.get(b)?.get(a)).peekable();
+                if present.peek().is_some() && present.all(|other| other != cell) {
+                    found.push((i, j));
+                }
+            }
+        }
+        found
+    }
+
     /// The outcomes per row, `None` for a failed or missing point.
     pub fn labels(&self) -> Vec<Vec<Option<Outcome>>> {
         (0..self.v0.len()).map(|j| (0..self.ki.len()).map(|i| self.outcome(i, j)).collect()).collect()
@@ -212,14 +232,16 @@ mod tests {
 
     fn point(grid: &Grid, (i, j): (usize, usize), outcome: Result<Outcome, &str>) -> Point<PointRecord> {
         let coords = grid.point(i, j).unwrap();
-        let outcome =
-            outcome.map(|o| PointRecord { outcome: o, ..fake_point(coords.0, coords.1) }).map_err(str::to_owned);
+        let outcome = outcome
+            .map(|o| PointRecord { outcome: o, ..fake_point(coords.0, coords.1) })
+            .map_err(str::to_owned);
         Point { index: (i, j), coords, outcome, line: 0 }
     }
 
     #[test]
     fn points_land_in_their_cells_and_the_rest_are_missing() {
-        let grid = Grid::new(Axis::geomspace(0.01, 1.0, 3).unwrap(), Axis::linspace(1.0, 2.0, 2).unwrap()).unwrap();
+        let grid =
+            Grid::new(Axis::geomspace(0.01, 1.0, 3).unwrap(), Axis::linspace(1.0, 2.0, 2).unwrap()).unwrap();
         let points = [
             point(&grid, (0, 0), Ok(Outcome::Reflected)),
             point(&grid, (2, 1), Ok(Outcome::Transmitted)),
@@ -234,7 +256,11 @@ mod tests {
         // Two decades, log-spaced: a logarithmic axis, its data log10(k_i/k).
         let map = g.heatmap("t");
         assert!(map.log_x);
-        assert!(map.x.iter().zip([-2.0, -1.0, 0.0]).all(|(x, decade)| (x - decade).abs() < 1e-12), "{:?}", map.x);
+        assert!(
+            map.x.iter().zip([-2.0, -1.0, 0.0]).all(|(x, decade)| (x - decade).abs() < 1e-12),
+            "{:?}",
+            map.x
+        );
         let failed = Outcome::ALL.len() as f64;
         assert_eq!(map.values[1][1], failed);
         assert_eq!(map.categories[failed as usize], FAILED);
@@ -243,13 +269,35 @@ mod tests {
     }
 
     #[test]
+    fn isolated_cells_differ_from_every_neighbour() {
+        let grid =
+            Grid::new(Axis::linspace(0.1, 0.4, 4).unwrap(), Axis::linspace(1.0, 3.0, 3).unwrap()).unwrap();
+        // Transmitted everywhere but a trapped cell inside (2, 1), a reflected corner (0, 0) and
+        // a split pair (3, 1), (3, 2), whose members each have one like neighbour.
+        let odd = |i, j| match (i, j) {
+            (2, 1) => Outcome::Trapped,
+            (0, 0) => Outcome::Reflected,
+            (3, 1) | (3, 2) => Outcome::Split,
+            _ => Outcome::Transmitted,
+        };
+        let points: Vec<_> = grid.indices().map(|(i, j)| point(&grid, (i, j), Ok(odd(i, j)))).collect();
+        let g = OutcomeGrid::new(&grid, &points).unwrap();
+        assert_eq!(g.isolated(), vec![(0, 0), (2, 1)]);
+    }
+
+    #[test]
     fn points_of_another_grid_are_refused() {
-        let grid = Grid::new(Axis::linspace(0.5, 1.0, 2).unwrap(), Axis::linspace(1.0, 2.0, 2).unwrap()).unwrap();
-        let other = Grid::new(Axis::linspace(0.5, 0.9, 2).unwrap(), Axis::linspace(1.0, 2.0, 2).unwrap()).unwrap();
+        let grid =
+            Grid::new(Axis::linspace(0.5, 1.0, 2).unwrap(), Axis::linspace(1.0, 2.0, 2).unwrap()).unwrap();
+        let other =
+            Grid::new(Axis::linspace(0.5, 0.9, 2).unwrap(), Axis::linspace(1.0, 2.0, 2).unwrap()).unwrap();
         let err = OutcomeGrid::new(&grid, &[point(&other, (1, 0), Ok(Outcome::Trapped))]).unwrap_err();
         assert!(matches!(err, OutcomeGridError::OffGrid { index: (1, 0), columns: 2, rows: 2, .. }), "{err}");
         let twice = [point(&grid, (1, 0), Ok(Outcome::Trapped)), point(&grid, (1, 0), Ok(Outcome::Trapped))];
-        assert!(matches!(OutcomeGrid::new(&grid, &twice), Err(OutcomeGridError::Duplicate { index: (1, 0), .. })));
+        assert!(matches!(
+            OutcomeGrid::new(&grid, &twice),
+            Err(OutcomeGridError::Duplicate { index: (1, 0), .. })
+        ));
         // Less than a decade: a linear axis, its data k_i/k.
         let g = OutcomeGrid::new(&grid, &[]).unwrap();
         assert!(!g.log_ki() && g.heatmap("t").x == vec![0.5, 1.0]);

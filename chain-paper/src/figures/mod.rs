@@ -3,10 +3,10 @@
 
 use rotor_chain::RuntimeChain;
 use rotor_chain::dynamics::DynamicsError;
-use rotor_chain::{BranchError, ParameterError};
 use rotor_chain::statics::StaticsError;
 use rotor_chain::statics::continuum::{ContinuumChain, ContinuumError};
 use rotor_chain::statics::linkage::LinkageError;
+use rotor_chain::{BranchError, ParameterError};
 
 use crate::drawing::DrawingError;
 use crate::model::{Figure, Quality};

@@ -89,7 +89,10 @@ pub fn phasediagram_resolution(params: &Params, quality: Quality) -> Result<Figu
             format!("antikink phase diagram, whole plane ({size} x {size})"),
             "reflected (soft), trapped, transmitted, reflected (stiff)",
             &counts(&plane_labels),
-            format!("k_i/k {}..{} log-spaced, v0 {}..{}; free ends", s.ki_range.0, s.ki_range.1, s.v0_range.0, s.v0_range.1),
+            format!(
+                "k_i/k {}..{} log-spaced, v0 {}..{}; free ends",
+                s.ki_range.0, s.ki_range.1, s.v0_range.0, s.v0_range.1
+            ),
         ),
     ];
     Ok(Figure {

@@ -3,7 +3,7 @@
 //! slopes, the alternating window and the antikink's stability against `v0`; the grid and ranges
 //! are [`Scattering`](super::Scattering)'s.
 
-use chain_sweep::scattering::{Defect, PhaseDiagram};
+use chain_sweep::scattering::{Defect, Ends, Integrator, PhaseDiagram};
 use chain_sweep::{Axis, Grid, compute_grid};
 use rayon::prelude::*;
 use rotor_chain::dynamics::observe::stability;
@@ -14,17 +14,59 @@ use rotor_chain::statics::walls::Charge;
 use super::{chain, middle_spring};
 use crate::figures::{Cause, FigureError, Params};
 use crate::model::{Chart, Figure, Panel, Quality, Quantity, Row, Series, Style};
-use crate::outcomes::{FAILED, OutcomeGrid};
+use crate::outcomes::{Cell, FAILED, OutcomeGrid};
+
+/// The phase diagram of `defect` for the chain of `params` at
+/// [`Scattering::theta_bar`](super::Scattering::theta_bar): the paper's free ends and Verlet.
+fn settings(params: &Params, defect: Defect) -> Result<PhaseDiagram, Cause> {
+    let mut d = PhaseDiagram::new(params.n, params.r, params.k, params.scattering.theta_bar, defect)?;
+    d.mass = params.mass;
+    d.check()?;
+    Ok(d)
+}
 
 /// One phase diagram over `grid` (x: `k_i/k`, y: `v0`) of the chain of `params` at
 /// [`Scattering::theta_bar`](super::Scattering::theta_bar), computed by chain-sweep's
 /// [`PhaseDiagram::compute_point`] in parallel.
 pub(crate) fn phase_diagram(params: &Params, defect: Defect, grid: &Grid) -> Result<OutcomeGrid, Cause> {
-    let mut d = PhaseDiagram::new(params.n, params.r, params.k, params.scattering.theta_bar, defect)?;
-    d.mass = params.mass;
-    d.check()?;
+    let d = settings(params, defect)?;
     let points = compute_grid(grid, |ki, v0| d.compute_point(ki, v0), None)?;
     Ok(OutcomeGrid::new(grid, &points)?)
+}
+
+/// A cell's label as the caption names it.
+fn cell_name(cell: &Cell) -> &'static str {
+    match cell {
+        Cell::Outcome(o) => o.name(),
+        Cell::Failed(_) => FAILED,
+        _ => "not computed",
+    }
+}
+
+/// What the isolated cells of `outcomes` ([`OutcomeGrid::isolated`], the diagram of `defect`)
+/// are: each point is run again with DOP853 and with absorbing ends (the checks of
+/// docs/dynamics.md §6). A label both keep is a real outcome in a window narrower than the grid's
+/// spacing; one that changes depends on rounding and on what the free ends send back (the late
+/// events of a chaotic run). Empty when no cell is isolated.
+fn isolated_cells(params: &Params, defect: Defect, outcomes: &OutcomeGrid) -> Result<Vec<String>, Cause> {
+    let cells = outcomes.isolated();
+    let dop853 = PhaseDiagram { integrator: Integrator::Dop853, ..settings(params, defect)? };
+    let absorbing = PhaseDiagram { ends: Ends::Absorbing, ..settings(params, defect)? };
+    cells
+        .par_iter()
+        .map(|&(i, j)| {
+            let (ki, v0) = (outcomes.ki()[i], outcomes.v0()[j]);
+            let label = cell_name(&outcomes.cells()[j][i]);
+            let again = |d: &PhaseDiagram| d.compute_point(ki, v0).map_or(FAILED, |r| r.outcome.name());
+            let (with_dop853, with_absorbing) = (again(&dop853), again(&absorbing));
+            let verdict = if with_dop853 == label && with_absorbing == label {
+                "the same with DOP853 and with absorbing ends: a window narrower than the grid's spacing".to_owned()
+            } else {
+                format!("{with_dop853} with DOP853, {with_absorbing} with absorbing ends: depends on rounding and the free ends")
+            };
+            Ok(format!("{} {label} at k_i/k = {ki:.3}, v0 = {v0:.2} ({verdict})", defect.name()))
+        })
+        .collect()
 }
 
 fn count(labels: &[Vec<Option<Outcome>>], which: Option<Outcome>) -> usize {
@@ -191,9 +233,11 @@ pub fn phasediagram(params: &Params, quality: Quality) -> Result<Figure, FigureE
     let grid = Grid::new(kis, v0s).map_err(FigureError::on(LABEL))?;
     let mut panels = Vec::new();
     let mut diagrams = Vec::new();
-    for defect in [Defect::Kink, Defect::Antikink] {
+    let mut isolated = Vec::new();
+    for (tag, defect) in [("(a)", Defect::Kink), ("(b)", Defect::Antikink)] {
         let outcomes = phase_diagram(params, defect, &grid).map_err(&fail)?;
-        panels.push(Chart::Heat(outcomes.heatmap(format!("{}, θ̄ = {theta_bar}", defect.name()))));
+        panels.push(Chart::Heat(outcomes.heatmap(format!("{tag} {}, θ̄ = {theta_bar}", defect.name()))));
+        isolated.extend(isolated_cells(params, defect, &outcomes).map_err(&fail)?);
         diagrams.push(outcomes.labels());
     }
     let (kink, antikink) = (&diagrams[0], &diagrams[1]);
@@ -203,26 +247,28 @@ pub fn phasediagram(params: &Params, quality: Quality) -> Result<Figure, FigureE
         .values()
         .to_vec();
     let scan = stability_scan(params, &stable_v0s)?;
-    panels.push(Chart::Lines(Panel {
-        title: "antikink in a perfect chain: walls against v0".to_owned(),
-        x_label: "v0 (a/t)".to_owned(),
-        y_label: "most walls at once; longest time with 3+ walls (t × 10)".to_owned(),
-        series: vec![
-            Series::new(
-                Quantity::Antikink,
-                "most walls",
-                scan.iter().map(|&(v, w, _)| (v, w as f64)).collect(),
-                Style::LinePoints,
-            ),
-            Series::new(
-                Quantity::Antikink,
-                "longest time with 3+ walls × 10",
-                scan.iter().map(|&(v, _, t)| (v, 10.0 * t)).collect(),
-                Style::Dashed,
-            ),
-        ],
-        log_y: false,
-    }));
+    panels.push(Chart::Lines(Panel::new(
+        "(c) antikink in a perfect chain: most walls at once",
+        "v0 (a/t)",
+        "walls",
+        vec![Series::new(
+            Quantity::Antikink,
+            "most walls",
+            scan.iter().map(|&(v, w, _)| (v, w as f64)).collect(),
+            Style::LinePoints,
+        )],
+    )));
+    panels.push(Chart::Lines(Panel::new(
+        "(d) antikink in a perfect chain: time with 3 or more walls",
+        "v0 (a/t)",
+        "longest time with 3+ walls (t)",
+        vec![Series::new(
+            Quantity::Antikink,
+            "longest time with 3+ walls",
+            scan.iter().map(|&(v, _, t)| (v, t)).collect(),
+            Style::LinePoints,
+        )],
+    )));
     let single_up_to = scan.iter().take_while(|s| s.1 <= 1).last().map_or(f64::NAN, |s| s.0);
     let none = format!("none up to {stable_to}");
     let first_extra = scan.iter().find(|s| s.1 >= 3).map_or(none.clone(), |s| format!("{}", s.0));
@@ -311,12 +357,18 @@ pub fn phasediagram(params: &Params, quality: Quality) -> Result<Figure, FigureE
             ),
         ),
     ];
+    let isolated = if isolated.is_empty() {
+        String::new()
+    } else {
+        format!(". Isolated cells, each run again: {}", isolated.join("; "))
+    };
     Ok(Figure {
         label: LABEL,
         caption: format!(
-            "Scattering phase diagrams over k_i/k ({ki_from}..{ki_to}, log-spaced) and v0 ({v0_from}..{v0_to}), \
-             {size} x {size}, kink and antikink; antikink walls against v0 up to {stable_to}: θ̄ = {theta_bar}, \
-             n = {}, r/a = {}, k = {}, impurity on spring {}, free ends",
+            "Scattering phase diagrams of (a) the kink and (b) the antikink over k_i/k ({ki_from}..{ki_to}, \
+             log-spaced) and v0 ({v0_from}..{v0_to}), {size} x {size}; (c, d) the antikink in a perfect chain \
+             against v0 up to {stable_to}: θ̄ = {theta_bar}, n = {}, r/a = {}, k = {}, impurity on spring {}, free \
+             ends{isolated}",
             params.n,
             params.r,
             params.k,

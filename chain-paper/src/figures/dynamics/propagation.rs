@@ -15,6 +15,9 @@ use super::{chain, percent, space_time_map};
 use crate::figures::{FigureError, Params};
 use crate::model::{Chart, Figure, Panel, Quality, Quantity, Row, Series, Style, format_number};
 
+/// The stretch of time `fig:ketimeplot` (b) shows, `t`.
+const ZOOM: f64 = 1.0;
+
 /// Paper Fig. `fig:ketimeplot`: the kinetic energy of the chain against time for a kink and an
 /// antikink launched with [`Propagation::v0`](super::Propagation::v0) (2.4) at its `theta_bar`
 /// (0.58) in a perfect chain, each followed until it comes within 8 sites of the free end it runs
@@ -45,16 +48,24 @@ pub fn ketimeplot(params: &Params, quality: Quality) -> Result<Figure, FigureErr
         let (min, max) = window.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), k| (a.min(k), b.max(k)));
         max - min
     };
-    let panel = Panel {
-        title: format!("kinetic energy, θ̄ = {theta_bar}, v0 = {v0}"),
-        x_label: "time t".to_owned(),
-        y_label: "kinetic energy (M a²/t²)".to_owned(),
-        series: vec![
-            Series::new(Quantity::Kink, "kink", kink.run.kinetic.clone(), Style::Line),
-            Series::new(Quantity::Antikink, "antikink", antikink.run.kinetic.clone(), Style::Dashed),
-        ],
-        log_y: false,
+    // (a) the whole run; (b) its first time unit, where the antikink's swings (about four per
+    // time unit) are wide enough to read.
+    let panel = |title: String, until: f64| {
+        let early = |p: &Propagation| p.run.kinetic.iter().copied().filter(|&(t, _)| t <= until).collect();
+        Panel::new(
+            title,
+            "time t",
+            "kinetic energy (M a²/t²)",
+            vec![
+                Series::new(Quantity::Kink, "kink", early(&kink), Style::Line),
+                Series::new(Quantity::Antikink, "antikink", early(&antikink), Style::Line),
+            ],
+        )
     };
+    let panels = vec![
+        Chart::Lines(panel(format!("(a) kinetic energy, θ̄ = {theta_bar}, v0 = {v0}"), f64::INFINITY)),
+        Chart::Lines(panel(format!("(b) 0 ≤ t ≤ {ZOOM} of (a)"), ZOOM)),
+    ];
     let travelled = |p: &Propagation| match (p.positions.first(), p.positions.last()) {
         (Some(a), Some(b)) => format!("{:.1} sites in t = {:.2}", (b.1 - a.1).abs(), b.0),
         _ => "no track".to_owned(),
@@ -93,11 +104,12 @@ pub fn ketimeplot(params: &Params, quality: Quality) -> Result<Figure, FigureErr
     Ok(Figure {
         label: LABEL,
         caption: format!(
-            "Kinetic energy vs time, kink (solid) and antikink (dashed): θ̄ = {theta_bar}, \
+            "Kinetic energy vs time, kink (blue) and antikink (orange), (a) the whole run and (b) its first {ZOOM} t: \
+             θ̄ = {theta_bar}, \
              v0 = {v0}, n = {}, r/a = {}, k = {}, M = {}, no impurity",
             params.n, params.r, params.k, params.mass
         ),
-        panels: vec![Chart::Lines(panel)],
+        panels,
         rows,
     })
 }
@@ -144,7 +156,8 @@ fn describe_stop(p: &Propagation, trap_rotor: f64) -> String {
 pub fn akpntrapprofile(params: &Params, quality: Quality) -> Result<Figure, FigureError> {
     const LABEL: &str = "fig:akpntrapprofile";
     let p = &params.propagation;
-    let (v0, theta_bar, stated_theta_bar, trap_rotor) = (p.slow_v0, p.slow_theta_bar, p.theta_bar, p.trap_rotor);
+    let (v0, theta_bar, stated_theta_bar, trap_rotor) =
+        (p.slow_v0, p.slow_theta_bar, p.theta_bar, p.trap_rotor);
     let start = trap_start(params);
     let (t_max, iterations) = match quality {
         Quality::Full => (40.0, 14),
@@ -192,7 +205,9 @@ pub fn akpntrapprofile(params: &Params, quality: Quality) -> Result<Figure, Figu
         .phonon_band_edges();
     let launch_energy = 0.5 * params.mass * v0 * v0;
     let barrier = |model| {
-        peierls_nabarro(model, &AntikinkOptions::default()).map(|pn| pn.barrier).map_err(FigureError::on(LABEL))
+        peierls_nabarro(model, &AntikinkOptions::default())
+            .map(|pn| pn.barrier)
+            .map_err(FigureError::on(LABEL))
     };
     let (stated_barrier, barrier) = (barrier(&stated)?, barrier(&model)?);
     let rows = vec![
@@ -276,4 +291,3 @@ pub fn akpntrapprofile(params: &Params, quality: Quality) -> Result<Figure, Figu
         rows,
     })
 }
-

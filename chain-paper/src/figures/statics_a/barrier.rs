@@ -110,16 +110,20 @@ pub fn akconfigpn(p: &Params, _q: Quality) -> Result<Figure, FigureError> {
     let title = |tag: &str, a: &Antikink| {
         format!("{tag}, index {}, centre {:.2}, V = {:.4}", a.classification.index, a.centre, a.energy)
     };
-    let drawing = |tag: &str, a: &Antikink| -> Result<Chart, FigureError> {
+    let drawing = |tag: &str, a: &Antikink| -> Result<ChainDrawing, FigureError> {
         let rotors = window(a.centre, DRAWN, model.rotor_count());
-        let d = ChainDrawing::new(
+        ChainDrawing::new(
             format!("{} (rotors {}–{})", title(tag, a), rotors.start, rotors.end - 1),
             &model,
             &a.theta,
             rotors,
-        );
-        Ok(d.map_err(FigureError::on(LABEL))?.into())
+        )
+        .map_err(FigureError::on(LABEL))
     };
+    // One stretch scale for both, so that the two equilibria compare by colour.
+    let mut drawings = [drawing("(a) minimum", minimum)?, drawing("(b) saddle", saddle)?];
+    ChainDrawing::share_stretch_scale(&mut drawings);
+    let [minimum_drawing, saddle_drawing] = drawings;
     let panel = |tag: &str, a: &Antikink, name: &str| -> Chart {
         let mut series = vec![Series::new(Quantity::Rotor, name, profile(&a.theta), Style::LinePoints)];
         series.extend(uniform_levels(p.n, theta_bar));
@@ -134,8 +138,8 @@ pub fn akconfigpn(p: &Params, _q: Quality) -> Result<Figure, FigureError> {
             p.n, p.r, p.k, p.mass
         ),
         panels: vec![
-            drawing("(a) minimum", minimum)?,
-            drawing("(b) saddle", saddle)?,
+            minimum_drawing.into(),
+            saddle_drawing.into(),
             panel("(c) minimum", minimum, "minimum"),
             panel("(d) saddle", saddle, "saddle"),
         ],

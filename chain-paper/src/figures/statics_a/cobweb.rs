@@ -136,7 +136,8 @@ pub fn akcobweb(p: &Params, q: Quality) -> Result<Figure, FigureError> {
     let spring = (antikink.centre.floor() as usize).min(n - 2);
     let drawing = ChainDrawing::new("(a) antikink: springs stretched", &model, &antikink.theta, 0..n)
         .map_err(FigureError::on(LABEL))?;
-    let guess = Series::new(Quantity::Antikink, "reflected kink (start)", profile(&start), Style::Dashed);
+    // Rings: the start lies within a dot's size of the minimum on most rotors.
+    let guess = Series::new(Quantity::Antikink, "reflected kink (start)", profile(&start), Style::Rings);
     Ok(Figure {
         label: LABEL,
         caption: format!(
@@ -146,7 +147,13 @@ pub fn akcobweb(p: &Params, q: Quality) -> Result<Figure, FigureError> {
         ),
         panels: vec![
             drawing.into(),
-            profile_panel("(b) antikink profile", "antikink", &antikink.theta, p.cobweb.theta_bar, vec![guess]),
+            profile_panel(
+                "(b) antikink profile",
+                "antikink",
+                &antikink.theta,
+                p.cobweb.theta_bar,
+                vec![guess],
+            ),
             cobweb_panel("(c) cobweb plot", &model, spring, &antikink.theta, q)
                 .map_err(FigureError::on(LABEL))?,
         ],

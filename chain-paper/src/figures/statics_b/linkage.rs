@@ -196,6 +196,11 @@ fn contour(model: &LinkageChain, energy: f64, points: usize) -> Vec<(f64, f64)> 
     out
 }
 
+/// `(a)`, `(b)`, ...: the panel letter of the `index`-th panel (from 0).
+fn letter(index: usize) -> String {
+    format!("({})", char::from(b'a' + (index % 26) as u8))
+}
+
 /// One case of Fig. `fig:orbit`.
 struct OrbitCase {
     title: &'static str,
@@ -217,28 +222,28 @@ pub fn orbit(params: &Params, quality: Quality) -> Result<Figure, FigureError> {
     let stride = (steps / 2_000).max(1);
     let cases = [
         OrbitCase {
-            title: "(a) l0 < l_critical, E = 0.7 E_c",
+            title: "(e) l0 < l_critical, E = 0.7 E_c",
             l0: l0_below,
             energy: |m| 0.7 * m.critical_energy(),
             position: [6.6, 4.0],
             direction: [1.0, 0.0],
         },
         OrbitCase {
-            title: "(b) l0 < l_critical, E = 1.2 E_c",
+            title: "(f) l0 < l_critical, E = 1.2 E_c",
             l0: l0_below,
             energy: |m| 1.2 * m.critical_energy(),
             position: [6.0, 5.0],
             direction: [-1.0, -0.6],
         },
         OrbitCase {
-            title: "(c) l0 = l_critical (E_c = 0), E = 20",
+            title: "(g) l0 = l_critical (E_c = 0), E = 20",
             l0: l_c,
             energy: |_| 20.0,
             position: [2.0, -3.0],
             direction: [1.0, 0.6],
         },
         OrbitCase {
-            title: "(d) l0 > l_critical, E = E_min + 20",
+            title: "(h) l0 > l_critical, E = E_min + 20",
             l0: l0_above,
             energy: |m| m.critical_energy() + 20.0,
             position: [2.0, -3.0],
@@ -278,8 +283,14 @@ pub fn orbit(params: &Params, quality: Quality) -> Result<Figure, FigureError> {
                 ),
             ],
         )));
+        // The drawings come first, (a) to (d); each names the trajectory it starts, (e) to (h).
         let tag = &case.title[..case.title.find(')').map_or(0, |i| i + 1)];
-        let title = format!("{tag} the chain at the start, x1 = {:.2}, x2 = {:.2}", state.x1, state.x2);
+        let title = format!(
+            "{} the chain at the start of {tag}, x1 = {:.2}, x2 = {:.2}",
+            letter(drawings.len()),
+            state.x1,
+            state.x2
+        );
         drawings.push(
             linkage_drawing(params, &model, (state.x1, state.x2), title).map_err(FigureError::on(LABEL))?,
         );
@@ -311,8 +322,8 @@ pub fn orbit(params: &Params, quality: Quality) -> Result<Figure, FigureError> {
     Ok(Figure {
         label: LABEL,
         caption: format!(
-            "Two-kink trajectories on V(x1, x2; l0) and the chain at each start (red dot), {linkage_rotors}-rotor \
-             sub-chains, θ̄ = {theta_bar}, \
+            "Two-kink trajectories on V(x1, x2; l0) (e-h) and the chain at each start (a-d; the red dot of e-h), \
+             {linkage_rotors}-rotor sub-chains, θ̄ = {theta_bar}, \
              r/a = {}, k = {}, M = {}; {steps} symplectic steps of dt = {dt} (max |ΔE|/E = {})",
             params.r,
             params.k,
@@ -356,7 +367,7 @@ pub fn el_diagram_figure(params: &Params, quality: Quality) -> Result<Figure, Fi
     let (e_left, e_right) = (cont.critical_energy(mid_left), cont.critical_energy(mid_right));
     let panels = vec![
         Chart::from(Panel::new(
-            "(E, l0) diagram",
+            "(a) the critical energies against l0",
             "l0 / a",
             "E (M a²/t²)",
             vec![
@@ -379,7 +390,7 @@ pub fn el_diagram_figure(params: &Params, quality: Quality) -> Result<Figure, Fi
             ],
         )),
         Chart::Heat(Heatmap {
-            title: "accessible region (Region::classify)".to_owned(),
+            title: "(b) the region of each (l0, E)".to_owned(),
             x_label: "l0 / a".to_owned(),
             y_label: "E (M a²/t²)".to_owned(),
             x: l0s.clone(),
@@ -394,8 +405,9 @@ pub fn el_diagram_figure(params: &Params, quality: Quality) -> Result<Figure, Fi
     Ok(Figure {
         label: LABEL,
         caption: format!(
-            "(E, l0) diagram of the linkage limit: E_c = k (l0 − l_critical)²/2, l_critical = {l_c:.4}, \
-             l̄ = {bar:.4}, θ̄ = {theta_bar}, r/a = {}, k = {}",
+            "(E, l0) diagram of the linkage limit: (a) E_c = k (l0 − l_critical)²/2 below l_critical, E_min \
+             above, and one dot in each region in its colour of (b), which marks every (l0, E) annulus, disk or \
+             forbidden; l_critical = {l_c:.4}, l̄ = {bar:.4}, θ̄ = {theta_bar}, r/a = {}, k = {}",
             params.r, params.k
         ),
         panels,

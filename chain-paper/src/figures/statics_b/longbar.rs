@@ -1,16 +1,14 @@
 //! Sec. VII-A: a long middle spring (`fig:longbar`): its zero mode, soft mode and soft tensional
 //! mode, drawn on the chain and plotted, and the paper's numbers about them.
 
-use rotor_chain::RuntimeChain;
 use rotor_chain::ChainModel;
+use rotor_chain::RuntimeChain;
 use rotor_chain::statics::counting::maxwell_calladine;
 use rotor_chain::statics::impurity::{impurity_analysis, two_kink_configuration};
 use rotor_chain::statics::kink::kink;
 use rotor_chain::statics::modes::{Mode, ModeKind, ModeOptions, modes};
 
-use super::{
-    first_of, frequency_label, frequency_resolution, indexed, middle_spring, normalised, unit,
-};
+use super::{first_of, frequency_label, frequency_resolution, indexed, middle_spring, normalised, unit};
 use crate::drawing::window;
 use crate::figures::{FigureError, Params, chain, continuum};
 use crate::model::{
