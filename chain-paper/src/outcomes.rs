@@ -1,6 +1,6 @@
 //! Scattering outcomes on a grid (Sec. VI, Fig. `fig:phasediagram`), for any chain and any grid:
-//! the points of a sweep, computed in memory ([`chain_sweep::compute_grid`]) or read back from a
-//! results file ([`chain_sweep::read_points`]), become an [`OutcomeGrid`], and the grid a
+//! the points of a sweep, computed in memory (chain-sweep's `compute_grid`) or read back from a
+//! results file (chain-sweep's `read_points`), become an [`OutcomeGrid`], and the grid a
 //! phase-diagram panel ([`OutcomeGrid::heatmap`]) that [`crate::render`] draws.
 //!
 //! ```
@@ -208,7 +208,7 @@ impl OutcomeGrid {
     }
 }
 
-/// The colour categories of a phase diagram: every outcome in [`Outcome::ALL`]'s order, then
+/// The colour categories of a phase diagram: every outcome in the order of `Outcome::ALL`, then
 /// [`FAILED`]. A new outcome (the physics issue's "unresolved") joins by joining `Outcome::ALL`;
 /// its colour is [`crate::palette::Quantity::of_category`]'s.
 pub fn categories() -> Vec<String> {

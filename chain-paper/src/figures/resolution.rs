@@ -3,7 +3,7 @@
 //! Sec. VI leaves "for future studies", and of the whole plane of Fig. `fig:phasediagram`.
 //!
 //! Run only with `paper --resolution` (never in the default or `--quick` runs): 2 x 400 x 400
-//! scattering runs, each chain-sweep's [`PhaseDiagram::compute_point`](chain_sweep::scattering::PhaseDiagram::compute_point) (the same point as the
+//! scattering runs, each chain-sweep's `PhaseDiagram::compute_point` (the same point as the
 //! `phase-diagram` tool and `fig:phasediagram`: the scattering issue's clean launch and lasting
 //! outcomes, the energy budget with its DOP853 recomputation).
 

@@ -7,7 +7,7 @@
 //! Space-time images show the alternately measured angles `theta_i` (one sign per domain), rows
 //! are output times, columns rotors. Scattering runs follow the paper's setup (Sec. VI): the
 //! impurity is the middle spring `(n - 1) / 2`, the defect starts 15 sites to its right and moves
-//! left ([`ScatterSetup::from_the_right`](rotor_chain::dynamics::scatter::ScatterSetup::from_the_right)).
+//! left (`ScatterSetup::from_the_right` of `rotor_chain::dynamics::scatter`).
 
 use rotor_chain::ParameterError;
 use rotor_chain::RuntimeChain;

@@ -27,7 +27,7 @@ fn settings(params: &Params, defect: Defect) -> Result<PhaseDiagram, Cause> {
 
 /// One phase diagram over `grid` (x: `k_i/k`, y: `v0`) of the chain of `params` at
 /// [`Scattering::theta_bar`](super::Scattering::theta_bar), computed by chain-sweep's
-/// [`PhaseDiagram::compute_point`] in parallel.
+/// `PhaseDiagram::compute_point` in parallel.
 pub(crate) fn phase_diagram(params: &Params, defect: Defect, grid: &Grid) -> Result<OutcomeGrid, Cause> {
     let d = settings(params, defect)?;
     let points = compute_grid(grid, |ki, v0| d.compute_point(ki, v0), None)?;
@@ -219,7 +219,7 @@ fn stability_scan(params: &Params, v0s: &[f64]) -> Result<Vec<(f64, usize, f64)>
 /// impurities of the kink's split and the stiff ones of the antikink's upper reflection regime
 /// are resolved) and the launch speed `v0` (0.5 to 12), `theta_bar = 0.28`; 40 x 40 points in
 /// full, 6 x 6 quick (all of them [`Scattering`](super::Scattering)'s). Each point is
-/// chain-sweep's ([`PhaseDiagram::compute_point`]), the one the `phase-diagram` tool computes.
+/// chain-sweep's (`PhaseDiagram::compute_point`), the one the `phase-diagram` tool computes.
 /// With the antikink's stability against `v0` up to 25.
 pub fn phasediagram(params: &Params, quality: Quality) -> Result<Figure, FigureError> {
     const LABEL: &str = "fig:phasediagram";

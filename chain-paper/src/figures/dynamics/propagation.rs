@@ -121,7 +121,7 @@ fn trap_start(params: &Params) -> f64 {
     (5 * params.n / 6) as f64
 }
 
-/// "Stopped": stays within 0.75 sites for 3 time units ([`stopping_point`]).
+/// "Stopped": stays within 0.75 sites for 3 time units (`stopping_point` of `rotor_chain::dynamics::observe`).
 const STOP_WINDOW: f64 = 3.0;
 const STOP_TOLERANCE: f64 = 0.75;
 
@@ -148,7 +148,7 @@ fn describe_stop(p: &Propagation, trap_rotor: f64) -> String {
 /// Paper Fig. `fig:akpntrapprofile`: a slow antikink (`v0 = 1.1`) launched leftwards from rotor
 /// `5n/6` in a perfect chain at `theta_bar = 0.575132` (where our Peierls-Nabarro barrier equals
 /// the paper's 0.60): conservative, it runs on and is not trapped; with the viscous damping found
-/// by a bisection ([`damping_to_stop_at`]) it stops near rotor 35 around `t = 20`, as the paper
+/// by a bisection (`damping_to_stop_at` of `rotor_chain::dynamics::observe`) it stops near rotor 35 around `t = 20`, as the paper
 /// shows. The explanation: its washboard frequency `2 pi v / a` lies far below the phonon band,
 /// so a conservative antikink radiates almost nothing (docs/dynamics.md §4). The numbers are
 /// [`Propagation`](super::Propagation)'s `slow_v0`, `slow_theta_bar` and `trap_rotor`; the
