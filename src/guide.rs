@@ -17,6 +17,7 @@
 //! | [`benchmarks`] | `docs/benchmarks.md` | how the speed figures were measured |
 //! | [`embedded`] | `docs/embedded.md` | a chain on a Cortex-M4F under QEMU, `no_std` without `alloc` |
 //! | [`scaling`] | `docs/scaling.md` | the Python package, Dask and SLURM sweeps |
+//! | [`publishing`] | `docs/publishing.md` | the crates and the wheel as they would be published, and CI's dry runs |
 //!
 //! Links between the guides point at the markdown files of the repository, where they also read
 //! as plain markdown.
@@ -50,3 +51,6 @@ pub mod embedded {}
 
 #[doc = include_str!("../docs/scaling.md")]
 pub mod scaling {}
+
+#[doc = include_str!("../docs/publishing.md")]
+pub mod publishing {}
