@@ -9,8 +9,8 @@
 //! antikink swinging far) then cannot wash out the two domains, and the colour bar marks the
 //! clipped ends. Other continuous maps use viridis from their least to their largest value.
 //!
-//! An axis of `log10` values ([`Heatmap::log_x`]) is labelled with the values themselves at 1, 2
-//! and 5 times the powers of ten.
+//! An axis of `log10` values ([`Heatmap::log_x`]) is labelled with the values themselves
+//! (`log_axis`).
 
 use std::ops::Range;
 
@@ -21,7 +21,8 @@ use plotters::style::text_anchor::{HPos, Pos, VPos};
 use plotters::coord::ranged1d::{AsRangedCoord, KeyPointHint, NoDefaultFormatting, Ranged, ValueFormatter};
 use plotters::coord::types::RangedCoordf64;
 
-use super::lines::{extent, linear_ticks, tick};
+use super::lines::{extent, linear_ticks};
+use super::log_axis::{Ticked, log_tick, log_ticks};
 use super::{Drawn, LABEL_FONT, TICK_FONT, font, text_width, title_font};
 use crate::data::category_index;
 use crate::model::Heatmap;
@@ -147,60 +148,6 @@ fn block_value(map: &Heatmap, rows: &Range<usize>, cols: &Range<usize>) -> f64 {
     let finite: Vec<f64> =
         rows.clone().flat_map(|r| cols.clone().map(move |c| value(r, c))).filter(|v| v.is_finite()).collect();
     if finite.is_empty() { f64::NAN } else { finite.iter().sum::<f64>() / finite.len() as f64 }
-}
-
-/// The tick positions of an axis of `log10` values over `range`: the logarithms of 1, 2 and 5
-/// times each power of ten inside it (of the powers alone when that gives more than ten).
-pub fn log_ticks(range: &Range<f64>) -> Vec<f64> {
-    let (lo, hi) = (range.start.min(range.end), range.start.max(range.end));
-    let decades = (lo.floor() as i32)..=(hi.ceil() as i32);
-    let inside = |steps: &[f64]| -> Vec<f64> {
-        decades
-            .clone()
-            .flat_map(|d| steps.iter().map(move |m| f64::from(d) + m.log10()))
-            .filter(|t| (lo..=hi).contains(t))
-            .collect()
-    };
-    let fine = inside(&[1.0, 2.0, 5.0]);
-    if fine.len() > 10 { inside(&[1.0]) } else { fine }
-}
-
-/// A linear `f64` axis whose ticks are given (plotters' `WithKeyPoints` has no value formatter
-/// for `f64`, which the mesh needs).
-struct Ticked {
-    axis: RangedCoordf64,
-    ticks: Vec<f64>,
-}
-
-impl Ranged for Ticked {
-    type FormatOption = NoDefaultFormatting;
-    type ValueType = f64;
-
-    fn map(&self, value: &f64, limit: (i32, i32)) -> i32 {
-        self.axis.map(value, limit)
-    }
-
-    /// The ticks as the bold points; no light points (the mesh draws none).
-    fn key_points<H: KeyPointHint>(&self, hint: H) -> Vec<f64> {
-        if hint.weight().allow_light_points() { Vec::new() } else { self.ticks.clone() }
-    }
-
-    fn range(&self) -> Range<f64> {
-        self.axis.range()
-    }
-}
-
-impl ValueFormatter<f64> for Ticked {
-    fn format(value: &f64) -> String {
-        RangedCoordf64::format(value)
-    }
-}
-
-/// The label of the tick at `log10` value `v`: the value itself (`0.01`, `0.2`, `5`).
-fn log_tick(v: &f64) -> String {
-    // Round to the 1-2-5 value the tick stands for, so that 10^(log10 0.2) shows as 0.2.
-    let value = 10f64.powf(*v);
-    tick(&format!("{value:.2e}").parse().unwrap_or(value))
 }
 
 /// Draw a heat map into `area`, its colour bar or category names on the right.
@@ -401,17 +348,6 @@ mod tests {
         let (a, b) = (RGBColor(1, 2, 3), RGBColor(4, 5, 6));
         let merged = merge_runs([(0..1, a), (1..2, a), (2..4, b), (4..5, a)].into_iter());
         assert_eq!(merged, vec![(0..2, a), (2..4, b), (4..5, a)]);
-    }
-
-    #[test]
-    fn log_axes_are_ticked_at_one_two_five_and_labelled_with_the_values() {
-        let ticks = log_ticks(&(-2.05..0.5));
-        let labels: Vec<String> = ticks.iter().map(log_tick).collect();
-        assert_eq!(labels, ["0.01", "0.02", "0.05", "0.1", "0.2", "0.5", "1", "2"]);
-        // Many decades: the powers of ten alone.
-        let labels: Vec<String> = log_ticks(&(-6.0..6.0)).iter().map(log_tick).collect();
-        assert_eq!(labels.first().map(String::as_str), Some("1e-6"));
-        assert_eq!(labels.len(), 13);
     }
 
     #[test]

@@ -8,6 +8,7 @@
 //!   non-negative quantity that does not start at zero marked broken);
 //! - `legend`: legends where the data leave room, outside the plot otherwise;
 //! - `heatmap`: heat maps (diverging colours centred on zero for signed values) and colour bars;
+//!   `log_axis`: their axis of `log10` values, labelled with the values;
 //! - `chain`: drawings of the chain;
 //! - `text`: text drawn glyph by glyph, combining marks (`θ̄`, `l̄`) placed over their letter.
 
@@ -27,6 +28,7 @@ mod chain;
 mod heatmap;
 mod legend;
 mod lines;
+mod log_axis;
 mod text;
 
 pub use text::{glyph_font, missing_glyphs};
