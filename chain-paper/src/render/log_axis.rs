@@ -62,7 +62,6 @@ pub fn log_tick(v: &f64) -> String {
     tick(&format!("{value:.2e}").parse().unwrap_or(value))
 }
 
-
 #[cfg(test)]
 mod tests {
     use super::*;
