@@ -33,7 +33,7 @@ fn verlet_100_steps(bencher: Bencher, n: usize) {
 /// A launch as in the paper's scattering runs: n = 60, theta_bar = 0.28, from rotor 44.5.
 #[divan::bench(args = ["kink", "antikink"], sample_count = 20)]
 fn launch_defect(bencher: Bencher, defect: &str) {
-    let model = RuntimeChain::builder(60, 0.8, 1.0e4, 0.28).spring(29, Some(0.7e4), None).build().unwrap();
+    let model = RuntimeChain::builder(60, 0.8, 1.0e4, 0.28).spring_constant(29, 0.7e4).build().unwrap();
     let charge = if defect == "kink" { Charge::Kink } else { Charge::Antikink };
     bencher.bench_local(|| launch(black_box(&model), charge, 44.5, 4.0, Direction::Left).unwrap().position);
 }
@@ -43,8 +43,7 @@ fn launch_defect(bencher: Bencher, defect: &str) {
 /// (1 t after the decision).
 #[divan::bench(args = [("kink", 4.0, 0.10), ("antikink", 4.0, 0.70)], sample_count = 20)]
 fn scattering_run_to_decision(bencher: Bencher, (defect, v0, ki): (&str, f64, f64)) {
-    let model =
-        RuntimeChain::builder(60, 0.8, 1.0e4, 0.28).spring(29, Some(ki * 1.0e4), None).build().unwrap();
+    let model = RuntimeChain::builder(60, 0.8, 1.0e4, 0.28).spring_constant(29, ki * 1.0e4).build().unwrap();
     let charge = if defect == "kink" { Charge::Kink } else { Charge::Antikink };
     let setup = ScatterSetup::from_the_right(charge, v0, 29);
     bencher.bench_local(|| scatter(black_box(&model), &setup).unwrap().decided_at);

@@ -49,24 +49,20 @@ fn main() {
 fn check_agreement() {
     for n in [60, 1000] {
         let (c, theta) = (chain(n), angles(n));
-        let (mut g, mut d, mut o) = (vec![0.0; n], vec![0.0; n], vec![0.0; n - 1]);
+        let (mut g, mut k) = (vec![0.0; n], vec![0.0; 2 * n - 1]);
         let energy = simd::with_level(Level::Scalar, || {
             c.gradient_into(&theta, &mut g);
-            c.tangent_stiffness_into(&theta, &mut d, &mut o);
+            c.tangent_stiffness_into(&theta, &mut k);
             c.energy(&theta)
         })
         .unwrap();
         for l in Level::ALL.into_iter().filter(|l| l.is_supported()) {
-            let (mut g2, mut d2, mut o2) = (vec![0.0; n], vec![0.0; n], vec![0.0; n - 1]);
+            let (mut g2, mut k2) = (vec![0.0; n], vec![0.0; 2 * n - 1]);
             let e2 =
-                simd::with_level(l, || c.energy_gradient_stiffness_into(&theta, &mut g2, &mut d2, &mut o2))
-                    .unwrap();
-            for (what, a, b) in [
-                ("energy", &vec![energy], &vec![e2]),
-                ("gradient", &g, &g2),
-                ("diag", &d, &d2),
-                ("off", &o, &o2),
-            ] {
+                simd::with_level(l, || c.energy_gradient_stiffness_into(&theta, &mut g2, &mut k2)).unwrap();
+            for (what, a, b) in
+                [("energy", &vec![energy], &vec![e2]), ("gradient", &g, &g2), ("(diag, off)", &k, &k2)]
+            {
                 let scale = a.iter().fold(0.0f64, |s, x| s.max(x.abs()));
                 for (x, y) in a.iter().zip(b.iter()) {
                     assert!((x - y).abs() <= 1e-12 * scale, "n = {n}, {}: {what} {x} vs {y}", l.name());
@@ -133,11 +129,10 @@ fn runtime_energy_gradient(bencher: Bencher, (level, n): (&str, usize)) {
 #[divan::bench(args = FUSED)]
 fn runtime_energy_gradient_stiffness(bencher: Bencher, (level, n): (&str, usize)) {
     let (c, theta) = (chain(n), angles(n));
-    let (mut g, mut d, mut o) = (vec![0.0; n], vec![0.0; n], vec![0.0; n - 1]);
+    let (mut g, mut k) = (vec![0.0; n], vec![0.0; 2 * n - 1]);
     at(level, || {
-        bencher.bench_local(|| {
-            black_box(&c).energy_gradient_stiffness_into(black_box(&theta), &mut g, &mut d, &mut o)
-        })
+        bencher
+            .bench_local(|| black_box(&c).energy_gradient_stiffness_into(black_box(&theta), &mut g, &mut k))
     });
 }
 
@@ -277,7 +272,7 @@ fn macro_looped_energy_gradient_stiffness(bencher: Bencher, level: &str) {
     at(level, || bencher.bench_local(|| black_box(&Looped60).energy_gradient_stiffness(black_box(&theta))));
 }
 
-/// One velocity-Verlet step (`Stepper::step`: one fused energy + gradient and two sweeps) of a
+/// One velocity-Verlet step (`Verlet::step_to`: one fused energy + gradient and two sweeps) of a
 /// runtime chain of 60 rotors, at each level.
 #[divan::bench(args = LEVELS)]
 fn verlet_step(bencher: Bencher, level: &str) {
@@ -291,17 +286,17 @@ fn verlet_step_100000(bencher: Bencher, level: &str) {
 }
 
 fn verlet_step_n(bencher: Bencher, level: &str, n: usize) {
-    use rotor_chain::dynamics::integrate::{State, VerletOptions, verlet::Stepper};
+    use rotor_chain::integrate::{State, Verlet, VerletOptions};
     let c = chain(n);
     let theta = angles(n);
     let dt = VerletOptions::stable_for(&c, &theta, VerletOptions::DEFAULT_SAFETY).unwrap().dt;
-    let mut state = State::at_rest(theta);
+    // The runs' stepper: damping rates (zero) and the energy with every gradient.
     at(level, || {
-        let mut stepper = Stepper::new(&c, &mut state, dt, &vec![0.0; n]).unwrap();
+        let mut stepper = Verlet::damped(&c, State::at_rest(theta.clone()), dt, &vec![0.0; n]).unwrap();
         let mut time = 0.0;
         bencher.bench_local(|| {
             time += dt;
-            stepper.step(time).unwrap();
+            stepper.step_to(&c, time).unwrap();
         })
     });
 }
@@ -309,15 +304,14 @@ fn verlet_step_n(bencher: Bencher, level: &str, n: usize) {
 /// The unrolled macro chain's Verlet step (scalar straight-line fused energy + gradient).
 #[divan::bench]
 fn verlet_step_macro_unrolled(bencher: Bencher) {
-    use rotor_chain::dynamics::integrate::{State, VerletOptions, verlet::Stepper};
+    use rotor_chain::integrate::{State, Verlet, VerletOptions};
     let theta = angles(N);
     let dt = VerletOptions::stable_for(&Unrolled60, &theta, VerletOptions::DEFAULT_SAFETY).unwrap().dt;
-    let mut state = State::at_rest(theta);
-    let mut stepper = Stepper::new(&Unrolled60, &mut state, dt, &[0.0; N]).unwrap();
+    let mut stepper = Verlet::damped(&Unrolled60, State::at_rest(theta), dt, &[0.0; N]).unwrap();
     let mut time = 0.0;
     bencher.bench_local(|| {
         time += dt;
-        stepper.step(time).unwrap();
+        stepper.step_to(&Unrolled60, time).unwrap();
     });
 }
 

@@ -9,13 +9,14 @@
 //!
 //! Run: `cargo run --example dynamics_launch`
 
+use rotor_chain::ChainGeometry;
+use rotor_chain::RuntimeChain;
 use rotor_chain::dynamics::integrate::kinetic_energy;
 use rotor_chain::dynamics::launch::{Direction, launch, static_defect, wall_width};
 use rotor_chain::dynamics::observe::propagation;
 use rotor_chain::dynamics::run::RunOptions;
 use rotor_chain::statics::modes::{ModeKind, ModeOptions, modes};
 use rotor_chain::statics::walls::Charge;
-use rotor_chain::{ChainModel, RuntimeChain};
 
 const V0: f64 = 2.4;
 const START: f64 = 30.0;
@@ -88,6 +89,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                 ModeKind::Shape => "shape".to_string(),
                 ModeKind::Edge { left } => format!("edge ({})", if left { "left" } else { "right" }),
                 ModeKind::Extended => "extended".to_string(),
+                _ => "unlabelled".to_string(),
             };
             println!(
                 "{j:>4} | {:>+12.4e} | {:>12.4e} | {:>10.3} | {:>13.3} | {kind:>15}",

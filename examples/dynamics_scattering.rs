@@ -15,7 +15,7 @@ const K: f64 = 1.0e4;
 const IMPURITY: usize = 29;
 
 fn run(charge: Charge, v0: f64, ki_ratio: f64) -> Result<Scattering, Box<dyn std::error::Error>> {
-    let model = RuntimeChain::builder(60, 0.8, K, 0.28).spring(IMPURITY, Some(ki_ratio * K), None).build()?;
+    let model = RuntimeChain::builder(60, 0.8, K, 0.28).spring_constant(IMPURITY, ki_ratio * K).build()?;
     Ok(scatter(&model, &ScatterSetup::from_the_right(charge, v0, IMPURITY))?)
 }
 

@@ -18,7 +18,7 @@
 #[path = "../benches/support/mod.rs"]
 mod support;
 
-use rotor_chain::dynamics::integrate::{State, VerletOptions, verlet::Stepper};
+use rotor_chain::integrate::{State, Verlet, VerletOptions};
 use rotor_chain::math;
 use rotor_chain::prelude::*;
 use rotor_chain::simd::{self, Level};
@@ -84,23 +84,18 @@ fn main() {
             let eg = time(|| {
                 black_box(black_box(c).energy_and_gradient_into(black_box(&theta), &mut g));
             });
-            let (mut d, mut o) = (vec![0.0; n], vec![0.0; n - 1]);
+            let mut k = vec![0.0; 2 * n - 1];
             let egk = time(|| {
-                black_box(black_box(c).energy_gradient_stiffness_into(
-                    black_box(&theta),
-                    &mut g,
-                    &mut d,
-                    &mut o,
-                ));
+                black_box(black_box(c).energy_gradient_stiffness_into(black_box(&theta), &mut g, &mut k));
             });
             let dt =
                 VerletOptions::stable_for(c, &theta, VerletOptions::DEFAULT_SAFETY).expect("a time step").dt;
-            let mut state = State::at_rest(theta.clone());
-            let mut stepper = Stepper::new(c, &mut state, dt, &vec![0.0; n]).expect("a stepper");
+            let mut stepper =
+                Verlet::damped(c, State::at_rest(theta.clone()), dt, &vec![0.0; n]).expect("a stepper");
             let mut t = 0.0;
             let verlet = time(|| {
                 t += dt;
-                stepper.step(t).expect("a step");
+                stepper.step_to(c, t).expect("a step");
             });
             [sc, lengths, eg, egk, verlet]
         });

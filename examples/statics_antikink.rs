@@ -119,7 +119,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     ];
     for (theta_bar, start) in runs {
         let model = chain(60, theta_bar)?;
-        let unrelaxed = ChainModel::energy(&model, &reflected_kink(&model, start)?);
+        let unrelaxed = Potential::energy(&model, &reflected_kink(&model, start)?);
         let relaxed = antikink_relaxed(&model, start, &options)?;
         println!(
             "{theta_bar:>5.2} | {start:>8} | {unrelaxed:>11.4} | {:>11.6} | {:>8.4} | {:>5} | {:>5} | {:>10.1e} | {:>10.1e}",

@@ -4,11 +4,11 @@
 //!
 //! Run: `cargo run --example statics_classify`
 
+use rotor_chain::linalg::SymmetricMatrix;
 use rotor_chain::linalg::eigenvalues_in_index_range;
 use rotor_chain::prelude::*;
 use rotor_chain::statics::antikink::{AntikinkOptions, peierls_nabarro};
 use rotor_chain::statics::classify::classify;
-use rotor_chain::statics::equilibrium::{restricted, stiffness};
 use rotor_chain::statics::kink::kink;
 
 #[rotor_chain(n = 60, r = 0.8, theta_bar = 0.58, k = 1.0e4)]
@@ -19,10 +19,11 @@ const ZERO: f64 = 1e-10; // eigenvalues within ZERO * ||K|| of zero count as zer
 
 /// One table row: the classification of `theta` with free or held end rotors.
 fn row(what: &str, theta: &[f64], hold_ends: bool) -> Result<(), Box<dyn std::error::Error>> {
-    let (diag, off) = stiffness(&Chain, theta);
-    let (diag, off) = restricted(&diag, &off, hold_ends);
-    let c = classify(&diag, &off, ZERO)?;
-    let lowest = eigenvalues_in_index_range(&diag, &off, 0, 3)?;
+    let k = SymmetricMatrix::tangent_stiffness(&Chain, theta)?;
+    let k = if hold_ends { k.principal(1..theta.len() - 1) } else { k };
+    let c = classify(&k, ZERO)?;
+    let (diag, off) = k.bands().expect("a chain's stiffness is tridiagonal");
+    let lowest = eigenvalues_in_index_range(diag, off, 0, 3)?;
     println!(
         "{what:>22} | {:>5} | {:>5} | {:>7} | {:>32} | {:>10.2e} | {:>+10.3e} {:>+10.3e} {:>+10.3e}",
         if hold_ends { "held" } else { "free" },

@@ -70,7 +70,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         (16, l_critical, "l0 = l_critical"),
     ] {
         let middle = n / 2 - 1;
-        let model = RuntimeChain::builder(n, 0.8, K, 0.58).spring(middle, None, Some(l0)).build()?;
+        let model = RuntimeChain::builder(n, 0.8, K, 0.58).spring_rest_length(middle, l0).build()?;
         row(&format!("{label} (spring {middle})"), &model, &two_kink_configuration(&model, middle)?)?;
     }
     println!("\nl_critical = {l_critical:.10} a (paper 2.31)");

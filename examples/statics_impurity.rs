@@ -6,9 +6,9 @@
 //! Run: `cargo run --example statics_impurity`
 
 use rotor_chain::RuntimeChain;
+use rotor_chain::linalg::SymmetricMatrix;
 use rotor_chain::prelude::*;
 use rotor_chain::statics::continuum::ContinuumChain;
-use rotor_chain::statics::equilibrium::{norm, stiffness};
 use rotor_chain::statics::impurity::{ImpurityAnalysis, critical_length, impurity_analysis};
 use rotor_chain::statics::walls::domain_walls;
 
@@ -18,7 +18,7 @@ const UNIT: f64 = 0.8 * 100.0;
 
 /// The chain of `n` rotors with the middle spring `n / 2 - 1` of rest length `l0`.
 fn chain(n: usize, l0: f64) -> Result<RuntimeChain, ParameterError> {
-    RuntimeChain::builder(n, 0.8, K, 0.58).spring(n / 2 - 1, None, Some(l0)).build()
+    RuntimeChain::builder(n, 0.8, K, 0.58).spring_rest_length(n / 2 - 1, l0).build()
 }
 
 fn analyse(n: usize, l0: f64) -> Result<ImpurityAnalysis, Box<dyn std::error::Error>> {
@@ -98,10 +98,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     }
     // An eigenvalue omega^2 is accurate to about eps ||K|| / (M r^2): below that, omega is noise.
     let model = chain(60, 2.30)?;
-    let (diag, off) = stiffness(&model, &analyse(60, 2.30)?.theta);
+    let k = SymmetricMatrix::tangent_stiffness(&model, &analyse(60, 2.30)?.theta)?;
     println!(
         "resolution of omega from a double-precision omega^2: sqrt(eps ||K|| / (M r^2)) = {:.1e} (r/a) sqrt(k/M)",
-        (f64::EPSILON * norm(&diag, &off) / 0.64).sqrt() / UNIT
+        (f64::EPSILON * k.inf_norm() / 0.64).sqrt() / UNIT
     );
     Ok(())
 }

@@ -30,7 +30,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     );
     for centre in [10.0, 29.5, 41.25] {
         let theta = kink(&chain, centre)?;
-        let energy = ChainModel::energy(&chain, &theta) / K;
+        let energy = Potential::energy(&chain, &theta) / K;
         let mut gradient = vec![0.0; Chain::N];
         chain.gradient_into(&theta, &mut gradient);
         let force = gradient.iter().fold(0.0f64, |m, g| m.max(g.abs())) / K;
@@ -55,14 +55,14 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     for (centre, theta) in mechanism_path(&chain, 29.0, 30.0, 4)? {
         println!(
             "{centre:>7.2} | {:>11.2e} | {:>10.6} | {:>+10.6} | {:>+10.6}",
-            ChainModel::energy(&chain, &theta) / K,
+            Potential::energy(&chain, &theta) / K,
             domain_walls(&theta)[0].position,
             theta[29],
             theta[30]
         );
     }
     let long = mechanism_path(&chain, 2.0, 57.0, 220)?;
-    let worst = long.iter().map(|(_, t)| ChainModel::energy(&chain, t) / K).fold(0.0, f64::max);
+    let worst = long.iter().map(|(_, t)| Potential::energy(&chain, t) / K).fold(0.0, f64::max);
     println!(
         "centres 2 -> 57 in 220 steps of a/4: largest V = {worst:.2e} k a^2 over {} configurations",
         long.len()

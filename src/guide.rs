@@ -10,6 +10,7 @@
 //! | [`readme`] | `README.md` | set-up, the two commands, what is where, measured numbers |
 //! | [`theory`] | `docs/theory.md` | the model, sign conventions, which wall is the kink, the branch solve |
 //! | [`macros`] | `docs/macro.md` | every key of `#[rotor_chain]`, every generated item, every compile error |
+//! | [`models`] | `docs/models.md` | the model ladder, and a model of your own (a Frenkel–Kontorova chain) through every analysis |
 //! | [`statics`] | `docs/statics.md` | kink, antikink, Peierls–Nabarro barrier, modes, counting, impurity, linkage, continuum |
 //! | [`dynamics`] | `docs/dynamics.md` | integrators, launching, wall tracking, scattering, phase diagrams |
 //! | [`paper`] | `docs/paper.md` | the one-command reproduction of the paper's figures and numbers |
@@ -18,6 +19,7 @@
 //! | [`embedded`] | `docs/embedded.md` | a chain on a Cortex-M4F under QEMU, `no_std` without `alloc` |
 //! | [`scaling`] | `docs/scaling.md` | the Python package, Dask and SLURM sweeps |
 //! | [`publishing`] | `docs/publishing.md` | the crates and the wheel as they would be published, and CI's dry runs |
+//! | [`network`] | `docs/network.md` | periodic networks: cells, counts, Bloch bands, windings and polarization, strips, Guest modes |
 //!
 //! Links between the guides point at the markdown files of the repository, where they also read
 //! as plain markdown.
@@ -30,6 +32,9 @@ pub mod theory {}
 
 #[doc = include_str!("../docs/macro.md")]
 pub mod macros {}
+
+#[doc = include_str!("../docs/models.md")]
+pub mod models {}
 
 #[doc = include_str!("../docs/statics.md")]
 pub mod statics {}
@@ -54,3 +59,6 @@ pub mod scaling {}
 
 #[doc = include_str!("../docs/publishing.md")]
 pub mod publishing {}
+#[doc = include_str!("../docs/network.md")]
+#[cfg(feature = "network")]
+pub mod network {}

@@ -10,7 +10,10 @@
 //!   gradient, tangent stiffness (material part and stress matrix), spring lengths, tensions,
 //!   compatibility matrix and branch solve, derived by a symbolic engine; an invalid model is a
 //!   compile error at its key. [`RuntimeChain`] is the same chain with its size and parameters
-//!   chosen at run time. Both implement [`ChainModel`], which every analysis is generic over.
+//!   chosen at run time. Both climb the model ladder ([`model`]: [`Potential`], [`Stiffness`],
+//!   [`SpringNetwork`], [`ChainGeometry`]; [`ChainModel`] is all four), which every analysis is
+//!   generic over, each at the rung it needs; a model of your own implements the rungs it has
+//!   ([`guide::models`]).
 //! - **Statics** ([`statics`]): cobweb map, kink, antikink, Peierls–Nabarro barrier, vibrational
 //!   modes, Maxwell–Calladine counting, spring-length impurity, linkage limit, continuum closed
 //!   forms.
@@ -44,7 +47,7 @@
 //!     assert!(g.iter().all(|x| x.abs() < 1e-6));
 //!
 //!     let theta = kink(&Chain, 29.5)?;                      // the zero-energy kink (Sec. II)
-//!     assert!(ChainModel::energy(&Chain, &theta) < 1e-16);
+//!     assert!(Potential::energy(&Chain, &theta) < 1e-16);
 //!
 //!     let pn = peierls_nabarro(&Chain, &AntikinkOptions::default())?; // Sec. V
 //!     println!("antikink {:.4}, barrier {:.4}", pn.minimum().energy, pn.barrier);
@@ -72,16 +75,18 @@
 //!
 //! | where | what |
 //! |---|---|
-//! | [`prelude`] | the attribute, [`ChainModel`], [`RuntimeChain`], the banded matrix types, the errors |
+//! | [`prelude`] | the attribute, the model traits, [`RuntimeChain`], the banded matrix types, the errors |
 //! | [`macro@rotor_chain`] | the attribute: every key, with an example |
 //! | [`RuntimeChain`], [`ChainBuilder`], [`Law`] | a chain sized and parametrised at run time |
-//! | [`ChainModel`] ([`model`]) | the trait every analysis takes: slice methods, branch solve |
+//! | [`model`]: [`Potential`], [`Stiffness`], [`SpringNetwork`], [`ChainGeometry`], [`ChainModel`] | the capability ladder the analyses take: slice methods, layouts, branch solve |
+//! | [`integrate`] | velocity Verlet (any float type, `Vec` or array storage), DOP853, the step bound, [`integrate::Method`] |
 //! | [`statics`] | static analyses, one module per analysis |
 //! | [`dynamics`] | integrators, launching, tracking, scattering |
 //! | [`linalg`] | the tridiagonal solvers and eigensolvers the analyses use |
 //! | [`banded`], [`Tridiagonal`], [`Bidiagonal`] | stiffness and compatibility matrices of generated chains |
 //! | [`geometry`] | the parameter rules and closed forms shared by the macro and the runtime |
-//! | [`math`], [`simd`], [`kernel`] | `no_std` maths, run-time vector dispatch, the per-spring kernels |
+//! | [`embedded`] | the pieces that need no heap, gathered for a firmware |
+//! | `network` (feature `network`, default) | periodic spring and rotor networks: counts, bands, windings, polarization, edge modes |
 //!
 //! ## Guides
 //!
@@ -96,6 +101,7 @@
 //! | [`guide::guarantees`] | what each layer promises for hostile inputs |
 //! | [`guide::benchmarks`], [`guide::embedded`], [`guide::scaling`] | speed, microcontrollers, Python and clusters |
 //! | [`guide::publishing`] | the crates and the wheel as they would be published |
+//! | `guide::network` | periodic networks, from a cell file to counts, polarization, strips and figures |
 //!
 //! Every Rust block of the guides is a doctest (`cargo test --doc`). Math renders with KaTeX on
 //! docs.rs and with `cargo docs` locally.
@@ -162,11 +168,21 @@
 #[cfg(feature = "std")]
 pub use chain_core::batch;
 pub use chain_core::{
-    Bidiagonal, BranchError, ChainModel, ParameterError, Real, Tridiagonal, banded, branch, embedded, error,
-    geometry, kernel, math, model, real, simd,
+    Bidiagonal, BranchError, ChainGeometry, ChainModel, ParameterError, Potential, Real, SpringNetwork,
+    Stiffness, Tridiagonal, banded, branch, dynamics, embedded, error, geometry, integrate, linalg, model,
+    statics,
 };
 #[cfg(feature = "alloc")]
-pub use chain_core::{ChainBuilder, Law, RuntimeChain, dynamics, linalg, runtime, statics};
+pub use chain_core::{ChainBuilder, Law, RuntimeChain, runtime};
+/// Implementation modules (run-time vector dispatch, the per-spring kernels, the float trait's
+/// module, the elementary functions), public for the generated code and the benchmarks only.
+#[doc(hidden)]
+pub use chain_core::{kernel, math, real, simd};
+/// Periodic spring and rotor networks in one and two dimensions: cells, Maxwell-Calladine
+/// counts, Bloch bands, winding numbers and polarization, edge modes (crate `chain-network`;
+/// guide [`guide::network`]).
+#[cfg(feature = "network")]
+pub use chain_network as network;
 // The attribute's page: the keys and a runnable example of each. Written here, on the re-export,
 // so that the examples are this crate's doctests (the proc-macro crate would need the facade as a
 // dev-dependency, which compiles the facade and all its dependencies a second time for the host).
@@ -188,9 +204,13 @@ pub use nalgebra;
 
 pub mod guide;
 
-/// The macro and every trait and type a user needs.
+/// The macro and every trait and type a user needs: the four rungs of the model ladder
+/// ([`model`]) and [`ChainModel`], so that their methods can be called on any chain.
 pub mod prelude {
-    pub use chain_core::{Bidiagonal, BranchError, ChainModel, ParameterError, Tridiagonal};
+    pub use chain_core::{
+        Bidiagonal, BranchError, ChainGeometry, ChainModel, ParameterError, Potential, SpringNetwork,
+        Stiffness, Tridiagonal,
+    };
     #[cfg(feature = "alloc")]
     pub use chain_core::{Law, RuntimeChain};
     pub use chain_macros::rotor_chain;
@@ -200,10 +220,14 @@ pub mod prelude {
 /// `#[rotor_chain]` reaches its dependencies, so users depend on this crate alone.
 #[doc(hidden)]
 pub mod __private {
-    pub use chain_core::embedded::{EmbeddedError, FloatChain, Verlet};
-    pub use chain_core::model::check_lengths;
+    pub use chain_core::integrate::{IntegrateError, Phase, Verlet};
+    pub use chain_core::model::layout::{split_bidiagonal, split_tridiagonal};
+    pub use chain_core::model::{
+        ChainGeometry, CompatibilityLayout, Potential, SpringNetwork, Stiffness, StiffnessLayout,
+        chain_energy_floor, check_lengths,
+    };
     pub use chain_core::{
-        Bidiagonal, BranchError, ChainModel, ParameterError, Tridiagonal, branch, geometry, kernel, math,
+        Bidiagonal, BranchError, ParameterError, Tridiagonal, branch, geometry, kernel, math,
     };
     pub use nalgebra::SMatrix;
 
@@ -214,7 +238,7 @@ pub mod __private {
         panic!("#[rotor_chain] stub called: the chain's declaration has compile errors")
     }
 
-    /// `theta` as a fixed-size array, for the slice-based [`ChainModel`] methods.
+    /// `theta` as a fixed-size array, for the slice-based model-trait methods.
     ///
     /// # Panics
     /// If `theta` does not have exactly `N` angles (a programming error: the chain has `N` rotors).

@@ -18,7 +18,7 @@ const MIDDLE: usize = 29;
 const X_IMP: f64 = 29.5;
 
 fn impure(theta_bar: f64, ki_ratio: f64) -> RuntimeChain {
-    RuntimeChain::builder(60, 0.8, K, theta_bar).spring(MIDDLE, Some(ki_ratio * K), None).build().unwrap()
+    RuntimeChain::builder(60, 0.8, K, theta_bar).spring_constant(MIDDLE, ki_ratio * K).build().unwrap()
 }
 
 fn run(charge: Charge, v0: f64, ki_ratio: f64, change: impl FnOnce(&mut ScatterSetup)) -> Scattering {

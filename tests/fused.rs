@@ -56,7 +56,7 @@ struct CustomUnrolled;
 struct CustomLooped;
 
 fn harmonic_runtime() -> RuntimeChain {
-    RuntimeChain::builder(70, 0.8, 1.0e4, 0.58).spring(29, Some(100.0), None).rotor(12, 0.7).build().unwrap()
+    RuntimeChain::builder(70, 0.8, 1.0e4, 0.58).spring_constant(29, 100.0).rotor(12, 0.7).build().unwrap()
 }
 
 fn quartic_runtime() -> RuntimeChain {
@@ -70,31 +70,30 @@ fn levels() -> impl Iterator<Item = Level> {
 /// Every output of `ChainModel`, grouped by quantity (the fused ones as their parts).
 fn outputs(m: &impl ChainModel, theta: &[f64]) -> Vec<(&'static str, Vec<f64>)> {
     let n = m.rotor_count();
-    let (mut g, mut d, mut o) = (vec![0.0; n], vec![0.0; n], vec![0.0; n - 1]);
+    let (mut g, mut k, mut o) = (vec![0.0; n], vec![0.0; 2 * n - 1], vec![0.0; n - 1]);
     let mut out = vec![("energy", vec![m.energy(theta)])];
     m.gradient_into(theta, &mut g);
     out.push(("gradient", g.clone()));
-    m.tangent_stiffness_into(theta, &mut d, &mut o);
-    out.extend([("stiffness.diag", d.clone()), ("stiffness.off", o.clone())]);
-    m.material_stiffness_into(theta, &mut d, &mut o);
-    out.extend([("material.diag", d.clone()), ("material.off", o.clone())]);
-    m.stress_matrix_into(theta, &mut d, &mut o);
-    out.extend([("stress.diag", d.clone()), ("stress.off", o.clone())]);
+    m.tangent_stiffness_into(theta, &mut k);
+    out.push(("stiffness (diag, off)", k.clone()));
+    m.material_stiffness_into(theta, &mut k);
+    out.push(("material (diag, off)", k.clone()));
+    m.stress_matrix_into(theta, &mut k);
+    out.push(("stress (diag, off)", k.clone()));
     m.spring_lengths_into(theta, &mut o);
     out.push(("lengths", o.clone()));
     m.tensions_into(theta, &mut o);
     out.push(("tensions", o.clone()));
-    let mut right = vec![0.0; n - 1];
-    m.compatibility_into(theta, &mut o, &mut right);
-    out.extend([("compatibility.left", o.clone()), ("compatibility.right", right)]);
+    let mut c = vec![0.0; 2 * (n - 1)];
+    m.compatibility_into(theta, &mut c);
+    out.push(("compatibility (left, right)", c));
     let e = m.energy_and_gradient_into(theta, &mut g);
     out.extend([("fused E+g: energy", vec![e]), ("fused E+g: gradient", g.clone())]);
-    let e = m.energy_gradient_stiffness_into(theta, &mut g, &mut d, &mut o);
+    let e = m.energy_gradient_stiffness_into(theta, &mut g, &mut k);
     out.extend([
         ("fused E+g+K: energy", vec![e]),
         ("fused E+g+K: gradient", g),
-        ("fused E+g+K: diag", d),
-        ("fused E+g+K: off", o),
+        ("fused E+g+K: (diag, off)", k),
     ]);
     out
 }
@@ -237,15 +236,16 @@ macro_rules! check_macro_fused {
                 assert_close_to_scale(&k.diag, &k2.diag, &format!("{what}: stiffness diag"));
                 assert_close_to_scale(&k.off, &k2.off, &format!("{what}: stiffness off"));
                 let mut out = [0.0; 70];
-                let e3 = ChainModel::energy_and_gradient_into(&chain, &theta, &mut out);
+                let e3 = Potential::energy_and_gradient_into(&chain, &theta, &mut out);
                 assert_close_to_scale(&[e], &[e3], &format!("{what}: energy_and_gradient_into energy"));
                 assert_close_to_scale(&g, &out, &format!("{what}: energy_and_gradient_into gradient"));
-                let (mut d, mut o) = ([0.0; 70], [0.0; 69]);
-                let e4 = ChainModel::energy_gradient_stiffness_into(&chain, &theta, &mut out, &mut d, &mut o);
+                let mut values = [0.0; 139];
+                let e4 = Stiffness::energy_gradient_stiffness_into(&chain, &theta, &mut out, &mut values);
+                let (d, o) = values.split_at(70);
                 assert_close_to_scale(&[e], &[e4], &format!("{what}: energy_gradient_stiffness_into energy"));
                 assert_close_to_scale(&g, &out, &format!("{what}: energy_gradient_stiffness_into gradient"));
-                assert_close_to_scale(&k.diag, &d, &format!("{what}: energy_gradient_stiffness_into diag"));
-                assert_close_to_scale(&k.off, &o, &format!("{what}: energy_gradient_stiffness_into off"));
+                assert_close_to_scale(&k.diag, d, &format!("{what}: energy_gradient_stiffness_into diag"));
+                assert_close_to_scale(&k.off, o, &format!("{what}: energy_gradient_stiffness_into off"));
             })
             .unwrap();
         }
@@ -284,19 +284,18 @@ fn runtime_fused_methods_equal_the_separate_methods() {
             for level in levels() {
                 let what = format!("{what}, seed {seed}, at {}", level.name());
                 simd::with_level(level, || {
-                    let (mut g, mut d, mut o) = (vec![0.0; 70], vec![0.0; 70], vec![0.0; 69]);
+                    let (mut g, mut k) = (vec![0.0; 70], vec![0.0; 139]);
                     let e = chain.energy(&theta);
                     chain.gradient_into(&theta, &mut g);
-                    chain.tangent_stiffness_into(&theta, &mut d, &mut o);
-                    let (mut g1, mut d1, mut o1) = (vec![0.0; 70], vec![0.0; 70], vec![0.0; 69]);
+                    chain.tangent_stiffness_into(&theta, &mut k);
+                    let (mut g1, mut k1) = (vec![0.0; 70], vec![0.0; 139]);
                     let e1 = chain.energy_and_gradient_into(&theta, &mut g1);
                     assert_close_to_scale(&[e], &[e1], &format!("{what}: E+g energy"));
                     assert_close_to_scale(&g, &g1, &format!("{what}: E+g gradient"));
-                    let e2 = chain.energy_gradient_stiffness_into(&theta, &mut g1, &mut d1, &mut o1);
+                    let e2 = chain.energy_gradient_stiffness_into(&theta, &mut g1, &mut k1);
                     assert_close_to_scale(&[e], &[e2], &format!("{what}: E+g+K energy"));
                     assert_close_to_scale(&g, &g1, &format!("{what}: E+g+K gradient"));
-                    assert_close_to_scale(&d, &d1, &format!("{what}: E+g+K diag"));
-                    assert_close_to_scale(&o, &o1, &format!("{what}: E+g+K off"));
+                    assert_close_to_scale(&k, &k1, &format!("{what}: E+g+K (diag, off)"));
                 })
                 .unwrap();
             }

@@ -208,25 +208,27 @@ fn evaluations() {
         assert_close1(&what("fused energy"), em, e, EXACT);
         assert_close(&what("gradient"), &gm, &mirror(&g), EXACT);
         let fused = |ch: &RuntimeChain, t: &[f64]| {
-            let (mut g, mut d, mut o) = (vec![0.0; n], vec![0.0; n], vec![0.0; n - 1]);
-            let e = ch.energy_gradient_stiffness_into(t, &mut g, &mut d, &mut o);
-            (e, g, d, o)
+            let (mut g, mut k) = (vec![0.0; n], vec![0.0; 2 * n - 1]);
+            let e = ch.energy_gradient_stiffness_into(t, &mut g, &mut k);
+            let (d, o) = k.split_at(n);
+            (e, g, d.to_vec(), o.to_vec())
         };
         let ((e3, g3, d3, o3), (e3m, g3m, d3m, o3m)) = (fused(&c, &theta), fused(&m, &mt));
         assert_close1(&what("fused energy, gradient and stiffness"), e3m, e3, EXACT);
         assert_close(&what("fused gradient"), &g3m, &mirror(&g3), EXACT);
         assert_close(&what("fused stiffness"), &d3m, &reversed(&d3), EXACT);
         assert_close(&what("fused stiffness"), &o3m, &reversed(&o3), EXACT);
-        type BandFn = fn(&RuntimeChain, &[f64], &mut [f64], &mut [f64]);
+        type BandFn = fn(&RuntimeChain, &[f64], &mut [f64]);
         let band = |ch: &RuntimeChain, t: &[f64], f: BandFn| {
-            let (mut d, mut o) = (vec![0.0; n], vec![0.0; n - 1]);
-            f(ch, t, &mut d, &mut o);
-            (d, o)
+            let mut k = vec![0.0; 2 * n - 1];
+            f(ch, t, &mut k);
+            let (d, o) = k.split_at(n);
+            (d.to_vec(), o.to_vec())
         };
         let fns: [(&str, BandFn); 3] = [
-            ("stiffness", |c, t, d, o| c.tangent_stiffness_into(t, d, o)),
-            ("material", |c, t, d, o| c.material_stiffness_into(t, d, o)),
-            ("stress", |c, t, d, o| c.stress_matrix_into(t, d, o)),
+            ("stiffness", |c, t, k| c.tangent_stiffness_into(t, k)),
+            ("material", |c, t, k| c.material_stiffness_into(t, k)),
+            ("stress", |c, t, k| c.stress_matrix_into(t, k)),
         ];
         for (name, f) in fns {
             let (d, o) = band(&c, &theta, f);
@@ -241,12 +243,12 @@ fn evaluations() {
         c.tensions_into(&theta, &mut l);
         m.tensions_into(&mt, &mut lm);
         assert_close(&what("tensions"), &lm, &reversed(&l), EXACT);
-        let (mut left, mut right, mut lm2, mut rm) =
-            (vec![0.0; n - 1], vec![0.0; n - 1], vec![0.0; n - 1], vec![0.0; n - 1]);
-        c.compatibility_into(&theta, &mut left, &mut right);
-        m.compatibility_into(&mt, &mut lm2, &mut rm);
-        assert_close(&what("C left"), &lm2, &mirror(&right), EXACT);
-        assert_close(&what("C right"), &rm, &mirror(&left), EXACT);
+        let (mut cv, mut cvm) = (vec![0.0; 2 * (n - 1)], vec![0.0; 2 * (n - 1)]);
+        c.compatibility_into(&theta, &mut cv);
+        m.compatibility_into(&mt, &mut cvm);
+        let ((left, right), (lm2, rm)) = (cv.split_at(n - 1), cvm.split_at(n - 1));
+        assert_close(&what("C left"), lm2, &mirror(right), EXACT);
+        assert_close(&what("C right"), rm, &mirror(left), EXACT);
         for q in 0..n - 1 {
             let qm = n - 2 - q;
             for x in [0.3, -0.2, p.theta_bar, -p.theta_bar, 1.3] {
@@ -267,8 +269,8 @@ fn evaluations() {
         batch::gradients(&m, &mirrored, &mut gm).unwrap();
         assert_close(&what("batch gradients alone"), &gm, &expected, EXACT);
         // Per-spring and per-rotor parameters move with the mirror.
-        let k: Vec<f64> = (0..n - 1).map(|q| c.stiffness(q)).collect();
-        let km: Vec<f64> = (0..n - 1).map(|q| m.stiffness(q)).collect();
+        let k: Vec<f64> = (0..n - 1).map(|q| c.spring_constant(q)).collect();
+        let km: Vec<f64> = (0..n - 1).map(|q| m.spring_constant(q)).collect();
         assert_close(&what("stiffnesses"), &km, &reversed(&k), 0.0);
         let l0: Vec<f64> = (0..n - 1).map(|q| c.rest_length(q)).collect();
         let l0m: Vec<f64> = (0..n - 1).map(|q| m.rest_length(q)).collect();
@@ -869,7 +871,7 @@ const POINTS: [(Charge, f64, f64); 5] = [
 ];
 
 fn scattering_chain(n: usize, impurity: usize, ki: f64) -> RuntimeChain {
-    RuntimeChain::builder(n, 0.8, 1.0e4, 0.28).spring(impurity, Some(ki * 1.0e4), None).build().unwrap()
+    RuntimeChain::builder(n, 0.8, 1.0e4, 0.28).spring_constant(impurity, ki * 1.0e4).build().unwrap()
 }
 
 #[test]
@@ -999,8 +1001,8 @@ macro_rules! check_macro_pair {
         let mut built = [0.0; N];
         embedded::kink_into(&m, last - 4.3, &mut built).unwrap();
         assert_close(&what("kink_into"), &built, &km, EXACT);
-        let omega = embedded::launch_velocities(&c, &k, 2.5).unwrap();
-        let omega_m = embedded::launch_velocities(&m, &km, -2.5).unwrap();
+        let omega = embedded::kink_launch_velocities(&c, &k, 2.5).unwrap();
+        let omega_m = embedded::kink_launch_velocities(&m, &km, -2.5).unwrap();
         assert_close(&what("launch velocities"), &omega_m, &mirror(&omega), 1e-12);
         let mut stepper = c.verlet(k, omega, 1e-3).unwrap();
         let mut stepper_m = m.verlet(km, omega_m.try_into().unwrap(), 1e-3).unwrap();
@@ -1010,7 +1012,7 @@ macro_rules! check_macro_pair {
         }
         assert_close(&what("verlet angles"), stepper_m.theta(), &mirror(stepper.theta()), 1e-10);
         assert_close(&what("verlet velocities"), stepper_m.omega(), &mirror(stepper.omega()), 1e-10);
-        let walls = |t: &[f64]| embedded::domain_walls(t).collect::<Vec<Wall>>();
+        let walls = |t: &[f64]| embedded::DomainWalls::of(t).collect::<Vec<Wall>>();
         assert_walls_mirrored(&what("verlet walls"), &walls(stepper_m.theta()), &walls(stepper.theta()), N);
     }};
 }
@@ -1041,8 +1043,8 @@ fn macro_chains_and_the_no_heap_pieces() {
         let prev = c.previous_angles(q, -0.3f32).map(|r| widen(&r).iter().map(|x| -x).collect::<Vec<_>>());
         assert_eq!(next, prev, "f32 branch solve, spring {q}");
     }
-    let omega = embedded::launch_velocities(&c, &k, 2.0).unwrap();
-    let omega_m = embedded::launch_velocities(&m, &km, -2.0).unwrap();
+    let omega = embedded::kink_launch_velocities(&c, &k, 2.0).unwrap();
+    let omega_m = embedded::kink_launch_velocities(&m, &km, -2.0).unwrap();
     assert_close("f32 launch", &widen(&omega_m), &mirror(&widen(&omega)), 1e-5);
     let (mut s, mut sm) = (c.verlet(k, omega, 1e-3).unwrap(), m.verlet(km, omega_m, 1e-3).unwrap());
     for _ in 0..200 {

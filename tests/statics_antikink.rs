@@ -4,6 +4,10 @@
 //! References are the paper's numbers and the continuum closed forms (docs/statics.md), never
 //! values computed by the code under test.
 
+mod common;
+
+use common::{Reference, assert_close};
+use rotor_chain::Potential;
 use rotor_chain::RuntimeChain;
 use rotor_chain::statics::antikink::{AntikinkOptions, antikink_at, antikink_relaxed, peierls_nabarro};
 use rotor_chain::statics::classify::EquilibriumKind;
@@ -30,24 +34,82 @@ fn continuum_shape_frequency(theta_bar: f64) -> f64 {
     0.8 * (12.0 * K).sqrt() * s / (1.0 + 4.0 * 0.64 * c * c).sqrt()
 }
 
+/// Checks `theta` against the independent reference model (tests/common: Cartesian tips,
+/// num-dual derivatives): an equilibrium (`max |dV/dtheta| <= 1e-9 ||K||`) with `index` negative
+/// eigenvalues of its hyper-dual Hessian (a Sturm count, below `-1e-7 ||K||`, written here), and
+/// returns its energy in the reference model.
+fn reference_equilibrium(theta_bar: f64, theta: &[f64], index: usize, what: &str) -> f64 {
+    let reference = Reference::uniform(theta.len(), theta_bar);
+    let n = theta.len();
+    let diagonal: Vec<f64> = (0..n).map(|i| reference.hessian_entry(theta, i, i)).collect();
+    let off: Vec<f64> = (0..n - 1).map(|i| reference.hessian_entry(theta, i, i + 1)).collect();
+    // ||K||_inf of the tridiagonal Hessian.
+    let norm = (0..n)
+        .map(|i| {
+            diagonal[i].abs()
+                + if i > 0 { off[i - 1].abs() } else { 0.0 }
+                + if i + 1 < n { off[i].abs() } else { 0.0 }
+        })
+        .fold(0.0, f64::max);
+    let force = reference.gradient(theta).iter().fold(0.0f64, |m, g| m.max(g.abs()));
+    assert!(force <= 1e-9 * norm, "{what}: max |dV/dtheta| = {force:e}, ||K|| = {norm:e}");
+    // Sturm count: the negative pivots of K + tol I (LDL^T) are its eigenvalues below -tol.
+    let shift = 1e-7 * norm;
+    let mut negative = 0;
+    let mut pivot = diagonal[0] + shift;
+    for i in 0..n {
+        if i > 0 {
+            pivot = diagonal[i] + shift - off[i - 1] * off[i - 1] / pivot;
+        }
+        negative += usize::from(pivot < 0.0);
+    }
+    assert_eq!(negative, index, "{what}: negative eigenvalues of the reference Hessian");
+    reference.energy(theta)
+}
+
 #[test]
-fn antikink_energy_and_barrier_at_the_papers_point() {
-    let pn = peierls_nabarro(&chain(60, 0.58), &AntikinkOptions::default()).unwrap();
-    assert!(
-        pn.resolved,
-        "one minimum and one saddle: {:?} / {:?}",
-        pn.rotor_centred.classification, pn.spring_centred.classification
+fn antikink_energy_and_barrier_reproduce_the_paper() {
+    // Paper Sec. V, Fig. fig:akconfigpn: V_min = 1359.15, V_saddle = 1359.75, barrier
+    // "1359.75 - 1359.15 = 0.60". Our chain gives these at theta_bar = 0.575132, not at the
+    // printed 0.58 (docs/statics.md §3): that angle is fitted to V_min alone, so the saddle and the
+    // barrier are predictions. Tolerances: 1e-5 relative on the energies (the paper's last digit
+    // is 7e-6 of them; the issue asked 1e-4), and the barrier within the two roundings of the
+    // paper's last digit (0.005 each).
+    let theta_bar = 0.575132;
+    let pn = peierls_nabarro(&chain(60, theta_bar), &AntikinkOptions::default()).unwrap();
+    assert!(pn.resolved, "{:?} / {:?}", pn.rotor_centred.classification, pn.spring_centred.classification);
+    let (min, saddle) = (pn.minimum(), pn.saddle());
+    eprintln!(
+        "theta_bar = {theta_bar}: V_min = {:.4}, V_saddle = {:.4}, barrier = {:.4}",
+        min.energy, saddle.energy, pn.barrier
     );
+    assert_close(min.energy, 1359.15, 1e-5, "V_min");
+    assert_close(saddle.energy, 1359.75, 1e-5, "V_saddle");
+    assert!((pn.barrier - 0.60).abs() <= 0.01, "barrier {}", pn.barrier);
+    // And both are what an independent model says they are.
+    let v_min = reference_equilibrium(theta_bar, &min.theta, 0, "minimum");
+    let v_saddle = reference_equilibrium(theta_bar, &saddle.theta, 1, "saddle");
+    assert_close(min.energy, v_min, 1e-12, "V_min against the reference");
+    assert_close(saddle.energy, v_saddle, 1e-12, "V_saddle against the reference");
+    assert_close(pn.barrier, v_saddle - v_min, 1e-9, "barrier against the reference");
+}
+
+#[test]
+fn antikink_at_the_printed_angle_is_a_minimum_and_a_saddle_of_the_reference() {
+    // At the printed theta_bar = 0.58 (docs/statics.md §3: 1392.03 and a barrier of 0.668), the
+    // two centrings are still exact equilibria of the independent model, of index 0 and 1.
+    let pn = peierls_nabarro(&chain(60, 0.58), &AntikinkOptions::default()).unwrap();
+    assert!(pn.resolved);
     let (min, saddle) = (pn.minimum(), pn.saddle());
     assert_eq!(min.classification.index, 0, "the lower centring is a minimum");
     assert!(matches!(saddle.classification.kind, EquilibriumKind::Saddle { index: 1 }));
-    // Paper Sec. V: 1359.15 (minimum) and 1359.75 (saddle), barrier 0.60.
-    assert!((1300.0..=1450.0).contains(&min.energy), "antikink energy {}", min.energy);
-    assert!((0.45..=0.8).contains(&pn.barrier), "PN barrier {}", pn.barrier);
-    eprintln!(
-        "theta_bar = 0.58: V_min = {:.4}, V_saddle = {:.4}, barrier = {:.4}",
-        min.energy, saddle.energy, pn.barrier
-    );
+    let v_min = reference_equilibrium(0.58, &min.theta, 0, "minimum");
+    let v_saddle = reference_equilibrium(0.58, &saddle.theta, 1, "saddle");
+    assert_close(min.energy, v_min, 1e-12, "V_min");
+    assert_close(pn.barrier, v_saddle - v_min, 1e-9, "barrier");
+    // Below the continuum's Eq. (eq:akenergy), 1.61e3: discreteness lowers it.
+    let continuum = K * continuum_antikink_energy(0.58);
+    assert!(v_min < continuum, "{v_min} vs {continuum}");
 }
 
 #[test]
@@ -106,6 +168,11 @@ fn peierls_nabarro_barrier_falls_exponentially_with_the_width() {
     for theta_bar in [0.35, 0.4, 0.45, 0.5, 0.55, 0.6, 0.65] {
         let pn = peierls_nabarro(&chain(60, theta_bar), &AntikinkOptions::default()).unwrap();
         assert!(pn.resolved, "theta_bar = {theta_bar}");
+        // Each barrier is the energy difference of a minimum and a saddle of the independent model.
+        let what = format!("theta_bar = {theta_bar}");
+        let v_min = reference_equilibrium(theta_bar, &pn.minimum().theta, 0, &what);
+        let v_saddle = reference_equilibrium(theta_bar, &pn.saddle().theta, 1, &what);
+        assert_close(pn.barrier, v_saddle - v_min, 1e-7, &what);
         let w = 1.0 / (2.0 * 0.8 * f64::sin(theta_bar));
         points.push((w, (pn.barrier / K).ln()));
     }
@@ -114,7 +181,9 @@ fn peierls_nabarro_barrier_falls_exponentially_with_the_width() {
     let slope = points.iter().map(|p| (p.0 - mx) * (p.1 - my)).sum::<f64>()
         / points.iter().map(|p| (p.0 - mx).powi(2)).sum::<f64>();
     eprintln!("slope of ln V_PNB vs w/a: {slope:.3} (paper fit -10.6, continuum -pi^2)");
-    assert!((-12.5..=-9.5).contains(&slope), "slope {slope}");
+    // The paper's fit (Fig. fig:logvpn-theta) is -10.6 over a theta_bar range it does not print;
+    // ours is -11.39 over 0.35-0.65. Its two digits and the unknown range allow 10 %.
+    assert!((slope / -10.6 - 1.0).abs() <= 0.10, "slope {slope} against the paper's -10.6");
 }
 
 #[test]
@@ -199,7 +268,7 @@ fn maxwell_calladine_index_is_one_everywhere_and_l_critical_has_a_self_stress() 
     assert!((critical_length(&model, 29).unwrap() - l_critical).abs() < 1e-12);
     assert!((l_critical - 2.31).abs() < 0.01, "paper: l_critical / a = 2.31");
     let at_critical =
-        RuntimeChain::builder(60, 0.8, K, 0.58).spring(29, None, Some(l_critical)).build().unwrap();
+        RuntimeChain::builder(60, 0.8, K, 0.58).spring_rest_length(29, l_critical).build().unwrap();
     let analysis = impurity_analysis(&at_critical, 29).unwrap();
     assert_eq!(analysis.counting.self_stresses.len(), 1, "one state of self-stress at l_critical");
     assert_eq!(analysis.counting.zero_modes.len(), 2);
@@ -211,7 +280,7 @@ fn soft_mode_and_tensional_mode_soften_towards_l_critical() {
     let l_critical = ((2.0 * 0.8 * s + 1.0).powi(2) + (2.0 * 0.8 * c).powi(2)).sqrt();
     let mut previous = (f64::INFINITY, f64::INFINITY);
     for l0 in [1.9, 2.1, 2.25, 2.30] {
-        let model = RuntimeChain::builder(60, 0.8, K, 0.58).spring(29, None, Some(l0)).build().unwrap();
+        let model = RuntimeChain::builder(60, 0.8, K, 0.58).spring_rest_length(29, l0).build().unwrap();
         let a = impurity_analysis(&model, 29).unwrap();
         let soft = a.modes[1].frequency;
         let tension = a.tensional.eigenvalue;
@@ -230,7 +299,7 @@ fn failures_are_typed_errors() {
     let model = chain(60, 0.58);
     assert!(kink(&model, 60.5).is_err());
     assert!(kink(&model, f64::NAN).is_err());
-    let too_long = RuntimeChain::builder(60, 0.8, K, 0.58).spring(29, None, Some(2.5)).build().unwrap();
+    let too_long = RuntimeChain::builder(60, 0.8, K, 0.58).spring_rest_length(29, 2.5).build().unwrap();
     assert!(impurity_analysis(&too_long, 29).is_err(), "no zero-energy state beyond l_critical");
 }
 
@@ -257,10 +326,7 @@ fn a_kink_too_wide_to_show_is_an_error() {
         // The no-alloc builder both share says so itself (firmware builds its kinks with it).
         let mut theta = [0.0; 60];
         let e = rotor_chain::embedded::kink_into(&model, 29.5, &mut theta);
-        assert!(
-            matches!(e, Err(rotor_chain::embedded::EmbeddedError::NoWall { expected: "kink", .. })),
-            "{e:?}"
-        );
+        assert!(matches!(e, Err(StaticsError::NoWall { expected: "kink", .. })), "{e:?}");
     }
     let wide = chain(60, 0.05);
     let theta = kink(&wide, 29.5).unwrap();
@@ -331,7 +397,6 @@ fn counting_returns_null_vectors_to_rounding() {
 /// fractional centres; the profile has zero energy to rounding throughout.
 #[test]
 fn a_wide_kink_sits_at_its_centre_to_the_documented_bound() {
-    use rotor_chain::ChainModel;
     use rotor_chain::statics::walls::domain_walls;
     let eps = f64::EPSILON;
     for r in [0.3, 0.8, 1.5] {
@@ -359,7 +424,6 @@ fn a_wide_kink_sits_at_its_centre_to_the_documented_bound() {
 /// here with the chain's gradient rather than the solver's own numbers.
 #[test]
 fn antikink_at_solves_centrings_only_and_says_when_it_held_the_translation() {
-    use rotor_chain::ChainModel;
     use rotor_chain::statics::StaticsError;
     let model = chain(60, 0.58);
     let options = AntikinkOptions::default();
@@ -388,13 +452,14 @@ fn antikink_at_solves_centrings_only_and_says_when_it_held_the_translation() {
 
 #[test]
 fn phonon_band_edges_of_the_uniform_chain_match_the_exact_dispersion() {
+    use rotor_chain::linalg::SymmetricMatrix;
     use rotor_chain::linalg::eigenvalues;
     use rotor_chain::statics::continuum::ContinuumChain;
-    use rotor_chain::statics::equilibrium::stiffness;
     for (n, theta_bar) in [(60, 0.58), (200, 0.3)] {
         let model = chain(n, theta_bar);
-        let (diag, off) = stiffness(&model, &vec![theta_bar; n]);
-        let ours = eigenvalues(&diag, &off).unwrap();
+        let k = SymmetricMatrix::tangent_stiffness(&model, &vec![theta_bar; n]).unwrap();
+        let (diag, off) = k.bands().unwrap();
+        let ours = eigenvalues(diag, off).unwrap();
         let exact =
             ContinuumChain::new(1.0, 0.8, theta_bar, K, 1.0).unwrap().finite_chain_spectrum(n).unwrap();
         let top = exact[n - 1];

@@ -20,8 +20,8 @@ struct Looped {
 
 fn runtime(k_imp: f64) -> RuntimeChain {
     RuntimeChain::builder(60, 0.8, 1.0e4, 0.58)
-        .spring(29, Some(k_imp), None)
-        .spring(7, None, Some(2.30))
+        .spring_constant(29, k_imp)
+        .spring_rest_length(7, 2.30)
         .rotor(12, 0.7)
         .build()
         .expect("valid chain")
@@ -34,15 +34,14 @@ fn outputs(model: &impl ChainModel, theta: &[f64]) -> Vec<(String, f64)> {
     let mut v = vec![0.0; n];
     model.gradient_into(theta, &mut v);
     out.extend(v.iter().enumerate().map(|(i, x)| (format!("gradient[{i}]"), *x)));
-    type Band = fn(&dyn ChainModelDyn, &[f64], &mut [f64], &mut [f64]);
-    let bands: [(&str, Band); 3] = [
-        ("stiffness", |m, t, d, o| m.k(t, d, o)),
-        ("material", |m, t, d, o| m.m(t, d, o)),
-        ("stress", |m, t, d, o| m.s(t, d, o)),
-    ];
-    for (name, f) in bands {
-        let (mut d, mut o) = (vec![0.0; n], vec![0.0; n - 1]);
-        f(&Wrap(model), theta, &mut d, &mut o);
+    let mut k = vec![0.0; 2 * n - 1];
+    for name in ["stiffness", "material", "stress"] {
+        match name {
+            "stiffness" => model.tangent_stiffness_into(theta, &mut k),
+            "material" => model.material_stiffness_into(theta, &mut k),
+            _ => model.stress_matrix_into(theta, &mut k),
+        }
+        let (d, o) = k.split_at(n);
         out.extend(d.iter().enumerate().map(|(i, x)| (format!("{name}.diag[{i}]"), *x)));
         out.extend(o.iter().enumerate().map(|(i, x)| (format!("{name}.off[{i}]"), *x)));
     }
@@ -51,30 +50,12 @@ fn outputs(model: &impl ChainModel, theta: &[f64]) -> Vec<(String, f64)> {
     out.extend(s.iter().enumerate().map(|(i, x)| (format!("length[{i}]"), *x)));
     model.tensions_into(theta, &mut s);
     out.extend(s.iter().enumerate().map(|(i, x)| (format!("tension[{i}]"), *x)));
-    let (mut l, mut r) = (vec![0.0; n - 1], vec![0.0; n - 1]);
-    model.compatibility_into(theta, &mut l, &mut r);
+    let mut c = vec![0.0; 2 * (n - 1)];
+    model.compatibility_into(theta, &mut c);
+    let (l, r) = c.split_at(n - 1);
     out.extend(l.iter().enumerate().map(|(i, x)| (format!("C.left[{i}]"), *x)));
     out.extend(r.iter().enumerate().map(|(i, x)| (format!("C.right[{i}]"), *x)));
     out
-}
-
-/// Object-safe access to the three banded outputs (so one table drives them).
-trait ChainModelDyn {
-    fn k(&self, t: &[f64], d: &mut [f64], o: &mut [f64]);
-    fn m(&self, t: &[f64], d: &mut [f64], o: &mut [f64]);
-    fn s(&self, t: &[f64], d: &mut [f64], o: &mut [f64]);
-}
-struct Wrap<'a, M>(&'a M);
-impl<M: ChainModel> ChainModelDyn for Wrap<'_, M> {
-    fn k(&self, t: &[f64], d: &mut [f64], o: &mut [f64]) {
-        self.0.tangent_stiffness_into(t, d, o)
-    }
-    fn m(&self, t: &[f64], d: &mut [f64], o: &mut [f64]) {
-        self.0.material_stiffness_into(t, d, o)
-    }
-    fn s(&self, t: &[f64], d: &mut [f64], o: &mut [f64]) {
-        self.0.stress_matrix_into(t, d, o)
-    }
 }
 
 #[test]
@@ -96,7 +77,7 @@ fn parameters_agree_between_macro_and_runtime() {
     let (u, r) = (Unrolled { k_imp: 100.0 }, runtime(100.0));
     assert_eq!(u.rotor_count(), r.rotor_count());
     for p in 0..59 {
-        assert_eq!(u.stiffness(p), r.stiffness(p), "k_{p}");
+        assert_eq!(u.spring_constant(p), r.spring_constant(p), "k_{p}");
         assert_close(u.rest_length(p), r.rest_length(p), 1e-15, &format!("l0_{p}"));
     }
     for i in 0..60 {
@@ -120,5 +101,5 @@ fn a_large_looped_chain_matches_the_runtime_chain() {
         assert_close(g1[i], g2[i], 1e-12, &format!("gradient[{i}]"));
     }
     // Inherent methods take `&[f64; N]`; through the trait they take slices.
-    assert_close(ChainModel::energy(&Long, &theta), runtime.energy(&theta), 1e-12, "energy");
+    assert_close(Potential::energy(&Long, &theta), runtime.energy(&theta), 1e-12, "energy");
 }

@@ -113,8 +113,8 @@ impl Params {
             .lattice_spacing(self.a * u.l)
             .mass(self.mass * u.m)
             .law(self.law)
-            .spring(self.soft.0, Some(self.soft.1 * self.k * u.k), None)
-            .spring(self.long.0, None, Some(self.long.1 * self.lbar() * u.l));
+            .spring_constant(self.soft.0, self.soft.1 * self.k * u.k)
+            .spring_rest_length(self.long.0, self.long.1 * self.lbar() * u.l);
         if let Some((i, f)) = self.rotor {
             b = b.rotor(i, f * self.r * u.l);
         }
@@ -203,20 +203,20 @@ impl Outputs {
     /// stress matrix, spring lengths, tensions, compatibility bands, moments of inertia.
     fn of(chain: &RuntimeChain, theta: &[f64]) -> Self {
         let n = chain.rotor_count();
-        let band = |f: &dyn Fn(&mut [f64], &mut [f64])| {
-            let (mut d, mut o) = (vec![0.0; n], vec![0.0; n - 1]);
-            f(&mut d, &mut o);
-            d.extend(o);
-            d
+        // A matrix's values in the chain's layout: the two bands one after the other.
+        let band = |len: usize, f: &dyn Fn(&mut [f64])| {
+            let mut values = vec![0.0; len];
+            f(&mut values);
+            values
         };
         let mut g = vec![0.0; n];
         let fused = chain.energy_and_gradient_into(theta, &mut g);
-        let (mut g3, mut d3, mut o3) = (vec![0.0; n], vec![0.0; n], vec![0.0; n - 1]);
-        let fused3 = chain.energy_gradient_stiffness_into(theta, &mut g3, &mut d3, &mut o3);
+        let (mut g3, mut k3) = (vec![0.0; n], vec![0.0; 2 * n - 1]);
+        let fused3 = chain.energy_gradient_stiffness_into(theta, &mut g3, &mut k3);
         let mut energy = vec![chain.energy(theta), fused, fused3];
         energy.extend(g3);
-        let mut stiffness = band(&|d, o| chain.tangent_stiffness_into(theta, d, o));
-        stiffness.extend(d3.into_iter().chain(o3));
+        let mut stiffness = band(2 * n - 1, &|k| chain.tangent_stiffness_into(theta, k));
+        stiffness.extend(k3);
         let mut lengths = vec![0.0; n - 1];
         chain.spring_lengths_into(theta, &mut lengths);
         lengths.extend((0..n - 1).map(|p| chain.rest_length(p)));
@@ -228,11 +228,11 @@ impl Outputs {
             energy,
             g,
             stiffness,
-            band(&|d, o| chain.material_stiffness_into(theta, d, o)),
-            band(&|d, o| chain.stress_matrix_into(theta, d, o)),
+            band(2 * n - 1, &|k| chain.material_stiffness_into(theta, k)),
+            band(2 * n - 1, &|k| chain.stress_matrix_into(theta, k)),
             lengths,
             tensions,
-            band(&|l, r| chain.compatibility_into(theta, &mut l[..n - 1], r)),
+            band(2 * (n - 1), &|c| chain.compatibility_into(theta, c)),
             (0..n).map(|i| chain.inertia(i)).collect(),
         ])
     }
@@ -281,8 +281,8 @@ fn evaluations_scale_as_energy_tension_length_and_inertia() {
                 assert_scaled(&what(name), got, base, factor, EXACT);
             }
             assert_scaled(&what("batch"), &batch_of(&scaled), &batch_base, u.energy(), EXACT);
-            let k: Vec<f64> = (0..n - 1).map(|q| chain.stiffness(q)).collect();
-            let k_scaled: Vec<f64> = (0..n - 1).map(|q| scaled.stiffness(q)).collect();
+            let k: Vec<f64> = (0..n - 1).map(|q| chain.spring_constant(q)).collect();
+            let k_scaled: Vec<f64> = (0..n - 1).map(|q| scaled.spring_constant(q)).collect();
             assert_scaled(&what("stiffnesses"), &k_scaled, &k, u.k, EXACT);
             assert_eq!(scaled.theta_bar(), chain.theta_bar());
             // The branch solve of Appendix A: angles in, angles out.
@@ -368,14 +368,14 @@ macro_rules! check_macro_chain {
             assert_scaled(&what("hessian"), h.as_slice(), h0.as_slice(), e, EXACT);
             let mut lengths = [0.0; $Chain::N - 1];
             let mut base = [0.0; $Chain::N - 1];
-            ChainModel::spring_lengths_into(&scaled, &theta, &mut lengths);
-            ChainModel::spring_lengths_into(&chain, &theta, &mut base);
+            SpringNetwork::spring_lengths_into(&scaled, &theta, &mut lengths);
+            SpringNetwork::spring_lengths_into(&chain, &theta, &mut base);
             assert_scaled(&what("spring lengths"), &lengths, &base, u.length(), EXACT);
-            ChainModel::tensions_into(&scaled, &theta, &mut lengths);
-            ChainModel::tensions_into(&chain, &theta, &mut base);
+            SpringNetwork::tensions_into(&scaled, &theta, &mut lengths);
+            SpringNetwork::tensions_into(&chain, &theta, &mut base);
             assert_scaled(&what("tensions"), &lengths, &base, u.tension(), EXACT);
-            let inertia: Vec<f64> = (0..$Chain::N).map(|i| ChainModel::inertia(&scaled, i)).collect();
-            let inertia0: Vec<f64> = (0..$Chain::N).map(|i| ChainModel::inertia(&chain, i)).collect();
+            let inertia: Vec<f64> = (0..$Chain::N).map(|i| Potential::inertia(&scaled, i)).collect();
+            let inertia0: Vec<f64> = (0..$Chain::N).map(|i| Potential::inertia(&chain, i)).collect();
             assert_scaled(&what("inertia"), &inertia, &inertia0, u.inertia(), EXACT);
             assert_scaled(
                 &what("kink"),
@@ -848,7 +848,7 @@ fn scattering_outcomes_are_invariant_in_scaled_units() {
         RuntimeChain::builder(60, 0.8 * u.l, 1e4 * u.k, 0.28)
             .lattice_spacing(u.l)
             .mass(u.m)
-            .spring(29, Some(ki * 1e4 * u.k), None)
+            .spring_constant(29, ki * 1e4 * u.k)
             .build()
             .unwrap()
     };

@@ -9,12 +9,9 @@
 //! The reference (dashu-float, arbitrary precision) dominates the run time: computed once per
 //! point on both cores, then every level is compared with it.
 
-#[path = "../tests/support/mod.rs"]
-mod support;
-
 use chain_core::math;
 use chain_core::simd::{self, Level};
-use support::ulp;
+use test_support::ulp;
 
 fn main() {
     let count: usize = std::env::args().nth(1).map_or(3_400_000, |s| s.parse().expect("a point count"));

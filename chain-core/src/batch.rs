@@ -7,8 +7,8 @@
 //! configurations, which the calling thread and one helper per other thread of rayon's pool take
 //! one after another from a shared queue until none is left. The calling thread works rather than
 //! waiting for the pool, and a core that runs slower (another process on it) takes fewer pieces.
-//! Each piece goes to the model's [`ChainModel::batch_gradient_into`] /
-//! [`ChainModel::batch_energy_and_gradient_into`]: one by one for a macro chain, and for a
+//! Each piece goes to the model's [`Potential::batch_gradient_into`] /
+//! [`Potential::batch_energy_and_gradient_into`]: one by one for a macro chain, and for a
 //! [`crate::RuntimeChain`] as one long chain through its vector loop (the configurations back
 //! to back, the springs that would join them dropped: `kernel::BackToBack`), which saves the
 //! loop's start and end per configuration. The gradients are the same either way; the energies
@@ -20,7 +20,7 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::{Mutex, PoisonError};
 use std::time::{Duration, Instant};
 
-use crate::model::ChainModel;
+use crate::model::Potential;
 
 /// Configurations per piece, at least: enough work (a few microseconds at 0.1-1 us per
 /// evaluation) to hide taking a piece from the queue, a lock whose cache line moves between cores.
@@ -131,13 +131,13 @@ fn share<P: Send>(pieces: impl ExactSizeIterator<Item = P> + Send, work: impl Fn
 /// # Errors
 /// [`BatchError`] if `thetas` is not a whole number of configurations, or `gradients` /
 /// `energies` do not match it; nothing is evaluated then.
-pub fn energies_and_gradients<M: ChainModel + Sync + ?Sized>(
+pub fn energies_and_gradients<M: Potential + Sync + ?Sized>(
     model: &M,
     thetas: &[f64],
     energies: &mut [f64],
     gradients: &mut [f64],
 ) -> Result<(), BatchError> {
-    let n = model.rotor_count();
+    let n = model.dof_count();
     let (count, per_piece) = split(n, thetas, gradients)?;
     if energies.len() != count {
         return Err(BatchError::OutputLength { what: "energies", len: energies.len(), expected: count });
@@ -156,12 +156,12 @@ pub fn energies_and_gradients<M: ChainModel + Sync + ?Sized>(
 ///
 /// # Errors
 /// As [`energies_and_gradients`].
-pub fn gradients<M: ChainModel + Sync + ?Sized>(
+pub fn gradients<M: Potential + Sync + ?Sized>(
     model: &M,
     thetas: &[f64],
     gradients: &mut [f64],
 ) -> Result<(), BatchError> {
-    let n = model.rotor_count();
+    let n = model.dof_count();
     let (_, per_piece) = split(n, thetas, gradients)?;
     let pieces = thetas.chunks(n * per_piece).zip(gradients.chunks_mut(n * per_piece));
     share(pieces, |(theta, gradient)| model.batch_gradient_into(theta, gradient));
@@ -177,7 +177,7 @@ mod tests {
     /// configuration, fewer than a task, many tasks).
     #[test]
     fn a_batch_equals_its_configurations_one_by_one() {
-        let chain = RuntimeChain::builder(23, 0.8, 1.0e4, 0.58).spring(7, Some(50.0), None).build().unwrap();
+        let chain = RuntimeChain::builder(23, 0.8, 1.0e4, 0.58).spring_constant(7, 50.0).build().unwrap();
         let n = 23;
         for count in [1, 5, 17, 300] {
             let thetas: Vec<f64> = (0..count * n)

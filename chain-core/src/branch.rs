@@ -135,19 +135,50 @@ mod tests {
     const A: f64 = 1.0;
     const R: f64 = 0.8;
 
+    /// Whether spring `p` can reach rest length `l0` for `theta_p = theta` at all: the range of
+    /// its length over a fine grid of `theta_{p+1}` (Cartesian tips written out here, not the
+    /// solve's circle criterion), and how far `l0` lies inside it.
+    fn reachable(r1: f64, r2: f64, l0: f64, theta: f64) -> (bool, f64) {
+        let length = |t2: f64| {
+            let (x1, y1) = (r1 * theta.sin(), r1 * theta.cos());
+            let (x2, y2) = (A + r2 * t2.sin(), -r2 * t2.cos());
+            ((x2 - x1).powi(2) + (y2 - y1).powi(2)).sqrt()
+        };
+        let steps = 20_000;
+        let (lo, hi) = (0..=steps)
+            .map(|j| length(-core::f64::consts::PI + 2.0 * core::f64::consts::PI * j as f64 / steps as f64))
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), l| (lo.min(l), hi.max(l)));
+        (lo <= l0 && l0 <= hi, (l0 - lo).min(hi - l0).abs())
+    }
+
     #[test]
     fn both_roots_put_the_spring_at_rest_length() {
-        for (r1, r2, l0) in [(R, R, 1.7), (0.8, 0.6, 1.5), (0.5, 0.9, 1.2)] {
-            for theta in [-1.0, -0.3, 0.0, 0.4, 0.9] {
-                let Ok(roots) = next_angles(0, A, r1, r2, l0, theta) else {
-                    continue;
-                };
-                for t2 in roots {
-                    let l = spring_length(A, r1, r2, theta, t2);
-                    assert!((l - l0).abs() < 1e-12, "theta {theta} -> {t2}: length {l} != {l0}");
+        let (mut solved, mut refused) = (0, 0);
+        for (r1, r2, l0) in [(R, R, 1.7), (0.8, 0.6, 1.5), (0.5, 0.9, 1.2), (0.8, 0.8, 2.55), (0.3, 0.4, 0.2)]
+        {
+            for theta in [-1.0, -0.3, 0.0, 0.4, 0.9, 2.0, 3.0] {
+                let (exists, margin) = reachable(r1, r2, l0, theta);
+                // Cases where l0 grazes the reachable range are decided by rounding: none here.
+                assert!(margin > 1e-6, "a grazing case: {r1} {r2} {l0} {theta}");
+                match next_angles(0, A, r1, r2, l0, theta) {
+                    Ok(roots) => {
+                        assert!(exists, "roots {roots:?} where l0 = {l0} is out of reach at {theta}");
+                        for t2 in roots {
+                            let l = spring_length(A, r1, r2, theta, t2);
+                            assert!((l - l0).abs() < 1e-12, "theta {theta} -> {t2}: length {l} != {l0}");
+                        }
+                        solved += 1;
+                    }
+                    Err(e) => {
+                        assert!(!exists, "no roots ({e}) where l0 = {l0} is within reach at {theta}");
+                        assert!(matches!(e, BranchError::NoRealRoot { .. }), "{e}");
+                        refused += 1;
+                    }
                 }
             }
         }
+        // Both outcomes occur, so the test exercises both.
+        assert!(solved >= 10 && refused >= 10, "{solved} solved, {refused} refused");
     }
 
     #[test]

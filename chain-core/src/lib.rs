@@ -1,9 +1,15 @@
-//! Model layer of `rotor-chain`: the [`ChainModel`] trait every analysis is generic over, the
-//! runtime-sized [`RuntimeChain`], banded stiffness types, the branch solve of paper
-//! Appendix A, and the no-alloc pieces of a dynamics run in `f64` or `f32` ([`embedded`]).
+//! Model layer of `rotor-chain`: the capability traits every analysis is generic over
+//! ([`model`]: [`Potential`], [`Stiffness`], [`SpringNetwork`], [`ChainGeometry`], and
+//! [`ChainModel`], all four in `f64`), the runtime-sized [`RuntimeChain`], the integrators
+//! ([`integrate`]), the statics and the dynamics.
 //!
-//! `no_std` without allocation when default features are off (math from `libm`); the `alloc`
-//! feature adds the runtime-sized chain and dense conversions, `std` the platform math.
+//! The import graph is a chain: `model` (traits, layouts, the branch solve) -> `linalg` ->
+//! `integrate` -> `statics` -> `dynamics`; `embedded` only gathers the pieces that need no heap.
+//!
+//! `no_std` without allocation when default features are off (math from `libm`): the model
+//! traits, the kink's construction, the domain walls, the kink's launch and velocity Verlet on
+//! arrays. The `alloc` feature adds the runtime-sized chain, the linear algebra, the analyses and
+//! the runs; `std` the platform math and the batch evaluations on threads.
 #![deny(missing_docs)]
 #![cfg_attr(not(feature = "std"), no_std)]
 
@@ -14,26 +20,28 @@ pub mod banded;
 #[cfg(feature = "std")]
 pub mod batch;
 pub mod branch;
-#[cfg(feature = "alloc")]
 pub mod dynamics;
 pub mod embedded;
 pub mod error;
+pub mod integrate;
+#[doc(hidden)]
 pub mod kernel;
-#[cfg(feature = "alloc")]
 pub mod linalg;
+#[doc(hidden)]
 pub mod math;
 pub mod model;
+#[doc(hidden)]
 pub mod real;
 #[cfg(feature = "alloc")]
 pub mod runtime;
+#[doc(hidden)]
 pub mod simd;
-#[cfg(feature = "alloc")]
 pub mod statics;
 
 pub use banded::{Bidiagonal, Tridiagonal};
 pub use chain_geometry as geometry;
 pub use error::{BranchError, ParameterError};
-pub use model::ChainModel;
+pub use model::{ChainGeometry, ChainModel, Potential, SpringNetwork, Stiffness};
 pub use real::Real;
 #[cfg(feature = "alloc")]
 pub use runtime::{ChainBuilder, Law, RuntimeChain};

@@ -64,6 +64,8 @@ pub trait Real:
 
     /// The square root (`sqrt` or `sqrtf`).
     fn sqrt(self) -> Self;
+    /// The exponential (`exp` or `expf`): the exact decay of a damped Verlet step.
+    fn exp(self) -> Self;
     /// `(sin self, cos self)`, through [`crate::math`] or [`crate::math::single`].
     fn sin_cos(self) -> (Self, Self);
     /// The angle of the point `(x, self)`, in `(-pi, pi]`.
@@ -119,6 +121,10 @@ impl Real for f64 {
         math::sqrt(self)
     }
     #[inline(always)]
+    fn exp(self) -> Self {
+        math::exp(self)
+    }
+    #[inline(always)]
     fn sin_cos(self) -> (Self, Self) {
         math::sin_cos(self)
     }
@@ -161,6 +167,10 @@ impl Real for f32 {
     #[inline(always)]
     fn sqrt(self) -> Self {
         math::single::sqrt(self)
+    }
+    #[inline(always)]
+    fn exp(self) -> Self {
+        math::single::exp(self)
     }
     #[inline(always)]
     fn sin_cos(self) -> (Self, Self) {

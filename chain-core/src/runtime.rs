@@ -10,7 +10,10 @@ use alloc::vec::Vec;
 use chain_geometry::{IndexKind, Key, ParameterError};
 
 use crate::kernel;
-use crate::model::ChainModel;
+use crate::model::layout::{split_bidiagonal, split_tridiagonal};
+use crate::model::{
+    ChainGeometry, CompatibilityLayout, Potential, SpringNetwork, Stiffness, StiffnessLayout,
+};
 
 /// The spring laws a runtime chain offers (a custom law needs the macro, which compiles it).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -79,15 +82,20 @@ impl RuntimeChain {
     /// # Example
     ///
     /// ```
-    /// use rotor_chain::{ChainModel, RuntimeChain};
+    /// use rotor_chain::prelude::*;
     ///
     /// # fn main() -> Result<(), rotor_chain::ParameterError> {
     /// // n = 60, r = 0.8 a, k = 1e4 M/t^2, theta_bar = 0.58 rad; an impurity spring, a longer lattice.
     /// let chain = RuntimeChain::builder(60, 0.8, 1.0e4, 0.58)
     ///     .lattice_spacing(1.0)
-    ///     .spring(29, Some(1.0e3), None)
+    ///     .spring_constant(29, 1.0e3)         // a stiffness impurity on spring 29
+    ///     .spring_rest_length(7, 1.7)         // a length impurity on spring 7
+    ///     .spring(40, Some(2.0e4), Some(1.6)) // both on spring 40, in one override
     ///     .build()?;
-    /// assert_eq!(chain.stiffness(29), 1.0e3);
+    /// assert_eq!((chain.spring_constant(29), chain.rest_length(7)), (1.0e3, 1.7));
+    /// // A spring overridden twice is refused, as the macro refuses it.
+    /// let twice = RuntimeChain::builder(60, 0.8, 1.0e4, 0.58).spring_constant(3, 1.0).spring_rest_length(3, 1.7);
+    /// assert!(twice.build().is_err());
     /// assert!(RuntimeChain::builder(60, 0.8, 1.0e4, 0.7).build().is_err()); // past the flipper phase
     /// # Ok(())
     /// # }
@@ -145,8 +153,9 @@ impl RuntimeChain {
     /// [`BATCH_ROTORS`] rotors, so that the tiled parameters stay in the L1 cache.
     #[track_caller]
     fn batch(&self, thetas: &[f64], out: &mut [f64], energies: Option<&mut [f64]>) {
-        let n = self.rotor_count();
-        let count = crate::model::batch_count(n, thetas, out, energies.as_deref());
+        let n = self.dof_count();
+        let count =
+            crate::model::batch_count(n, thetas.len(), out.len(), energies.as_deref().map(<[f64]>::len));
         let per_block = (BATCH_ROTORS / n).clamp(1, count.max(1));
         // `per_block > 1` only where the chain made its tiles (`BATCH_ROTORS / n > 1`).
         let [rotor_lengths, stiffness, rest_lengths] = if per_block == 1 {
@@ -204,27 +213,14 @@ macro_rules! with_law {
 /// in the L1 cache.
 const BATCH_ROTORS: usize = 1024;
 
-impl ChainModel for RuntimeChain {
-    fn rotor_count(&self) -> usize {
+impl Potential for RuntimeChain {
+    fn dof_count(&self) -> usize {
         self.rotor_lengths.len()
     }
-    fn lattice_spacing(&self) -> f64 {
-        self.a
-    }
-    fn rotor_length(&self, i: usize) -> f64 {
-        self.rotor_lengths[i]
-    }
-    fn mass(&self) -> f64 {
-        self.mass
-    }
-    fn theta_bar(&self) -> f64 {
-        self.theta_bar
-    }
-    fn stiffness(&self, p: usize) -> f64 {
-        self.stiffness[p]
-    }
-    fn rest_length(&self, p: usize) -> f64 {
-        self.rest_lengths[p]
+
+    fn inertia(&self, i: usize) -> f64 {
+        let r = self.rotor_lengths[i];
+        self.mass * r * r
     }
 
     #[track_caller]
@@ -237,12 +233,6 @@ impl ChainModel for RuntimeChain {
     fn gradient_into(&self, theta: &[f64], out: &mut [f64]) {
         self.check_lengths(theta, &[("out", out.len())], &[]);
         with_law!(self, theta, assemble_pairs, Gradient, out)
-    }
-
-    #[track_caller]
-    fn tangent_stiffness_into(&self, theta: &[f64], diag: &mut [f64], off: &mut [f64]) {
-        self.check_lengths(theta, &[("diag", diag.len())], &[("off", off.len())]);
-        with_law!(self, theta, assemble_blocks, Hessian, diag, off)
     }
 
     // No `#[track_caller]` here, unlike its neighbours: with it the AVX2 energy + gradient of
@@ -263,28 +253,43 @@ impl ChainModel for RuntimeChain {
         self.batch(thetas, out, Some(energies));
     }
 
+    /// `1e-12 k_max a^2`: the energy of a spring stretched by a millionth of the lattice spacing.
+    fn energy_floor(&self) -> f64 {
+        crate::model::chain_energy_floor(self)
+    }
+}
+
+impl Stiffness for RuntimeChain {
+    fn stiffness_layout(&self) -> StiffnessLayout<'_> {
+        StiffnessLayout::Tridiagonal
+    }
+
     #[track_caller]
-    fn energy_gradient_stiffness_into(
-        &self,
-        theta: &[f64],
-        grad: &mut [f64],
-        diag: &mut [f64],
-        off: &mut [f64],
-    ) -> f64 {
-        self.check_lengths(theta, &[("grad", grad.len()), ("diag", diag.len())], &[("off", off.len())]);
+    fn tangent_stiffness_into(&self, theta: &[f64], values: &mut [f64]) {
+        self.check_lengths(theta, &[], &[]);
+        let (diag, off) = split_tridiagonal(theta.len(), values);
+        with_law!(self, theta, assemble_blocks, Hessian, diag, off)
+    }
+
+    #[track_caller]
+    fn energy_gradient_stiffness_into(&self, theta: &[f64], grad: &mut [f64], values: &mut [f64]) -> f64 {
+        self.check_lengths(theta, &[("grad", grad.len())], &[]);
+        let (diag, off) = split_tridiagonal(theta.len(), values);
         with_law!(self, theta, energy_gradient_stiffness, EnergyGradientHessian, grad, diag, off)
     }
+}
 
-    #[track_caller]
-    fn material_stiffness_into(&self, theta: &[f64], diag: &mut [f64], off: &mut [f64]) {
-        self.check_lengths(theta, &[("diag", diag.len())], &[("off", off.len())]);
-        with_law!(self, theta, assemble_blocks, Material, diag, off)
+impl SpringNetwork for RuntimeChain {
+    fn spring_count(&self) -> usize {
+        self.stiffness.len()
     }
 
-    #[track_caller]
-    fn stress_matrix_into(&self, theta: &[f64], diag: &mut [f64], off: &mut [f64]) {
-        self.check_lengths(theta, &[("diag", diag.len())], &[("off", off.len())]);
-        with_law!(self, theta, assemble_blocks, Stress, diag, off)
+    fn spring_constant(&self, p: usize) -> f64 {
+        self.stiffness[p]
+    }
+
+    fn rest_length(&self, p: usize) -> f64 {
+        self.rest_lengths[p]
     }
 
     #[track_caller]
@@ -299,10 +304,44 @@ impl ChainModel for RuntimeChain {
         with_law!(self, theta, per_spring, Tension, out)
     }
 
+    fn compatibility_layout(&self) -> CompatibilityLayout<'_> {
+        CompatibilityLayout::Bidiagonal
+    }
+
     #[track_caller]
-    fn compatibility_into(&self, theta: &[f64], left: &mut [f64], right: &mut [f64]) {
-        self.check_lengths(theta, &[], &[("left", left.len()), ("right", right.len())]);
+    fn compatibility_into(&self, theta: &[f64], values: &mut [f64]) {
+        self.check_lengths(theta, &[], &[]);
+        let (left, right) = split_bidiagonal(theta.len().saturating_sub(1), values);
         with_law!(self, theta, per_spring_pairs, Compatibility, left, right)
+    }
+
+    #[track_caller]
+    fn material_stiffness_into(&self, theta: &[f64], values: &mut [f64]) {
+        self.check_lengths(theta, &[], &[]);
+        let (diag, off) = split_tridiagonal(theta.len(), values);
+        with_law!(self, theta, assemble_blocks, Material, diag, off)
+    }
+
+    #[track_caller]
+    fn stress_matrix_into(&self, theta: &[f64], values: &mut [f64]) {
+        self.check_lengths(theta, &[], &[]);
+        let (diag, off) = split_tridiagonal(theta.len(), values);
+        with_law!(self, theta, assemble_blocks, Stress, diag, off)
+    }
+}
+
+impl ChainGeometry for RuntimeChain {
+    fn lattice_spacing(&self) -> f64 {
+        self.a
+    }
+    fn rotor_length(&self, i: usize) -> f64 {
+        self.rotor_lengths[i]
+    }
+    fn mass(&self) -> f64 {
+        self.mass
+    }
+    fn theta_bar(&self) -> f64 {
+        self.theta_bar
     }
 }
 
@@ -327,8 +366,17 @@ impl ChainBuilder {
         self.law = law;
         self
     }
+    /// Override spring `p`'s spring constant: an impurity in the stiffness, `k_p = k`.
+    pub fn spring_constant(self, p: usize, k: f64) -> Self {
+        self.spring(p, Some(k), None)
+    }
+    /// Override spring `p`'s rest length: an impurity in the length, `l0_p = l0`.
+    pub fn spring_rest_length(self, p: usize, l0: f64) -> Self {
+        self.spring(p, None, Some(l0))
+    }
     /// Override spring `p`'s stiffness and/or rest length (`None` keeps the chain's value). At
-    /// least one must be given, and each spring may be overridden once ([`ChainBuilder::build`]).
+    /// least one must be given, and each spring may be overridden once, all its values in one
+    /// override, as the macro's `spring(p, k = .., l0 = ..)` ([`ChainBuilder::build`]).
     pub fn spring(mut self, p: usize, k: Option<f64>, l0: Option<f64>) -> Self {
         self.springs.push((p, k, l0));
         self
@@ -405,7 +453,7 @@ impl ChainBuilder {
             rest_lengths,
             tiles: Tiles::default(),
         };
-        let copies = BATCH_ROTORS / chain.rotor_count().max(1);
+        let copies = BATCH_ROTORS / chain.dof_count().max(1);
         if copies > 1 {
             chain.tiles = Tiles(chain.tiled(copies));
         }

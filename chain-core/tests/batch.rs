@@ -4,8 +4,10 @@
 //! level, for chains shorter than a vector (several joins in one group of lanes) and longer, and
 //! a NaN in one configuration must not leak into its neighbours.
 
+use chain_core::ChainGeometry;
+use chain_core::Potential;
 use chain_core::simd::{self, Level};
-use chain_core::{ChainModel, Law, RuntimeChain, batch};
+use chain_core::{Law, RuntimeChain, batch};
 
 /// A chain of `n` rotors with one softer, longer spring and one shorter rotor where it has room.
 fn chain(n: usize, law: Law) -> RuntimeChain {

@@ -4,12 +4,13 @@
 
 use std::f64::consts::PI;
 
+use chain_core::RuntimeChain;
 use chain_core::geometry::{ParameterError, spring_length};
+use chain_core::linalg::SymmetricMatrix;
 use chain_core::statics::continuum::{
     ContinuumChain, ContinuumError, PN_ASYMPTOTIC_LOG_SLOPE, sech4_fourier_transform,
 };
 use chain_core::statics::walls::Charge;
-use chain_core::{ChainModel, RuntimeChain};
 use nalgebra::{DMatrix, SymmetricEigen};
 
 const A: f64 = 1.0;
@@ -301,8 +302,8 @@ fn finite_chain_spectrum_matches_the_generated_tangent_stiffness() {
     // The harmonic RuntimeChain's tangent stiffness at theta_i = theta_bar is k C^T C.
     let (n, k) = (24, 3.0);
     let model = RuntimeChain::builder(n, R, k, TB).build().unwrap();
-    let (mut diag, mut off) = (vec![0.0; n], vec![0.0; n - 1]);
-    model.tangent_stiffness_into(&vec![TB; n], &mut diag, &mut off);
+    let k_matrix = SymmetricMatrix::tangent_stiffness(&model, &vec![TB; n]).unwrap();
+    let (diag, off) = k_matrix.bands().unwrap();
     let dense = DMatrix::from_fn(n, n, |i, j| match i.abs_diff(j) {
         0 => diag[i],
         1 => off[i.min(j)],

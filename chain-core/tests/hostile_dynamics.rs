@@ -4,6 +4,8 @@
 
 use std::time::{Duration, Instant};
 
+use chain_core::Potential;
+use chain_core::RuntimeChain;
 use chain_core::dynamics::DynamicsError;
 use chain_core::dynamics::integrate::{
     AdaptiveOptions, Flow, IntegrateError, Integrator, Schedule, State, VerletOptions, adaptive, verlet,
@@ -12,7 +14,6 @@ use chain_core::dynamics::launch::Direction;
 use chain_core::dynamics::run::{Method, RunOptions, propagate};
 use chain_core::dynamics::scatter::{ScatterSetup, scatter};
 use chain_core::statics::walls::Charge;
-use chain_core::{ChainModel, RuntimeChain};
 
 fn paper() -> RuntimeChain {
     RuntimeChain::builder(60, 0.8, 1.0e4, 0.28).build().unwrap()

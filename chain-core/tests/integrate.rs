@@ -6,13 +6,13 @@
 
 use std::f64::consts::PI;
 
-use chain_core::dynamics::integrate::{
+use chain_core::integrate::{
     AdaptiveOptions, Flow, IntegrateError, Report, State, VerletOptions, adaptive, kinetic_energy,
     total_energy, verlet,
 };
 use chain_core::statics::continuum::ContinuumChain;
 use chain_core::statics::kink::kink;
-use chain_core::{ChainModel, RuntimeChain};
+use chain_core::{ChainGeometry, Potential, RuntimeChain};
 
 const R: f64 = 0.8;
 const K: f64 = 1e4;
@@ -20,7 +20,7 @@ const TB: f64 = 0.58;
 
 /// Test models with closed-form dynamics.
 mod models {
-    use chain_core::ChainModel;
+    use chain_core::model::{Potential, Stiffness, StiffnessLayout};
 
     /// Uncoupled harmonic rotors, `V = sum_i kappa_i theta_i^2 / 2`, `I_i = r_i^2` (`M = 1`); the
     /// gradient turns NaN where `|theta_i| > nan_beyond` (a force law that breaks down).
@@ -54,27 +54,14 @@ mod models {
         }
     }
 
-    impl ChainModel for Oscillators {
-        fn rotor_count(&self) -> usize {
+    /// What the oscillators honestly are: a potential with inertias, and a (diagonal) tangent
+    /// stiffness. They have no springs and no chain geometry, so they implement neither rung.
+    impl Potential for Oscillators {
+        fn dof_count(&self) -> usize {
             self.kappa.len()
         }
-        fn lattice_spacing(&self) -> f64 {
-            1.0
-        }
-        fn rotor_length(&self, i: usize) -> f64 {
-            self.r[i]
-        }
-        fn mass(&self) -> f64 {
-            1.0
-        }
-        fn theta_bar(&self) -> f64 {
-            0.0
-        }
-        fn stiffness(&self, _: usize) -> f64 {
-            0.0
-        }
-        fn rest_length(&self, _: usize) -> f64 {
-            1.0
+        fn inertia(&self, i: usize) -> f64 {
+            self.r[i] * self.r[i]
         }
         fn energy(&self, theta: &[f64]) -> f64 {
             theta.iter().zip(&self.kappa).map(|(t, k)| 0.5 * k * t * t).sum()
@@ -84,26 +71,16 @@ mod models {
                 *o = if t.abs() > self.nan_beyond { f64::NAN } else { k * t };
             }
         }
-        fn tangent_stiffness_into(&self, _: &[f64], diag: &mut [f64], off: &mut [f64]) {
+    }
+
+    impl Stiffness for Oscillators {
+        fn stiffness_layout(&self) -> StiffnessLayout<'_> {
+            StiffnessLayout::Tridiagonal
+        }
+        fn tangent_stiffness_into(&self, _: &[f64], values: &mut [f64]) {
+            let (diag, off) = values.split_at_mut(self.kappa.len());
             diag.copy_from_slice(&self.kappa);
             off.fill(0.0);
-        }
-        fn material_stiffness_into(&self, theta: &[f64], diag: &mut [f64], off: &mut [f64]) {
-            self.tangent_stiffness_into(theta, diag, off);
-        }
-        fn stress_matrix_into(&self, _: &[f64], diag: &mut [f64], off: &mut [f64]) {
-            diag.fill(0.0);
-            off.fill(0.0);
-        }
-        fn spring_lengths_into(&self, _: &[f64], out: &mut [f64]) {
-            out.fill(1.0);
-        }
-        fn tensions_into(&self, _: &[f64], out: &mut [f64]) {
-            out.fill(0.0);
-        }
-        fn compatibility_into(&self, _: &[f64], left: &mut [f64], right: &mut [f64]) {
-            left.fill(0.0);
-            right.fill(0.0);
         }
     }
 }
@@ -114,15 +91,9 @@ fn chain(n: usize) -> RuntimeChain {
     RuntimeChain::builder(n, R, K, TB).build().unwrap()
 }
 
-/// A deterministic pseudo-random sequence in `[-1, 1)` (a 64-bit LCG), for broadband kicks.
+/// A reproducible pseudo-random sequence in `[-1, 1)`, for broadband kicks.
 fn noise(n: usize, seed: u64) -> Vec<f64> {
-    let mut x = seed;
-    (0..n)
-        .map(|_| {
-            x = x.wrapping_mul(6_364_136_223_846_793_005).wrapping_add(1_442_695_040_888_963_407);
-            (x >> 11) as f64 / (1u64 << 52) as f64 - 1.0
-        })
-        .collect()
+    test_support::random::SplitMix(seed).fill(n, -1.0, 1.0)
 }
 
 /// The paper's moving kink (Sec. V, Appendix B): the zero-energy kink at `centre`, with a
@@ -157,13 +128,13 @@ fn continue_always(_: &State) -> Flow {
 }
 
 /// Integrates to `t_end` and returns the final state.
-fn run_adaptive<M: ChainModel>(model: &M, start: &State, t_end: f64, options: &AdaptiveOptions) -> State {
+fn run_adaptive<M: Potential>(model: &M, start: &State, t_end: f64, options: &AdaptiveOptions) -> State {
     let mut state = start.clone();
     adaptive(model, &mut state, &[t_end], options, &mut continue_always).unwrap();
     state
 }
 
-fn run_verlet<M: ChainModel>(model: &M, start: &State, t_end: f64, options: &VerletOptions) -> State {
+fn run_verlet<M: Potential>(model: &M, start: &State, t_end: f64, options: &VerletOptions) -> State {
     let mut state = start.clone();
     verlet(model, &mut state, t_end, options, usize::MAX, &mut continue_always).unwrap();
     state
@@ -644,11 +615,17 @@ fn steps_that_underflow_or_run_out_are_typed_errors() {
     let e = adaptive(&model, &mut state, &[10.0], &options, &mut continue_always);
     assert!(matches!(e, Err(IntegrateError::StepSizeTooSmall { time: 0.0, .. })), "{e:?}");
     // A budget that cannot cover the run even at the largest stable step: refused before the
-    // first step, the state untouched.
-    let options = AdaptiveOptions { max_steps: 5, ..AdaptiveOptions::default() };
+    // first step, the state untouched, when the options carry the bound on the fastest mode
+    // (from the tangent stiffness; the runs of `dynamics` fill it in).
+    let omega_max = Some(chain_core::integrate::omega_bound(&model, &state.theta).unwrap().omega);
+    let options = AdaptiveOptions { max_steps: 5, omega_max, ..AdaptiveOptions::default() };
     let e = adaptive(&model, &mut state, &[10.0], &options, &mut continue_always).unwrap_err();
     assert!(matches!(e, IntegrateError::StepBudget { budget: 5, .. }), "{e}");
     assert_eq!(state.time, 0.0);
+    // Without the bound (a model with only a potential has none) the budget still ends the run.
+    let options = AdaptiveOptions { max_steps: 5, ..AdaptiveOptions::default() };
+    let e = adaptive(&model, &mut state.clone(), &[10.0], &options, &mut continue_always).unwrap_err();
+    assert!(matches!(e, IntegrateError::TooManySteps { steps: 5, .. }), "{e}");
     // A budget the error control runs out of; the state is left at the last accepted step.
     let options = AdaptiveOptions { max_steps: 20, ..AdaptiveOptions::default() };
     let e = adaptive(&model, &mut state, &[10.0], &options, &mut continue_always).unwrap_err();

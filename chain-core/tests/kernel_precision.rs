@@ -16,12 +16,10 @@
 //! `k |l - l0| (|dx| + |dy| + l0)` because `l - l0` cancels. A kernel that lost digits to a
 //! poorly chosen formula (a cancellation the problem does not have) would exceed it.
 
-mod support;
-
 use chain_core::kernel::{SpringFn, harmonic, quartic};
-use dashu_float::FBig;
-use dashu_float::round::mode::HalfEven;
-use support::random::SplitMix;
+use test_support::dashu_float::FBig;
+use test_support::dashu_float::round::mode::HalfEven;
+use test_support::random::SplitMix;
 
 type Big = FBig<HalfEven, 2>;
 
@@ -203,7 +201,7 @@ fn springs(count: usize, seed: u64) -> Vec<[f64; 9]> {
             continue; // a spring of no length has no direction: outside every law's domain
         }
         let l0 = if out.len() % 2 == 0 {
-            let sign = if u.next() < 0.5 { -1.0 } else { 1.0 };
+            let sign = if u.uniform() < 0.5 { -1.0 } else { 1.0 };
             l * (1.0 + sign * 10f64.powf(u.range(-12.0, -2.0)))
         } else {
             u.range(0.1, 3.0)

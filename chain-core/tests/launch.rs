@@ -96,7 +96,7 @@ fn the_reported_leak_came_from_the_mixed_eigenvector() {
             m.shape
                 .iter()
                 .enumerate()
-                .map(|(i, v)| v * chain_core::ChainModel::rotor_length(&model, i))
+                .map(|(i, v)| v * chain_core::ChainGeometry::rotor_length(&model, i))
                 .collect::<Vec<_>>()
         })
         .zip(&found)

@@ -8,25 +8,16 @@ use chain_core::linalg::{
     try_count_below,
 };
 use nalgebra::{DMatrix, SymmetricEigen};
+use test_support::random::SplitMix;
 
 // ---------------------------------------------------------------------------------------------
 // Test models
 
-/// A deterministic generator (64-bit LCG, high bits), uniform in `[-1, 1)`.
-struct Lcg(u64);
-
-impl Lcg {
-    fn next(&mut self) -> f64 {
-        self.0 = self.0.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
-        (self.0 >> 11) as f64 / (1u64 << 52) as f64 - 1.0
-    }
-}
-
 /// A random symmetric tridiagonal matrix with entries in `[-1, 1)`.
 fn random_tridiagonal(n: usize, seed: u64) -> (Vec<f64>, Vec<f64>) {
-    let mut g = Lcg(seed);
-    let diag = (0..n).map(|_| g.next()).collect();
-    let off = (0..n.saturating_sub(1)).map(|_| g.next()).collect();
+    let mut g = SplitMix(seed);
+    let diag = (0..n).map(|_| g.symmetric()).collect();
+    let off = (0..n.saturating_sub(1)).map(|_| g.symmetric()).collect();
     (diag, off)
 }
 

@@ -162,14 +162,29 @@ fn the_chain_profile_puts_the_impurity_between_the_heads() {
         assert_eq!(theta.len(), 2 * M);
         assert_eq!(theta[M - 1], model.head_angle(x1));
         assert_eq!(theta[M], -model.head_angle(x2));
-        let l = spring_length(A, R, R, theta[M - 1], theta[M]);
-        assert!((l - model.impurity_length(x1, x2)).abs() < 1e-15);
+        // The impurity's length from the tips in Cartesian coordinates (pivot i at (i a, 0), tip
+        // at (i a + r sin theta_i, (-1)^i r cos theta_i)), not from the library's formula.
+        let tip = |i: usize| {
+            let sign = if i.is_multiple_of(2) { 1.0 } else { -1.0 };
+            (i as f64 * A + R * theta[i].sin(), sign * R * theta[i].cos())
+        };
+        let ((xa, ya), (xb, yb)) = (tip(M - 1), tip(M));
+        let l = ((xb - xa).powi(2) + (yb - ya).powi(2)).sqrt();
+        assert!((l - model.impurity_length(x1, x2)).abs() < 1e-14, "({x1}, {x2}): {l}");
         let left = model.sub_chain_profile(x1);
         assert_eq!(&theta[..M], &left[..]);
     }
     // x1 = x2 = 0: left head near -theta_bar, right head near +theta_bar.
+    // With the heads at -theta_bar and +theta_bar the impurity spans tips 2 r cos theta_bar apart
+    // across and a + 2 r sin theta_bar along: the critical length of Sec. VII-A.
     let theta = model.chain_profile(0.0, 0.0);
     assert!((theta[M - 1] + TB).abs() < 1e-5 && (theta[M] - TB).abs() < 1e-5);
+    let l_critical = ((A + 2.0 * R * TB.sin()).powi(2) + (2.0 * R * TB.cos()).powi(2)).sqrt();
+    assert!(
+        (model.impurity_length(0.0, 0.0) - l_critical).abs() < 1e-4,
+        "{}",
+        model.impurity_length(0.0, 0.0)
+    );
     // A mirror-symmetric pair of kinks gives an antisymmetric profile.
     let theta = model.chain_profile(4.5, 4.5);
     for j in 0..M {

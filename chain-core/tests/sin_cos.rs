@@ -3,11 +3,9 @@
 //! sees and beyond, and exactly the scalar `math::sin_cos` where the vector reduction stops.
 //! The 1.02e7-point measurement is `examples/sin_cos_ulp.rs`.
 
-mod support;
-
 use chain_core::math;
 use chain_core::simd::{self, Level, VECTOR_SIN_COS_LIMIT};
-use support::ulp;
+use test_support::ulp;
 
 fn levels() -> impl Iterator<Item = Level> {
     Level::ALL.into_iter().filter(|l| l.is_supported())
@@ -61,8 +59,8 @@ fn within_two_ulp_next_to_multiples_of_half_pi() {
 /// `pi/2` in fixed point, `floor(pi 2^123) = floor(pi/2 2^124)`, from dashu-float's pi (not
 /// the library's constants).
 fn half_pi_fixed() -> u128 {
-    use dashu_float::ConstCache;
-    use dashu_float::round::mode::HalfEven;
+    use test_support::dashu_float::ConstCache;
+    use test_support::dashu_float::round::mode::HalfEven;
     let pi = ConstCache::default().pi::<2, HalfEven>(160).value();
     let (significand, exponent) = (pi.repr().significand(), pi.repr().exponent());
     let shift = usize::try_from(-(exponent + 123)).expect("160 bits reach below 2^-123");

@@ -26,6 +26,7 @@ use crate::attr;
 use crate::ctxt::Ctxt;
 use crate::fallback::{self, Stubs};
 use crate::model::{PRIVATE, float_type, math_prefix, value_tokens_f64};
+use crate::traits::{self, SliceMethod};
 use crate::valid::{self, Model, Uniform};
 
 /// The stack a generated method may use in a debug build, its caller's copy of the result
@@ -309,114 +310,43 @@ fn unrolled_fused_bodies(n: usize, g: &Graph, out: &ChainOutputs) -> FusedBodies
     }
 }
 
-/// A slice method of `ChainModel`: its name, the slices after `theta` that hold one value per
-/// rotor, then those that hold one per spring (the parameters in that order), and whether it
-/// returns the energy.
-struct SliceMethod {
-    name: &'static str,
-    per_rotor: &'static [&'static str],
-    per_spring: &'static [&'static str],
-    energy: bool,
-}
+/// A slice method's body, by the method's name (`traits::SLICE_METHODS`).
+type SliceBodies = Vec<(&'static str, TokenStream)>;
 
-/// Every slice method the macro implements, in the order of the trait.
-const SLICE_METHODS: [SliceMethod; 10] = [
-    SliceMethod { name: "energy", per_rotor: &[], per_spring: &[], energy: true },
-    SliceMethod { name: "gradient_into", per_rotor: &["out"], per_spring: &[], energy: false },
-    SliceMethod { name: "tangent_stiffness_into", per_rotor: &["diag"], per_spring: &["off"], energy: false },
-    SliceMethod { name: "energy_and_gradient_into", per_rotor: &["out"], per_spring: &[], energy: true },
-    SliceMethod {
-        name: "energy_gradient_stiffness_into",
-        per_rotor: &["grad", "diag"],
-        per_spring: &["off"],
-        energy: true,
-    },
-    SliceMethod {
-        name: "material_stiffness_into",
-        per_rotor: &["diag"],
-        per_spring: &["off"],
-        energy: false,
-    },
-    SliceMethod { name: "stress_matrix_into", per_rotor: &["diag"], per_spring: &["off"], energy: false },
-    SliceMethod { name: "spring_lengths_into", per_rotor: &[], per_spring: &["out"], energy: false },
-    SliceMethod { name: "tensions_into", per_rotor: &[], per_spring: &["out"], energy: false },
-    SliceMethod { name: "compatibility_into", per_rotor: &[], per_spring: &["left", "right"], energy: false },
-];
-
-/// The slice method `name` of a chain of `n` rotors with `body` (a block): its signature, and
-/// the check that every slice has one value per rotor or per spring, as `RuntimeChain`'s methods
-/// check them (the panic names the slice and the counts, at the caller's line). Like
-/// `RuntimeChain`'s, `energy_and_gradient_into` goes without `#[track_caller]`, the hot path of
-/// the integrators (docs/benchmarks.md).
-fn slice_method(n: usize, name: &str, body: TokenStream) -> TokenStream {
-    let p = private();
-    let method = SLICE_METHODS.iter().find(|m| m.name == name).expect("a slice method of ChainModel");
-    let ident = format_ident!("{name}");
-    let idents = |names: &[&str]| names.iter().map(|s| format_ident!("{s}")).collect::<Vec<Ident>>();
-    let (rotor_names, spring_names) = (method.per_rotor, method.per_spring);
-    let (rotor_slices, spring_slices) = (idents(rotor_names), idents(spring_names));
-    let returns = method.energy.then(|| quote!(-> f64));
-    let track = (name != "energy_and_gradient_into").then(|| quote!(#[track_caller]));
-    quote! {
-        #track
-        fn #ident(
-            &self,
-            theta: &[f64]
-            #(, #rotor_slices: &mut [f64])*
-            #(, #spring_slices: &mut [f64])*
-        ) #returns {
-            #p::check_lengths(
-                #n,
-                theta.len(),
-                &[#((#rotor_names, #rotor_slices.len())),*],
-                &[#((#spring_names, #spring_slices.len())),*],
-            );
-            #body
-        }
-    }
-}
-
-/// The unrolled strategy's fused trait methods: copies of the inherent results.
-fn unrolled_fused_trait_bodies(ident: &Ident, n: usize) -> TokenStream {
+/// The unrolled strategy's fused slice methods: copies of the inherent results.
+fn unrolled_fused_trait_bodies(ident: &Ident) -> SliceBodies {
     let p = private();
     let theta = quote!(#p::as_array(theta));
-    let eg = slice_method(
-        n,
-        "energy_and_gradient_into",
-        quote!({
-            let (energy, grad) = #ident::energy_and_gradient(self, #theta);
-            out.copy_from_slice(&grad);
-            energy
-        }),
-    );
-    let egk = slice_method(
-        n,
-        "energy_gradient_stiffness_into",
-        quote!({
-            let (energy, g, t) = #ident::energy_gradient_stiffness(self, #theta);
-            grad.copy_from_slice(&g);
-            diag.copy_from_slice(&t.diag);
-            off.copy_from_slice(&t.off);
-            energy
-        }),
-    );
-    quote!(#eg #egk)
+    vec![
+        (
+            "energy_and_gradient_into",
+            quote!({
+                let (energy, grad) = #ident::energy_and_gradient(self, #theta);
+                out.copy_from_slice(&grad);
+                energy
+            }),
+        ),
+        (
+            "energy_gradient_stiffness_into",
+            quote!({
+                let (energy, g, t) = #ident::energy_gradient_stiffness(self, #theta);
+                grad.copy_from_slice(&g);
+                diag.copy_from_slice(&t.diag);
+                off.copy_from_slice(&t.off);
+                energy
+            }),
+        ),
+    ]
 }
 
-/// The looped strategy's fused methods: the trait's slice methods call the fused drivers, the
-/// inherent array methods wrap them where they fit [`STACK_BUDGET`].
-fn looped_fused_bodies(model: &Model) -> (FusedBodies, TokenStream) {
+/// The looped strategy's fused methods: the slice methods call the fused drivers, the inherent
+/// array methods run them on their own results, where they fit [`STACK_BUDGET`].
+fn looped_fused_bodies(model: &Model) -> (FusedBodies, SliceBodies) {
     let p = private();
     let (n, m) = (model.n, model.springs());
     let eg = looped_call(model, "energy_and_gradient", "EnergyGradient", quote!(out));
     let egk =
         looped_call(model, "energy_gradient_stiffness", "EnergyGradientHessian", quote!(grad, diag, off));
-    let trait_bodies = [
-        slice_method(n, "energy_and_gradient_into", eg),
-        slice_method(n, "energy_gradient_stiffness_into", egk),
-    ];
-    let trait_bodies = quote!(#(#trait_bodies)*);
-    let t = quote!(#p::ChainModel);
     let (fits_eg, fits_egk) = fused_fit(n);
     let bodies = FusedBodies {
         // One local, the result itself, filled in place (as `looped_bodies` does): separate
@@ -424,21 +354,25 @@ fn looped_fused_bodies(model: &Model) -> (FusedBodies, TokenStream) {
         energy_and_gradient: fits_eg.then(|| {
             quote!({
                 let mut result = (0.0f64, [0.0f64; #n]);
-                result.0 = #t::energy_and_gradient_into(self, theta, &mut result.1);
+                result.0 = {
+                    let out = &mut result.1[..];
+                    #eg
+                };
                 result
             })
         }),
         energy_gradient_stiffness: fits_egk.then(|| {
             quote!({
                 let mut result = (0.0f64, [0.0f64; #n], #p::Tridiagonal::new([0.0f64; #n], [0.0f64; #m]));
-                result.0 = #t::energy_gradient_stiffness_into(
-                    self, theta, &mut result.1, &mut result.2.diag, &mut result.2.off,
-                );
+                result.0 = {
+                    let (grad, diag, off) = (&mut result.1[..], &mut result.2.diag[..], &mut result.2.off[..]);
+                    #egk
+                };
                 result
             })
         }),
     };
-    (bodies, trait_bodies)
+    (bodies, vec![("energy_and_gradient_into", eg), ("energy_gradient_stiffness_into", egk)])
 }
 
 /// The inherent fused methods' items.
@@ -532,7 +466,7 @@ fn unrolled_bodies(model: &Model, g: &Graph, out: &ChainOutputs) -> Bodies {
 /// that write straight into the caller's buffers (no `n`-sized arrays on the stack, so very long
 /// chains work through the trait with heap buffers). The inherent array methods wrap them, where
 /// they fit [`STACK_BUDGET`].
-fn looped_bodies(model: &Model) -> (Bodies, TokenStream) {
+fn looped_bodies(model: &Model) -> (Bodies, SliceBodies) {
     let p = private();
     let (n, m) = (model.n, model.springs());
     let kmod = format_ident!("__rotor_chain_kernel");
@@ -554,56 +488,65 @@ fn looped_bodies(model: &Model) -> (Bodies, TokenStream) {
     let length = call("per_spring", "Length", quote!(out));
     let tension = call("per_spring", "Tension", quote!(out));
     let compatibility = call("per_spring_pairs", "Compatibility", quote!(left, right));
-    let trait_bodies = [
-        ("energy", energy),
-        ("gradient_into", gradient),
-        ("tangent_stiffness_into", hessian),
-        ("material_stiffness_into", material),
-        ("stress_matrix_into", stress),
-        ("spring_lengths_into", length),
-        ("tensions_into", tension),
-        ("compatibility_into", compatibility),
-    ]
-    .map(|(name, body)| slice_method(n, name, body));
-    let trait_bodies = quote!(#(#trait_bodies)*);
-    let t = quote!(#p::ChainModel);
-    // One local, the result itself, filled in place.
-    let blocks = |method: TokenStream| {
+    let trait_bodies = vec![
+        ("energy", energy.clone()),
+        ("gradient_into", gradient.clone()),
+        ("tangent_stiffness_into", hessian.clone()),
+        ("material_stiffness_into", material.clone()),
+        ("stress_matrix_into", stress.clone()),
+        ("spring_lengths_into", length.clone()),
+        ("tensions_into", tension.clone()),
+        ("compatibility_into", compatibility.clone()),
+    ];
+    // One local, the result itself, filled in place by the driver.
+    let blocks = |call: TokenStream| {
         fits_on_stack(n + m, Returns::Banded, Float::F64).then(|| {
             quote!({
                 let mut result = #p::Tridiagonal::new([0.0f64; #n], [0.0f64; #m]);
-                #t::#method(self, theta, &mut result.diag, &mut result.off);
+                {
+                    let (diag, off) = (&mut result.diag[..], &mut result.off[..]);
+                    #call
+                }
                 result
             })
         })
     };
-    let per_spring = |method: TokenStream| {
+    let per_spring = |call: TokenStream| {
         fits_on_stack(m, Returns::Array, Float::F64).then(|| {
             quote!({
-                let mut out = [0.0f64; #m];
-                #t::#method(self, theta, &mut out);
-                out
+                let mut result = [0.0f64; #m];
+                {
+                    let out = &mut result[..];
+                    #call
+                }
+                result
             })
         })
     };
     let bodies = Bodies {
-        energy: quote!({ #t::energy(self, theta) }),
+        energy: energy.clone(),
         gradient: fits_on_stack(n, Returns::Array, Float::F64).then(|| {
             quote!({
-                let mut out = [0.0f64; #n];
-                #t::gradient_into(self, theta, &mut out);
-                out
+                let mut result = [0.0f64; #n];
+                {
+                    let out = &mut result[..];
+                    #gradient
+                }
+                result
             })
         }),
-        tangent_stiffness: blocks(quote!(tangent_stiffness_into)),
-        material: blocks(quote!(material_stiffness_into)),
-        stress: blocks(quote!(stress_matrix_into)),
-        lengths: per_spring(quote!(spring_lengths_into)),
-        tensions: per_spring(quote!(tensions_into)),
+        tangent_stiffness: blocks(hessian),
+        material: blocks(material),
+        stress: blocks(stress),
+        lengths: per_spring(length),
+        tensions: per_spring(tension),
         compatibility: fits_on_stack(2 * m, Returns::Banded, Float::F64).then(|| {
             quote!({
                 let mut result = #p::Bidiagonal::new([0.0f64; #m], [0.0f64; #m]);
-                #t::compatibility_into(self, theta, &mut result.left, &mut result.right);
+                {
+                    let (left, right) = (&mut result.left[..], &mut result.right[..]);
+                    #compatibility
+                }
                 result
             })
         }),
@@ -612,8 +555,8 @@ fn looped_bodies(model: &Model) -> (Bodies, TokenStream) {
     (bodies, trait_bodies)
 }
 
-/// The unrolled strategy's trait methods: copies of the inherent (array) results.
-fn unrolled_trait_bodies(ident: &Ident, n: usize) -> TokenStream {
+/// The unrolled strategy's slice methods: copies of the inherent (array) results.
+fn unrolled_trait_bodies(ident: &Ident) -> SliceBodies {
     let p = private();
     let theta = quote!(#p::as_array(theta));
     let blocks = |method: TokenStream| {
@@ -623,7 +566,7 @@ fn unrolled_trait_bodies(ident: &Ident, n: usize) -> TokenStream {
             off.copy_from_slice(&t.off);
         })
     };
-    let methods = [
+    vec![
         ("energy", quote!({ #ident::energy(self, #theta) })),
         ("gradient_into", quote!({ out.copy_from_slice(&#ident::gradient(self, #theta)); })),
         ("tangent_stiffness_into", blocks(quote!(tangent_stiffness))),
@@ -640,8 +583,6 @@ fn unrolled_trait_bodies(ident: &Ident, n: usize) -> TokenStream {
             }),
         ),
     ]
-    .map(|(name, body)| slice_method(n, name, body));
-    quote!(#(#methods)*)
 }
 
 /// The run-time rules of `check()`: `chain-geometry`'s, in `f64` (the values of an `f32` chain
@@ -688,118 +629,41 @@ fn check_body(model: &Model) -> TokenStream {
     })
 }
 
-/// The items that differ between the float types: for `f64`, `impl ChainModel` (the slice
-/// methods, the accessors and, through the trait, the branch solve); for `f32`, which the
-/// analyses do not take, the accessors and the branch solve as inherent `f32` methods and
-/// `impl FloatChain<f32>` for the no-alloc analyses. `ident`'s inherent array methods exist.
-struct FloatItems {
-    inherent: TokenStream,
-    traits: TokenStream,
-}
-
-fn float_items(ident: &Ident, model: &Model, trait_bodies: TokenStream) -> FloatItems {
+/// The four trait impls (the capability ladder, `traits`): the accessors from the model, the
+/// slice methods from `slices`, in the chain's float type.
+fn trait_impls(ident: &Ident, model: &Model, slices: &SliceBodies) -> TokenStream {
     let p = private();
-    let n = model.n;
+    let (n, m) = (model.n, model.springs());
     let a = model.value(&model.a);
     let mass = model.value(&model.mass);
     let lbar = model.rest_length_tokens();
     let theta_bar = model.theta_bar_tokens();
-    match model.float {
-        Float::F64 => FloatItems {
-            inherent: TokenStream::new(),
-            traits: quote! {
-                #[automatically_derived]
-                #[allow(clippy::all, clippy::pedantic)]
-                impl #p::ChainModel for #ident {
-                    fn rotor_count(&self) -> usize { #n }
-                    fn lattice_spacing(&self) -> f64 { #a }
-                    fn rotor_length(&self, i: usize) -> f64 { self.__rotor_chain_rotor_length(i) }
-                    fn mass(&self) -> f64 { #mass }
-                    fn theta_bar(&self) -> f64 { #theta_bar }
-                    fn stiffness(&self, p: usize) -> f64 { self.__rotor_chain_stiffness(p) }
-                    fn rest_length(&self, p: usize) -> f64 { self.__rotor_chain_rest_length(#lbar, p) }
-                    #trait_bodies
-                }
-            },
-        },
-        Float::F32 => {
-            let m = model.springs();
-            let t = float_type(model.float);
-            // The branch solve of spring `p` (paper Appendix A) in f32.
-            let solve = |direction: TokenStream| {
-                quote!({
-                    if p >= #m {
-                        return Err(#p::BranchError::NoSuchSpring { spring: p, springs: #m });
-                    }
-                    #p::branch::#direction(
-                        p,
-                        #a,
-                        self.__rotor_chain_rotor_length(p),
-                        self.__rotor_chain_rotor_length(p + 1),
-                        self.__rotor_chain_rest_length(#lbar, p),
-                        theta,
-                    )
-                })
-            };
-            let (next, previous) = (solve(quote!(next_angles)), solve(quote!(previous_angles)));
-            let result = quote!(::core::result::Result<[#t; 2], #p::BranchError>);
-            FloatItems {
-                inherent: quote! {
-                    /// Number of rotors `n`.
-                    pub fn rotor_count(&self) -> usize { #n }
-                    /// Number of springs `n - 1`.
-                    pub fn spring_count(&self) -> usize { #m }
-                    /// Lattice spacing `a`.
-                    pub fn lattice_spacing(&self) -> #t { #a }
-                    /// Length `r_i` of rotor `i`.
-                    pub fn rotor_length(&self, i: usize) -> #t { self.__rotor_chain_rotor_length(i) }
-                    /// Tip mass `M`.
-                    pub fn mass(&self) -> #t { #mass }
-                    /// Moment of inertia `M r_i^2` of rotor `i`.
-                    pub fn inertia(&self, i: usize) -> #t {
-                        let r = self.__rotor_chain_rotor_length(i);
-                        #mass * r * r
-                    }
-                    /// Equilibrium angle `theta_bar` of the uniform states.
-                    pub fn theta_bar(&self) -> #t { #theta_bar }
-                    /// Stiffness `k_p` of spring `p`.
-                    pub fn stiffness(&self, p: usize) -> #t { self.__rotor_chain_stiffness(p) }
-                    /// Rest length `l0_p` of spring `p`.
-                    pub fn rest_length(&self, p: usize) -> #t { self.__rotor_chain_rest_length(#lbar, p) }
-                    /// Both `theta_{p+1}` that put spring `p` at its rest length given `theta_p`
-                    /// (paper Appendix A), flipper branch first, solved in `f32`.
-                    pub fn next_angles(&self, p: usize, theta: #t) -> #result #next
-                    /// Both `theta_p` that put spring `p` at its rest length given `theta_{p+1}`:
-                    /// the inverse map, solved in `f32`.
-                    pub fn previous_angles(&self, p: usize, theta: #t) -> #result #previous
-                },
-                traits: quote! {
-                    #[automatically_derived]
-                    #[allow(clippy::all, clippy::pedantic)]
-                    impl #p::FloatChain<#t> for #ident {
-                        fn rotor_count(&self) -> usize { #n }
-                        fn rotor_length(&self, i: usize) -> #t { #ident::rotor_length(self, i) }
-                        fn inertia(&self, i: usize) -> #t { #ident::inertia(self, i) }
-                        fn energy(&self, theta: &[#t]) -> #t { #ident::energy(self, #p::as_array(theta)) }
-                        fn gradient_into(&self, theta: &[#t], out: &mut [#t]) {
-                            out.copy_from_slice(&#ident::gradient(self, #p::as_array(theta)));
-                        }
-                        fn compatibility_into(&self, theta: &[#t], left: &mut [#t], right: &mut [#t]) {
-                            let c = #ident::compatibility(self, #p::as_array(theta));
-                            left.copy_from_slice(&c.left);
-                            right.copy_from_slice(&c.right);
-                        }
-                        fn next_angles(&self, p: usize, theta: #t) -> #result {
-                            #ident::next_angles(self, p, theta)
-                        }
-                        fn previous_angles(&self, p: usize, theta: #t) -> #result {
-                            #ident::previous_angles(self, p, theta)
-                        }
-                    }
-                },
-            }
-        }
-    }
+    let accessors = |name: &str| match name {
+        "dof_count" => quote!({ #n }),
+        "inertia" => quote!({
+            let r = self.__rotor_chain_rotor_length(i);
+            #mass * r * r
+        }),
+        "energy_floor" => quote!({ #p::chain_energy_floor(self) }),
+        "stiffness_layout" => quote!({ #p::StiffnessLayout::Tridiagonal }),
+        "spring_count" => quote!({ #m }),
+        "spring_constant" => quote!({ self.__rotor_chain_stiffness(p) }),
+        "rest_length" => quote!({ self.__rotor_chain_rest_length(#lbar, p) }),
+        "compatibility_layout" => quote!({ #p::CompatibilityLayout::Bidiagonal }),
+        "lattice_spacing" => quote!({ #a }),
+        "rotor_length" => quote!({ self.__rotor_chain_rotor_length(i) }),
+        "mass" => quote!({ #mass }),
+        "theta_bar" => quote!({ #theta_bar }),
+        other => unreachable!("no accessor {other}"),
+    };
+    let float = model.float;
+    let slices = |method: &SliceMethod| {
+        slices
+            .iter()
+            .find(|(name, _)| *name == method.name)
+            .map(|(name, body)| traits::slice_method(n, float, name, body.clone()))
+    };
+    traits::impls(ident, &syn::Generics::default(), float, &accessors, &slices)
 }
 
 fn emit(item: &ItemStruct, model: &Model) -> TokenStream {
@@ -812,12 +676,9 @@ fn emit(item: &ItemStruct, model: &Model) -> TokenStream {
     let (bodies, trait_bodies, fused, fused_trait_bodies) = if model.unrolled() {
         let (g, out) = model.unrolled_outputs();
         let fused = (float == Float::F64).then(|| unrolled_fused_bodies(n, &g, &out));
-        (
-            unrolled_bodies(model, &g, &out),
-            unrolled_trait_bodies(ident, model.n),
-            fused,
-            unrolled_fused_trait_bodies(ident, model.n),
-        )
+        let fused_trait_bodies =
+            if fused.is_some() { unrolled_fused_trait_bodies(ident) } else { Vec::new() };
+        (unrolled_bodies(model, &g, &out), unrolled_trait_bodies(ident), fused, fused_trait_bodies)
     } else {
         let (bodies, trait_bodies) = looped_bodies(model);
         let (fused, fused_trait_bodies) = looped_fused_bodies(model);
@@ -899,10 +760,7 @@ fn emit(item: &ItemStruct, model: &Model) -> TokenStream {
             pub fn tensions(&self, theta: &[#t; #n]) -> [#t; #m] #body
         }
     });
-    let (fused, fused_trait_bodies) = match fused {
-        Some(fused) => (fused_methods(n, m, fused, &doc_strategy), fused_trait_bodies),
-        None => (TokenStream::new(), TokenStream::new()),
-    };
+    let fused = fused.map_or_else(TokenStream::new, |fused| fused_methods(n, m, fused, &doc_strategy));
     let compatibility = compatibility.map(|body| {
         quote! {
             /// The compatibility matrix `C[p][i] = dl_p / d(r_i theta_i)` (bidiagonal).
@@ -913,20 +771,20 @@ fn emit(item: &ItemStruct, model: &Model) -> TokenStream {
     let verlet = fits_on_stack(4 * n, Returns::Array, float).then(|| {
         quote! {
             /// A velocity-Verlet stepper (no heap, `no_std`) at angles `theta` and angular velocities
-            /// `omega`, with time step `dt`: call `step(&chain)` on it. The same stepper serves every
-            /// chain, `f64` and `f32` (`rotor_chain::embedded::Verlet`).
+            /// `omega` at time 0, with time step `dt`: call `step(&chain)` on it. The one stepper of
+            /// every run, `f64` and `f32` (`rotor_chain::integrate::Verlet`).
             pub fn verlet(
                 &self,
                 theta: [#t; #n],
                 omega: [#t; #n],
                 dt: #t,
-            ) -> ::core::result::Result<#p::Verlet<#t, #n>, #p::EmbeddedError> {
-                #p::Verlet::new(self, theta, omega, dt)
+            ) -> ::core::result::Result<#p::Verlet<#t, [#t; #n]>, #p::IntegrateError> {
+                #p::Verlet::new(self, #p::Phase { time: 0.0, theta, omega }, dt)
             }
         }
     });
-    let FloatItems { inherent: float_inherent, traits } =
-        float_items(ident, model, quote!(#trait_bodies #fused_trait_bodies));
+    let slice_bodies: SliceBodies = trait_bodies.into_iter().chain(fused_trait_bodies).collect();
+    let traits = trait_impls(ident, model, &slice_bodies);
 
     quote! {
         const _: () = {
@@ -953,7 +811,6 @@ fn emit(item: &ItemStruct, model: &Model) -> TokenStream {
                 #tensions
                 #compatibility
                 #verlet
-                #float_inherent
                 #fused
 
                 /// Checks the parameters against the chain's rules at run time (literal values were
@@ -1016,7 +873,8 @@ mod tests {
 
     /// An `f32` chain's generated methods compute in `f32` throughout: single-precision math
     /// paths, `f32` literals and arrays, no `f64` in any method body but `check()` (whose rules are
-    /// `chain-geometry`'s, in `f64`), and `FloatChain<f32>` instead of `ChainModel`.
+    /// `chain-geometry`'s, in `f64`), and the model traits in `f32` (never their `f64` instance,
+    /// `ChainModel`).
     #[test]
     fn an_f32_chain_computes_in_f32() {
         let out = expand(
@@ -1029,9 +887,11 @@ mod tests {
         );
         let text = pretty(out);
         assert!(text.contains("math::single::sin_cos_into"), "{text}");
-        assert!(text.contains("FloatChain<f32> for Tiny"), "{text}");
-        assert!(!text.contains("ChainModel for Tiny"), "{text}");
-        for method in ["energy", "gradient", "tangent_stiffness", "compatibility", "next_angles"] {
+        for rung in ["Potential", "Stiffness", "SpringNetwork", "ChainGeometry"] {
+            assert!(text.contains(&format!("{rung}<f32> for Tiny")), "{rung}: {text}");
+            assert!(!text.contains(&format!("{rung}<f64> for Tiny")), "{rung}: {text}");
+        }
+        for method in ["energy", "gradient", "tangent_stiffness", "compatibility", "verlet"] {
             let start =
                 text.find(&format!("pub fn {method}(")).unwrap_or_else(|| panic!("no {method}: {text}"));
             let body = &text[start..];

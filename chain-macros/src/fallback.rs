@@ -53,7 +53,7 @@ impl Stubs {
             exists(values, returns).then(|| quote!(pub fn #name #generics (&self, #theta) -> #ret #body))
         };
         let tridiagonal = quote!(#p::Tridiagonal<#n_ty, #m_ty, #t>);
-        let verlet = quote!(::core::result::Result<#p::Verlet<#t, #n_ty>, #p::EmbeddedError>);
+        let verlet = quote!(::core::result::Result<#p::Verlet<#t, [#t; #n_ty]>, #p::IntegrateError>);
         let methods = [
             Some(quote!(pub fn energy #generic_n (&self, #theta) -> #t #body)),
             method(quote!(gradient), n_value, Returns::Array, quote!([#t; #n_ty]), &generic_n),
@@ -110,7 +110,7 @@ impl Stubs {
             }),
         ];
         let methods = methods.into_iter().flatten();
-        let (float_methods, float_trait) = self.float_items(&body);
+        let traits = crate::traits::stub_impls(ident, &self.generics, self.float, &body);
         quote! {
             const _: () = {
                 #[automatically_derived]
@@ -119,78 +119,11 @@ impl Stubs {
                     pub const N: usize = #n_value;
                     pub const SPRINGS: usize = #m_value;
                     #(#methods)*
-                    #float_methods
                     pub fn check(&self) -> ::core::result::Result<(), #p::ParameterError> #body
                 }
 
-                #float_trait
+                #traits
             };
-        }
-    }
-
-    /// The stubs of the items that differ between the float types (`expand::float_items`).
-    fn float_items(&self, body: &TokenStream) -> (TokenStream, TokenStream) {
-        let p: TokenStream = PRIVATE.parse().expect("path");
-        let ident = &self.ident;
-        let (impl_generics, ty_generics, where_clause) = self.generics.split_for_impl();
-        match self.float {
-            Float::F64 => (
-                TokenStream::new(),
-                quote! {
-                    #[automatically_derived]
-                    #[allow(unused_variables, clippy::all, clippy::pedantic)]
-                    impl #impl_generics #p::ChainModel for #ident #ty_generics #where_clause {
-                        fn rotor_count(&self) -> usize #body
-                        fn lattice_spacing(&self) -> f64 #body
-                        fn rotor_length(&self, i: usize) -> f64 #body
-                        fn mass(&self) -> f64 #body
-                        fn theta_bar(&self) -> f64 #body
-                        fn stiffness(&self, p: usize) -> f64 #body
-                        fn rest_length(&self, p: usize) -> f64 #body
-                        fn energy(&self, theta: &[f64]) -> f64 #body
-                        fn gradient_into(&self, theta: &[f64], out: &mut [f64]) #body
-                        fn tangent_stiffness_into(&self, theta: &[f64], diag: &mut [f64], off: &mut [f64]) #body
-                        fn material_stiffness_into(&self, theta: &[f64], diag: &mut [f64], off: &mut [f64]) #body
-                        fn stress_matrix_into(&self, theta: &[f64], diag: &mut [f64], off: &mut [f64]) #body
-                        fn spring_lengths_into(&self, theta: &[f64], out: &mut [f64]) #body
-                        fn tensions_into(&self, theta: &[f64], out: &mut [f64]) #body
-                        fn compatibility_into(&self, theta: &[f64], left: &mut [f64], right: &mut [f64]) #body
-                    }
-                },
-            ),
-            Float::F32 => {
-                let t = float_type(self.float);
-                let result = quote!(::core::result::Result<[#t; 2], #p::BranchError>);
-                (
-                    quote! {
-                        pub fn rotor_count(&self) -> usize #body
-                        pub fn spring_count(&self) -> usize #body
-                        pub fn lattice_spacing(&self) -> #t #body
-                        pub fn rotor_length(&self, i: usize) -> #t #body
-                        pub fn mass(&self) -> #t #body
-                        pub fn inertia(&self, i: usize) -> #t #body
-                        pub fn theta_bar(&self) -> #t #body
-                        pub fn stiffness(&self, p: usize) -> #t #body
-                        pub fn rest_length(&self, p: usize) -> #t #body
-                        pub fn next_angles(&self, p: usize, theta: #t) -> #result #body
-                        pub fn previous_angles(&self, p: usize, theta: #t) -> #result #body
-                    },
-                    quote! {
-                        #[automatically_derived]
-                        #[allow(unused_variables, clippy::all, clippy::pedantic)]
-                        impl #impl_generics #p::FloatChain<#t> for #ident #ty_generics #where_clause {
-                            fn rotor_count(&self) -> usize #body
-                            fn rotor_length(&self, i: usize) -> #t #body
-                            fn inertia(&self, i: usize) -> #t #body
-                            fn energy(&self, theta: &[#t]) -> #t #body
-                            fn gradient_into(&self, theta: &[#t], out: &mut [#t]) #body
-                            fn compatibility_into(&self, theta: &[#t], left: &mut [#t], right: &mut [#t]) #body
-                            fn next_angles(&self, p: usize, theta: #t) -> #result #body
-                            fn previous_angles(&self, p: usize, theta: #t) -> #result #body
-                        }
-                    },
-                )
-            }
         }
     }
 }

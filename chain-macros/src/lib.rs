@@ -17,6 +17,7 @@ mod fallback;
 mod fuzz;
 mod law;
 mod model;
+mod traits;
 mod valid;
 
 use proc_macro::TokenStream;

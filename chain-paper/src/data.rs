@@ -56,6 +56,7 @@ pub fn panel_csv(chart: &Chart) -> String {
         Chart::Lines(panel) => lines_csv(panel),
         Chart::Heat(map) => heatmap_csv(map),
         Chart::Chain(drawing) => chain_csv(drawing),
+        Chart::Network(drawing) => drawing.csv(),
     }
 }
 

@@ -106,7 +106,7 @@ impl ChainDrawing {
             })
             .collect();
         // The most common (stiffness, rest length) of the chain's springs; the others are impurities.
-        let key = |p: usize| (model.stiffness(p).to_bits(), model.rest_length(p).to_bits());
+        let key = |p: usize| (model.spring_constant(p).to_bits(), model.rest_length(p).to_bits());
         let mut counts: Vec<((u64, u64), usize)> = Vec::new();
         for p in 0..n - 1 {
             match counts.iter_mut().find(|(k, _)| *k == key(p)) {
@@ -204,11 +204,11 @@ pub fn window(centre: f64, half: usize, n: usize) -> Range<usize> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use rotor_chain::RuntimeChain;
+    use rotor_chain::{RuntimeChain, SpringNetwork};
 
     #[test]
     fn tips_follow_the_alternating_convention_and_springs_their_lengths() {
-        let model = RuntimeChain::builder(4, 0.8, 1.0, 0.5).spring(1, None, Some(2.0)).build().unwrap();
+        let model = RuntimeChain::builder(4, 0.8, 1.0, 0.5).spring_rest_length(1, 2.0).build().unwrap();
         let theta = [0.5, 0.5, 0.5, 0.3];
         let d = ChainDrawing::new("t", &model, &theta, 0..10).unwrap();
         assert_eq!(d.rotors, 0..4);

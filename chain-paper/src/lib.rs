@@ -18,6 +18,7 @@ pub mod data;
 pub mod drawing;
 pub mod figures;
 pub mod model;
+pub mod network;
 pub mod outcomes;
 pub mod output;
 pub mod palette;

@@ -137,6 +137,8 @@ pub enum Chart {
     Heat(Heatmap),
     /// A drawing of the chain itself: pivots, rotors, springs coloured by their stretch.
     Chain(ChainDrawing),
+    /// A drawing of a periodic network's patch: bonds, rotors, the unit cell, mode arrows.
+    Network(crate::network::NetworkDrawing),
 }
 
 impl From<Panel> for Chart {
@@ -148,6 +150,12 @@ impl From<Panel> for Chart {
 impl From<Heatmap> for Chart {
     fn from(map: Heatmap) -> Self {
         Chart::Heat(map)
+    }
+}
+
+impl From<crate::network::NetworkDrawing> for Chart {
+    fn from(drawing: crate::network::NetworkDrawing) -> Self {
+        Chart::Network(drawing)
     }
 }
 

@@ -159,6 +159,36 @@ fn process_alive(_pid: u32) -> bool {
     true
 }
 
+/// On SIGINT, SIGTERM or SIGHUP: refuse new writes, let the writes in flight finish (at most
+/// 5 s), call `tidy` (for example to leave a progress bar), say so on stderr as `program`, and
+/// exit with 128 + the signal's number. Used by the `paper` and `network` commands.
+#[cfg(unix)]
+pub fn stop_on_signals(program: &'static str, tidy: impl Fn() + Send + 'static) -> io::Result<()> {
+    use signal_hook::consts::{SIGHUP, SIGINT, SIGTERM};
+    let mut signals = signal_hook::iterator::Signals::new([SIGINT, SIGTERM, SIGHUP])?;
+    std::thread::spawn(move || {
+        if let Some(signal) = signals.forever().next() {
+            let finished = stop_writes(Duration::from_secs(5));
+            tidy();
+            let name = signal_hook::low_level::signal_name(signal).unwrap_or("a signal");
+            let state = if finished.is_some() {
+                "the files written so far are complete and no temporary file is left"
+            } else {
+                "writes still in flight after 5 s may leave temporary files; the next run removes them"
+            };
+            eprintln!("{program}: interrupted by {name}: {state}");
+            std::process::exit(128 + signal);
+        }
+    });
+    Ok(())
+}
+
+/// Without Unix signals there is nothing to install.
+#[cfg(not(unix))]
+pub fn stop_on_signals(_program: &'static str, _tidy: impl Fn() + Send + 'static) -> io::Result<()> {
+    Ok(())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -147,7 +147,8 @@ impl Quantity {
     }
 
     /// The quantity a category of a categorical map stands for, by its name: the scattering
-    /// outcomes' names (`Outcome::name`) and the `(E, l0)` regions'. `None` for other names.
+    /// outcomes' names (`Outcome::name`), the `(E, l0)` regions' and the network diagram's
+    /// `gapless` and `Weyl points`. `None` for other names.
     pub fn of_category(name: &str) -> Option<Quantity> {
         Some(match name {
             "transmitted" => Quantity::Transmitted,
@@ -163,6 +164,9 @@ impl Quantity {
             "annulus" => Quantity::Annulus,
             "disk" => Quantity::Disk,
             "forbidden" => Quantity::Forbidden,
+            // The network polarization diagram: where the gap closes.
+            "gapless" => Quantity::Forbidden,
+            "Weyl points" => Quantity::Undecided,
             _ => return None,
         })
     }

@@ -31,6 +31,7 @@ fn quick(name: &str, f: fn(&Params, Quality) -> Result<Figure, chain_paper::figu
                 assert!(h.values.iter().flatten().all(|v| v.is_finite()), "{name}: values");
             }
             Chart::Chain(d) => assert!(d.tips.len() >= 2, "{name}: drawing"),
+            Chart::Network(d) => assert!(!d.nodes.is_empty(), "{name}: network drawing"),
         }
     }
     assert!(!figure.rows.is_empty(), "{name}: no rows");

@@ -62,6 +62,7 @@ fn every_figure_has_data_and_finite_rows() {
                     assert!(d.tips.len() >= 2 && d.stretch.len() + 1 == d.tips.len(), "{}", figure.label);
                     assert!(d.stretch.iter().all(|s| s.is_finite()), "{}: stretch", figure.label);
                 }
+                Chart::Network(d) => assert!(!d.nodes.is_empty(), "{}: network drawing", figure.label),
             }
         }
         for row in &figure.rows {

@@ -50,6 +50,7 @@ fn every_statics_b_figure_runs_in_quick_mode() {
                     assert!(d.arrows.is_empty() || d.arrows.len() == d.tips.len(), "{label}: arrows");
                     assert!(d.tensions.is_empty() || d.tensions.len() == d.stretch.len(), "{label}: bars");
                 }
+                Chart::Network(d) => assert!(!d.nodes.is_empty(), "{label}: network drawing"),
             }
         }
         assert!(

@@ -3,21 +3,20 @@
 //! [`PhaseDiagram::compute_point`] is the one implementation of a point: the `phase-diagram` tool
 //! and the paper reproduction (`chain-paper`) both call it.
 //!
-//! **Energy budget.** Every point reports the largest relative energy error of its run
-//! ([`PointRecord::energy_error`]). A point above [`PhaseDiagram::energy_tolerance`] (or whose
-//! run stopped with an integration error, such as the integrator's own energy limit) is computed
-//! again with DOP853 at its default tolerances; if that run is still above the tolerance, or
-//! fails, the point is recorded as failed with the numbers. A run whose rotors spun through
-//! `|theta| = pi` (the walls cannot be read from signs any more) fails too. No point gets a label
-//! it did not earn.
+//! **Energy budget.** Every point is a run held to the dynamics' energy budget
+//! ([`scatter_within_budget`]: a Verlet run above [`PhaseDiagram::energy_tolerance`] is computed
+//! again with DOP853, a point that still breaks it fails with the numbers); this module keeps the
+//! grid's side: the chain and the experiment of each point, its record and its file columns.
 
 use std::fmt;
 use std::str::FromStr;
 
 use rotor_chain::dynamics::DynamicsError;
-use rotor_chain::dynamics::integrate::{IntegrateError, Schedule};
-use rotor_chain::dynamics::run::{ABSORBING_ENDS, Method, RunOptions};
-use rotor_chain::dynamics::scatter::{ScatterSetup, Scattering, paper_time_unit, scatter};
+use rotor_chain::dynamics::run::{ABSORBING_ENDS, RunOptions};
+pub use rotor_chain::dynamics::scatter::budget::{BudgetError, DEFAULT_ENERGY_TOLERANCE, VerletBreach};
+use rotor_chain::dynamics::scatter::{EnergyBudget, ScatterSetup, paper_time_unit, scatter_within_budget};
+pub use rotor_chain::integrate::Method;
+use rotor_chain::integrate::{IntegrateError, Schedule};
 use rotor_chain::statics::walls::Charge;
 use rotor_chain::{ParameterError, RuntimeChain};
 
@@ -113,26 +112,13 @@ impl Ends {
     }
 }
 
-/// The integrator a point starts with.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Integrator {
-    /// Velocity Verlet at a tenth of its stability limit (the default).
-    Verlet,
-    /// DOP853 at its default tolerances.
-    Dop853,
-}
+/// Every integrator a point may start with (the names of [`Method`]: `verlet`, `dop853` at its
+/// default tolerances), the default first.
+pub const METHODS: [Method; 2] = [Method::Verlet, Method::dop853()];
 
-impl Integrator {
-    /// Both integrators, the default first.
-    pub const ALL: [Integrator; 2] = [Integrator::Verlet, Integrator::Dop853];
-
-    /// The name used on the command line and in the results file.
-    pub fn name(self) -> &'static str {
-        match self {
-            Integrator::Verlet => "verlet",
-            Integrator::Dop853 => "dop853",
-        }
-    }
+/// The integrator named `s` (`verlet` or `dop853`), with the names it could have been.
+pub fn method_by_name(s: &str) -> Result<Method, UnknownName> {
+    by_name("integrator", s, &METHODS, |m| m.name())
 }
 
 impl FromStr for Defect {
@@ -148,20 +134,6 @@ impl FromStr for Ends {
     /// The ends of [`Ends::name`]: `free` or `absorbing`.
     fn from_str(s: &str) -> Result<Self, UnknownName> {
         by_name("ends", s, &Self::ALL, Self::name)
-    }
-}
-
-impl FromStr for Integrator {
-    type Err = UnknownName;
-    /// The integrator of [`Integrator::name`]: `verlet` or `dop853`.
-    fn from_str(s: &str) -> Result<Self, UnknownName> {
-        by_name("integrator", s, &Self::ALL, Self::name)
-    }
-}
-
-impl fmt::Display for Integrator {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(self.name())
     }
 }
 
@@ -209,16 +181,6 @@ pub enum ConfigError {
     },
 }
 
-/// The energy tolerance of a sweep point: 5e-3 of the run's initial energy.
-///
-/// Why: velocity Verlet conserves a modified energy, and the energy it reports oscillates about
-/// it by up to `(omega dt)^2 / 4` of the energy in the fastest phonons, 1 % at the default step.
-/// A collision that radiates a tenth of the energy into phonons therefore shows ~1e-3 without any
-/// error in the walls' motion: over both 40 x 40 diagrams the largest is 1.75e-3, and the labels
-/// agree with DOP853 (energy error ~1e-9) at 99.5-100 % of the points (docs/dynamics.md §6).
-/// A step past the stability limit exceeds it within a few steps.
-pub const DEFAULT_ENERGY_TOLERANCE: f64 = 5e-3;
-
 /// The version of the scattering physics and outcome rules in every run label: a results file
 /// written by other rules is refused on resume instead of mixing two rules' labels in one
 /// diagram. Raised whenever a rule changes a label: v3, a wall unseen for less than the grace
@@ -248,7 +210,7 @@ pub struct PhaseDiagram {
     /// Free (the paper's) or absorbing ends.
     pub ends: Ends,
     /// The integrator every point starts with.
-    pub integrator: Integrator,
+    pub integrator: Method,
     /// Verlet's step; `None`: a tenth of its stability limit.
     pub dt: Option<f64>,
     /// A point whose relative energy error exceeds this is recomputed (see the module doc).
@@ -274,7 +236,7 @@ impl PhaseDiagram {
             mass: 1.0,
             defect,
             ends: Ends::Free,
-            integrator: Integrator::Verlet,
+            integrator: Method::Verlet,
             dt: None,
             energy_tolerance: DEFAULT_ENERGY_TOLERANCE,
             recompute: true,
@@ -368,7 +330,7 @@ impl PhaseDiagram {
         self.check_ki(ki_ratio)?;
         Ok(RuntimeChain::builder(self.n, self.r, self.k, self.theta_bar)
             .mass(self.mass)
-            .spring(self.impurity(), Some(ki_ratio * self.k), None)
+            .spring_constant(self.impurity(), ki_ratio * self.k)
             .build()?)
     }
 
@@ -381,7 +343,7 @@ impl PhaseDiagram {
     /// middle spring, moving left, with this diagram's ends and `t_max`; the rules' windows, the
     /// output interval and the absorbing ends in the chain's [time unit](PhaseDiagram::time_unit),
     /// so that chains with the same `sqrt(M / k)`-scaled motion get the same outcomes.
-    pub fn setup(&self, v0: f64, integrator: Integrator) -> ScatterSetup {
+    pub fn setup(&self, v0: f64, integrator: Method) -> ScatterSetup {
         let mut setup = ScatterSetup::from_the_right(self.defect.charge(), v0, self.impurity());
         if self.ends == Ends::Absorbing {
             setup.run.absorbing_ends = Some(ABSORBING_ENDS);
@@ -389,59 +351,17 @@ impl PhaseDiagram {
         let mut setup = setup.in_time_unit(self.time_unit());
         setup.run.t_max = self.t_max;
         setup.run.dt = self.dt;
-        setup.run.method = match integrator {
-            Integrator::Verlet => Method::Verlet,
-            Integrator::Dop853 => Method::dop853(),
-        };
+        setup.run.method = integrator;
         setup
     }
 
-    /// One point of the diagram (module doc): the run, its energy budget, and the record.
+    /// One point of the diagram (module doc): the run held to its energy budget, and the record.
     pub fn compute_point(&self, ki_ratio: f64, v0: f64) -> Result<PointRecord, PointError> {
         let model = self.chain(ki_ratio)?;
-        let run = |integrator: Integrator| -> Result<Scattering, PointError> {
-            scatter(&model, &self.setup(v0, integrator))
-                .map_err(|source| PointError::Run { integrator, source })
-        };
-        let error_of = |s: &Scattering| s.run.report.relative_energy_error();
-        let (result, integrator) = match run(self.integrator) {
-            Ok(s) if error_of(&s) <= self.energy_tolerance => (s, Recomputed::No(self.integrator)),
-            first if self.recompute && self.integrator == Integrator::Verlet => {
-                let verlet = match first {
-                    Ok(s) => VerletBreach::EnergyError { error: error_of(&s) },
-                    Err(PointError::Run { source, .. }) => VerletBreach::Failed { source },
-                    Err(other) => return Err(other),
-                };
-                let over = |s: Scattering| {
-                    let error = error_of(&s);
-                    if error <= self.energy_tolerance {
-                        Ok(s)
-                    } else {
-                        Err(PointError::EnergyBudget {
-                            error,
-                            tolerance: self.energy_tolerance,
-                            integrator: Integrator::Dop853,
-                        })
-                    }
-                };
-                match run(Integrator::Dop853).and_then(over) {
-                    Ok(s) => (s, Recomputed::Dop853),
-                    Err(dop853) => return Err(PointError::Recomputed { verlet, dop853: Box::new(dop853) }),
-                }
-            }
-            Ok(s) => {
-                return Err(PointError::EnergyBudget {
-                    error: error_of(&s),
-                    tolerance: self.energy_tolerance,
-                    integrator: self.integrator,
-                });
-            }
-            Err(e) => return Err(e),
-        };
-        if let Some(&time) = result.run.tracker.violations.first() {
-            return Err(PointError::SpunThroughPi { time, outputs: result.run.tracker.violations.len() });
-        }
-        let last = result.run.tracker.snapshots.last().ok_or(PointError::NothingRecorded)?;
+        let budget = EnergyBudget { tolerance: self.energy_tolerance, recompute: self.recompute };
+        let kept = scatter_within_budget(&model, &self.setup(v0, self.integrator), &budget)?;
+        let result = &kept.scattering;
+        let last = result.run.tracker.snapshots.last().ok_or(BudgetError::NothingRecorded)?;
         let (kinks_final, antikinks_final) = last.counts();
         Ok(PointRecord {
             outcome: result.outcome,
@@ -450,8 +370,8 @@ impl PhaseDiagram {
             later: result.later,
             kinks_final,
             antikinks_final,
-            energy_error: error_of(&result),
-            integrator,
+            energy_error: kept.energy_error,
+            integrator: if kept.recomputed { Recomputed::Dop853 } else { Recomputed::No(kept.integrator) },
         })
     }
 }
@@ -467,90 +387,17 @@ pub enum PointError {
     /// The chain with the impurity breaks a parameter rule.
     #[error(transparent)]
     Chain(#[from] ParameterError),
-    /// The scattering run of `integrator` failed: the launch, or the integration (for example its
-    /// own 10 % energy limit, or a state that is not finite).
-    #[error("{integrator}: {source}")]
-    Run {
-        /// The integrator that ran.
-        integrator: Integrator,
-        #[source]
-        /// Its error.
-        source: DynamicsError,
-    },
-    /// The run's largest relative energy error is above the tolerance.
-    #[error("energy error {error:.3e} above the tolerance {tolerance:.1e} ({integrator})")]
-    EnergyBudget {
-        /// The run's largest relative energy error.
-        error: f64,
-        /// The tolerance.
-        tolerance: f64,
-        /// The integrator that ran.
-        integrator: Integrator,
-    },
-    /// The Verlet run broke the energy budget (or failed), and its DOP853 recomputation did not
-    /// succeed either: `dop853` is a [`PointError::Run`] or a [`PointError::EnergyBudget`].
-    #[error("{}", recomputed_message(verlet, dop853))]
-    Recomputed {
-        /// Why the Verlet run was not kept.
-        verlet: VerletBreach,
-        /// How the DOP853 recomputation failed.
-        dop853: Box<PointError>,
-    },
-    /// The tracker's charge check failed: rotors spun through `|theta| = pi`, so the walls
-    /// cannot be read from the signs of the angles. `time` is the first output where it failed.
-    #[error(
-        "the rotors spun through |theta| = pi at t = {time} ({outputs} outputs): walls cannot be read from signs"
-    )]
-    SpunThroughPi {
-        /// The first output where it failed, in `t`.
-        time: f64,
-        /// Outputs recorded until then.
-        outputs: usize,
-    },
-    /// The run ended before its first output.
-    #[error("the run recorded nothing")]
-    NothingRecorded,
-}
-
-/// Why the Verlet run of a point was recomputed with DOP853.
-#[derive(Clone, Debug, PartialEq)]
-#[non_exhaustive]
-pub enum VerletBreach {
-    /// Its largest relative energy error, above the tolerance.
-    EnergyError {
-        /// The run's largest relative energy error.
-        error: f64,
-    },
-    /// It stopped with an error.
-    Failed {
-        /// Its error.
-        source: DynamicsError,
-    },
-}
-
-impl fmt::Display for VerletBreach {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
-            VerletBreach::EnergyError { error } => write!(f, "energy error {error:.3e}"),
-            VerletBreach::Failed { source } => write!(f, "verlet: {source}"),
-        }
-    }
-}
-
-/// The text of [`PointError::Recomputed`]: `verlet: <why>; energy error ... (dop853)` when
-/// DOP853 broke the budget too, `<why>; dop853: <error>` when it failed.
-fn recomputed_message(verlet: &VerletBreach, dop853: &PointError) -> String {
-    match dop853 {
-        PointError::EnergyBudget { .. } => format!("verlet: {verlet}; {dop853}"),
-        _ => format!("{verlet}; {dop853}"),
-    }
+    /// The run did not meet its energy budget or could not be read
+    /// ([`scatter_within_budget`]).
+    #[error(transparent)]
+    Scatter(#[from] BudgetError),
 }
 
 /// Which integrator produced a record.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Recomputed {
     /// The configured integrator, within the energy tolerance.
-    No(Integrator),
+    No(Method),
     /// DOP853, after the Verlet run broke the energy budget.
     Dop853,
 }
@@ -569,8 +416,8 @@ impl FromStr for Recomputed {
 
     fn from_str(s: &str) -> Result<Self, String> {
         match s {
-            "verlet" => Ok(Recomputed::No(Integrator::Verlet)),
-            "dop853" => Ok(Recomputed::No(Integrator::Dop853)),
+            "verlet" => Ok(Recomputed::No(Method::Verlet)),
+            "dop853" => Ok(Recomputed::No(Method::dop853())),
             "dop853-recomputed" => Ok(Recomputed::Dop853),
             other => {
                 Err(format!("unknown integrator `{other}`: expected verlet, dop853 or dop853-recomputed"))
@@ -665,7 +512,7 @@ pub fn fake_point(ki_ratio: f64, v0: f64) -> PointRecord {
         kinks_final,
         antikinks_final,
         energy_error: 1e-9 * (1.0 + ki_ratio * v0),
-        integrator: Recomputed::No(Integrator::Verlet),
+        integrator: Recomputed::No(Method::Verlet),
     }
 }
 
@@ -681,17 +528,17 @@ mod tests {
         for e in Ends::ALL {
             assert_eq!(e.name().parse::<Ends>(), Ok(e));
         }
-        for i in Integrator::ALL {
-            assert_eq!(i.name().parse::<Integrator>(), Ok(i));
+        for i in METHODS {
+            assert_eq!(method_by_name(i.name()), Ok(i));
         }
         // The names, as the docs and the command line's --help list them.
         let names = |all: &[&str]| all.join(" ");
         assert_eq!(names(&Defect::ALL.map(Defect::name)), "kink antikink");
         assert_eq!(names(&Ends::ALL.map(Ends::name)), "free absorbing");
-        assert_eq!(names(&Integrator::ALL.map(Integrator::name)), "verlet dop853");
+        assert_eq!(names(&METHODS.map(|m| m.name())), "verlet dop853");
         let e = "Kink".parse::<Defect>().unwrap_err();
         assert_eq!(e.to_string(), "defect must be one of 'kink', 'antikink', got 'Kink'");
-        assert_eq!("rk4".parse::<Integrator>().unwrap_err().names, ["verlet", "dop853"]);
+        assert_eq!(method_by_name("rk4").unwrap_err().names, ["verlet", "dop853"]);
         assert_eq!("".parse::<Ends>().unwrap_err().what, "ends");
     }
 
@@ -816,7 +663,7 @@ mod tests {
             ]
         );
         assert_eq!(PointRecord::from_fields(&fields), Ok(record.clone()));
-        let quiet = PointRecord { later: None, integrator: Recomputed::No(Integrator::Verlet), ..record };
+        let quiet = PointRecord { later: None, integrator: Recomputed::No(Method::Verlet), ..record };
         let fields = quiet.to_fields();
         let fields: Vec<&str> = fields.iter().map(String::as_str).collect();
         assert_eq!(PointRecord::from_fields(&fields), Ok(quiet));

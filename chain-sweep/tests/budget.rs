@@ -2,7 +2,7 @@
 //! its energy error, a point over the tolerance is recomputed with DOP853 or recorded as failed
 //! with the numbers, and an absurd launch never gets a normal label.
 
-use chain_sweep::scattering::{Defect, Integrator, Outcome, PhaseDiagram, PointError, Recomputed};
+use chain_sweep::scattering::{BudgetError, Defect, Method, Outcome, PhaseDiagram, PointError, Recomputed};
 
 fn antikinks() -> PhaseDiagram {
     PhaseDiagram::new(60, 0.8, 1.0e4, 0.28, Defect::Antikink).unwrap()
@@ -13,7 +13,7 @@ fn a_point_reports_its_energy_error() {
     let d = antikinks();
     let record = d.compute_point(0.7, 4.0).unwrap();
     assert_eq!(record.outcome, Outcome::Trapped);
-    assert_eq!(record.integrator, Recomputed::No(Integrator::Verlet));
+    assert_eq!(record.integrator, Recomputed::No(Method::Verlet));
     assert!(
         record.energy_error > 1e-7 && record.energy_error < d.energy_tolerance,
         "{}",
@@ -32,7 +32,7 @@ fn a_step_over_the_energy_tolerance_is_flagged() {
     let stiff = || PhaseDiagram::new(60, 0.8, 1.0e5, 0.28, Defect::Antikink).unwrap();
     let reference = stiff().compute_point(0.7, 4.0).unwrap();
     assert!(reference.energy_error < 2e-4, "{}", reference.energy_error);
-    let interval = stiff().setup(4.0, Integrator::Verlet).run.output_interval;
+    let interval = stiff().setup(4.0, Method::Verlet).run.output_interval;
     let stable = {
         let model = stiff().chain(0.7).unwrap();
         rotor_chain::dynamics::integrate::VerletOptions::stable_for(&model, &[0.28; 60], 0.1).unwrap().dt
@@ -45,9 +45,9 @@ fn a_step_over_the_energy_tolerance_is_flagged() {
     let err = d.compute_point(0.7, 4.0).unwrap_err();
     let text = err.to_string();
     match &err {
-        PointError::EnergyBudget { error, tolerance, integrator } => {
+        PointError::Scatter(BudgetError::EnergyBudget { error, tolerance, integrator }) => {
             assert!(*error > *tolerance && *tolerance == 1e-3, "{err:?}");
-            assert_eq!(*integrator, Integrator::Verlet);
+            assert_eq!(*integrator, Method::Verlet);
             assert!(text.contains("above the tolerance 1.0e-3"), "{text}");
         }
         other => panic!("unexpected {other:?}"),
@@ -80,9 +80,11 @@ fn an_absurd_launch_never_gets_a_normal_label() {
                 Err(error) => assert!(
                     matches!(
                         error,
-                        PointError::Recomputed { .. }
-                            | PointError::SpunThroughPi { .. }
-                            | PointError::EnergyBudget { .. }
+                        PointError::Scatter(
+                            BudgetError::Recomputed { .. }
+                                | BudgetError::SpunThroughPi { .. }
+                                | BudgetError::EnergyBudget { .. }
+                        )
                     ),
                     "{defect:?} v0 = {v0}: {error}"
                 ),

@@ -4,13 +4,13 @@
 //!
 //! The pieces are the library's no-alloc ones (`rotor_chain::embedded`, re-exported here):
 //! 1. [`kink_into`]: the zero-energy kink built by the branch solve (paper Sec. II, Appendix A);
-//! 2. [`launch_velocities`]: launched along its translation mode, the zero mode of the
+//! 2. [`kink_launch_velocities`]: launched along its translation mode, the zero mode of the
 //!    compatibility matrix, with `r_i thetadot_i = v0 e_i` (Appendix B);
 //! 3. [`Verlet`]: stepped with velocity Verlet;
-//! 4. [`domain_walls`] and the energies: observed at fixed intervals (Appendix C).
+//! 4. [`DomainWalls`] and the energies: observed at fixed intervals (Appendix C).
 //!
 //! [`run()`] strings them together for a [`Scenario`]. Everything is generic over the float type
-//! ([`Real`]) and the chain ([`FloatChain`]); [`Chain16`] is the `f64` chain the firmware runs and
+//! ([`Real`]) and the chain ([`ChainGeometry`]); [`Chain16`] is the `f64` chain the firmware runs and
 //! [`Chain16F32`] the same chain in `f32`.
 //!
 //! CI also builds this crate on its own for the host (`cargo build -p embedded-check`), so
@@ -23,8 +23,8 @@ pub mod report;
 pub mod run;
 
 pub use rotor_chain::embedded::{
-    Charge, EmbeddedError, FloatChain, Real, Verlet, Wall, domain_walls, kink_into, launch_velocities,
-    translation_mode,
+    ChainGeometry, Charge, DomainWalls, DynamicsError, Phase, Potential, Real, Verlet, Wall, kink_into,
+    kink_launch_velocities, kink_translation_mode,
 };
 pub use run::{MAX_WALLS, Sample, Scenario, Summary, launched_kink, run};
 

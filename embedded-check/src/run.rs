@@ -6,8 +6,10 @@
 //! the machine's arithmetic and its `sin`/`cos`/`atan2`/`sqrt`.
 
 use rotor_chain::embedded::{
-    Charge, EmbeddedError, FloatChain, Real, Verlet, Wall, domain_walls, kink_into, launch_velocities,
+    ChainGeometry, Charge, DomainWalls, DynamicsError, Phase, Real, Verlet, Wall, kink_into,
+    kink_launch_velocities,
 };
+use rotor_chain::statics::StaticsError;
 
 /// At most this many walls are recorded per sample ([`Sample::wall_count`] counts all of them).
 pub const MAX_WALLS: usize = 4;
@@ -45,13 +47,13 @@ impl Scenario {
         Scenario { centre: 4.25, v0: 2.0, dt: 1.953125e-3, steps: 1024, every: 64 };
 
     /// `Ok` if every parameter is in range for a chain of `n` rotors.
-    pub fn check(&self, n: usize) -> Result<(), EmbeddedError> {
+    pub fn check(&self, n: usize) -> Result<(), DynamicsError> {
         let max = n.saturating_sub(1) as f64;
         if !(self.centre.is_finite() && (0.0..=max).contains(&self.centre)) {
-            return Err(EmbeddedError::CentreOutOfRange { centre: self.centre, max });
+            return Err(StaticsError::CentreOutOfRange { centre: self.centre, n, max }.into());
         }
         let rule = |ok: bool, name, value, rule| {
-            if ok { Ok(()) } else { Err(EmbeddedError::InvalidParameter { name, value, rule }) }
+            if ok { Ok(()) } else { Err(DynamicsError::InvalidSetup { name, value, rule }) }
         };
         rule(self.v0.is_finite() && self.v0 >= 0.0, "v0", self.v0, "finite and >= 0")?;
         rule(self.dt.is_finite() && self.dt > 0.0, "dt", self.dt, "positive and finite")?;
@@ -68,7 +70,7 @@ impl Scenario {
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Sample<T> {
     /// Verlet steps taken.
-    pub step: u32,
+    pub step: u64,
     /// `step * dt`.
     pub time: f64,
     /// `sum_i I_i omega_i^2 / 2`.
@@ -106,14 +108,14 @@ impl<T: Real> Sample<T> {
     }
 
     /// The sample of `stepper`'s state.
-    pub fn of<M: FloatChain<T> + ?Sized, const N: usize>(
+    pub fn of<M: ChainGeometry<T> + ?Sized, const N: usize>(
         model: &M,
-        stepper: &Verlet<T, N>,
+        stepper: &Verlet<T, [T; N]>,
         time: f64,
     ) -> Self {
         let mut walls = [Wall { position: T::ZERO, charge: Charge::Kink }; MAX_WALLS];
         let mut wall_count = 0;
-        for wall in domain_walls(stepper.theta()) {
+        for wall in DomainWalls::of(stepper.theta()) {
             if let Some(slot) = walls.get_mut(wall_count) {
                 *slot = wall;
             }
@@ -134,7 +136,7 @@ impl<T: Real> Sample<T> {
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Summary<T> {
     /// Verlet steps taken.
-    pub steps: u32,
+    pub steps: u64,
     /// `E = T + V` at step 0.
     pub energy_initial: T,
     /// `E` after the last step.
@@ -161,14 +163,14 @@ pub fn run<T, M, F, const N: usize>(
     model: &M,
     scenario: &Scenario,
     mut observer: F,
-) -> Result<Summary<T>, EmbeddedError>
+) -> Result<Summary<T>, DynamicsError>
 where
     T: Real,
-    M: FloatChain<T> + ?Sized,
+    M: ChainGeometry<T> + ?Sized,
     F: FnMut(&Sample<T>),
 {
     if model.rotor_count() != N {
-        return Err(EmbeddedError::WrongRotorCount { rotors: model.rotor_count(), expected: N });
+        return Err(StaticsError::WrongLength { what: "theta", len: N, expected: model.rotor_count() }.into());
     }
     scenario.check(N)?;
     let mut stepper = launched_kink::<T, M, N>(model, scenario)?;
@@ -196,14 +198,14 @@ where
 pub fn launched_kink<T, M, const N: usize>(
     model: &M,
     scenario: &Scenario,
-) -> Result<Verlet<T, N>, EmbeddedError>
+) -> Result<Verlet<T, [T; N]>, DynamicsError>
 where
     T: Real,
-    M: FloatChain<T> + ?Sized,
+    M: ChainGeometry<T> + ?Sized,
 {
     scenario.check(N)?;
     let mut theta = [T::ZERO; N];
     kink_into(model, T::of(scenario.centre), &mut theta)?;
-    let omega = launch_velocities(model, &theta, T::of(scenario.v0))?;
-    Verlet::new(model, theta, omega, T::of(scenario.dt))
+    let omega = kink_launch_velocities(model, &theta, T::of(scenario.v0))?;
+    Ok(Verlet::new(model, Phase { time: T::ZERO, theta, omega }, T::of(scenario.dt))?)
 }

@@ -150,7 +150,12 @@ fn run() -> ExitCode {
     if let Some(ms) = cli.demo_pause_writes {
         output::pause_writes_for_tests(Duration::from_millis(ms));
     }
-    if let Err(e) = stop_on_signals() {
+    let tidy = || {
+        if let Some(bar) = BAR.get() {
+            bar.abandon();
+        }
+    };
+    if let Err(e) = output::stop_on_signals("paper", tidy) {
         eprintln!("paper: error: cannot install the signal handlers: {e}");
         return ExitCode::FAILURE;
     }
@@ -177,36 +182,6 @@ fn run() -> ExitCode {
         cli.out.display()
     );
     if failed.is_empty() { ExitCode::SUCCESS } else { ExitCode::from(3) }
-}
-
-/// On SIGINT, SIGTERM or SIGHUP: refuse new writes, let the writes in flight finish (at most 5 s),
-/// say so, and exit with 128 + the signal's number.
-#[cfg(unix)]
-fn stop_on_signals() -> std::io::Result<()> {
-    use signal_hook::consts::{SIGHUP, SIGINT, SIGTERM};
-    let mut signals = signal_hook::iterator::Signals::new([SIGINT, SIGTERM, SIGHUP])?;
-    std::thread::spawn(move || {
-        if let Some(signal) = signals.forever().next() {
-            let finished = output::stop_writes(Duration::from_secs(5));
-            if let Some(bar) = BAR.get() {
-                bar.abandon();
-            }
-            let name = signal_hook::low_level::signal_name(signal).unwrap_or("a signal");
-            let state = if finished.is_some() {
-                "the files written so far are complete and no temporary file is left"
-            } else {
-                "writes still in flight after 5 s may leave temporary files; the next run removes them"
-            };
-            eprintln!("paper: interrupted by {name}: {state}");
-            std::process::exit(128 + signal);
-        }
-    });
-    Ok(())
-}
-
-#[cfg(not(unix))]
-fn stop_on_signals() -> std::io::Result<()> {
-    Ok(())
 }
 
 /// The figures named by `--only` (all of them without it), in the order of `all`. An unknown
@@ -482,7 +457,7 @@ mod demo {
         };
         let outcomes = ["transmitted", "reflected", "trapped"];
         let model = rotor_chain::RuntimeChain::builder(12, p.r, p.k, 0.5)
-            .spring(5, None, Some(1.8))
+            .spring_rest_length(5, 1.8)
             .build()
             .map_err(FigureError::on("fig:demo-maps"))?;
         let theta: Vec<f64> = (0..12).map(|i| 0.5 * (0.6 * (i as f64 - 5.5)).tanh()).collect();

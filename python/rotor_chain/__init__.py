@@ -19,6 +19,9 @@ True
   or a Dask cluster, resumable CSV files shared with the ``phase-diagram`` command.
 - :mod:`rotor_chain.plot`: pictures with matplotlib (a phase diagram, a chain, a run's space-time
   image, a mode).
+- :class:`Network`: periodic spring and rotor networks (issue 33) from a cell file, TOML text,
+  keyword arguments or a ready lattice: Maxwell-Calladine counts, zero modes, Bloch matrices,
+  bands, winding numbers and the polarization, strips with edge modes, Guest modes.
 - :mod:`rotor_chain.errors`: the exceptions, one class per Rust error family.
 
 Units: every number is absolute, in the units of the parameters given; nothing is divided by
@@ -37,6 +40,7 @@ from ._native import (
     Counting,
     Launch,
     Modes,
+    Network,
     PeierlsNabarro,
     Run,
     Scattering,
@@ -45,10 +49,12 @@ from ._native import (
 )
 from .errors import (
     BranchError,
+    CellError,
     ConfigError,
     DynamicsError,
     GridError,
     IntegrateError,
+    NetworkError,
     ParameterError,
     PointError,
     RotorChainError,
@@ -59,6 +65,7 @@ from .errors import (
 __all__ = [
     "Chain",
     "Continuum",
+    "Network",
     "Antikink",
     "PeierlsNabarro",
     "Modes",
@@ -80,5 +87,7 @@ __all__ = [
     "PointError",
     "GridError",
     "SweepError",
+    "CellError",
+    "NetworkError",
     "__version__",
 ]

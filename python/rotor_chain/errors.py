@@ -26,6 +26,8 @@ ConfigError        ValueError                  phase-diagram settings (``sweep``
 PointError         RuntimeError                one phase-diagram point (``sweep.point``)
 GridError          ValueError                  an axis ``"FROM:TO:COUNT[:log]"``
 SweepError         RuntimeError                a results file (another sweep's, locked, ...)
+CellError          ValueError                  a network cell (``Network``): ``key``, ``line``
+NetworkError       RuntimeError                a network analysis (``WindingUndefined``, ...)
 =================  ==========================  ===========================================
 
 All derive from :class:`RotorChainError`. A wrong array length or an unknown option name is a
@@ -47,6 +49,8 @@ __all__ = [
     "PointError",
     "GridError",
     "SweepError",
+    "CellError",
+    "NetworkError",
 ]
 
 
@@ -104,3 +108,14 @@ class GridError(RotorChainError, ValueError):
 
 class SweepError(RotorChainError, RuntimeError):
     """A results file that cannot be used (Rust ``SweepError``)."""
+
+
+class CellError(RotorChainError, ValueError):
+    """A network cell that cannot be read or is not valid (Rust ``CellError``): ``key`` names the
+    key (``bond[2].to``), ``line`` its line in the cell file (None for a cell not read from text)."""
+
+
+class NetworkError(RotorChainError, RuntimeError):
+    """A network analysis that cannot be carried out (Rust ``NetworkError``): ``variant``
+    ``WindingUndefined`` or ``WeylPoints`` for a winding that does not exist, ``PatchSize`` for a
+    patch that cannot be built, ..."""

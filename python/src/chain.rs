@@ -6,11 +6,15 @@ use numpy::{PyArray1, PyArray2};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyTuple};
 use rotor_chain::statics::continuum::ContinuumChain;
-use rotor_chain::{ChainModel, Law, RuntimeChain};
+use rotor_chain::{Law, RuntimeChain};
 
 use crate::args::{self, AtMost, Real, RotorCount, array, choice, matrix, vector};
 use crate::errors::{self, value_error};
 use crate::pickle::{self, Pickle};
+use rotor_chain::ChainGeometry;
+use rotor_chain::Potential;
+use rotor_chain::SpringNetwork;
+use rotor_chain::Stiffness;
 
 /// How the chain was asked for: kept for `repr`, pickling and the continuum theory.
 #[derive(Clone, Debug)]
@@ -201,7 +205,7 @@ impl Chain {
     /// Spring stiffnesses ``k_p`` (length ``n - 1``).
     #[getter]
     fn stiffness(&self, py: Python<'_>) -> Py<PyArray1<f64>> {
-        array(py, (0..self.chain.spring_count()).map(|p| self.chain.stiffness(p)).collect())
+        array(py, (0..self.chain.spring_count()).map(|p| self.chain.spring_constant(p)).collect())
     }
 
     /// Spring rest lengths ``l0_p`` (length ``n - 1``), in the length unit of ``a``.
@@ -254,18 +258,18 @@ impl Chain {
     /// ``(diag, off)`` with ``diag`` of length ``n`` and ``off[p]`` the entry ``(p, p + 1)``
     /// (length ``n - 1``); energy per radian squared, absolute as ``energy``.
     fn tangent_stiffness(&self, py: Python<'_>, theta: &Bound<'_, PyAny>) -> PyResult<Banded> {
-        self.banded(py, theta, |c, t, d, o| c.tangent_stiffness_into(t, d, o))
+        self.banded(py, theta, |c, t, k| c.tangent_stiffness_into(t, k))
     }
 
     /// The material part ``sum_p g_p a_p a_p^T`` of the tangent stiffness (Appendix D), as ``(diag, off)``.
     fn material_stiffness(&self, py: Python<'_>, theta: &Bound<'_, PyAny>) -> PyResult<Banded> {
-        self.banded(py, theta, |c, t, d, o| c.material_stiffness_into(t, d, o))
+        self.banded(py, theta, |c, t, k| c.material_stiffness_into(t, k))
     }
 
     /// The stress matrix ``sum_p S_p`` (Appendix D), as ``(diag, off)``; material part + stress
     /// matrix = tangent stiffness.
     fn stress_matrix(&self, py: Python<'_>, theta: &Bound<'_, PyAny>) -> PyResult<Banded> {
-        self.banded(py, theta, |c, t, d, o| c.stress_matrix_into(t, d, o))
+        self.banded(py, theta, |c, t, k| c.stress_matrix_into(t, k))
     }
 
     /// The tangent stiffness as a dense symmetric ``n x n`` array.
@@ -279,8 +283,9 @@ impl Chain {
         dense_size(py, "hessian: rotors x rotors", n, n)?;
         let dense = py.detach(|| {
             let mut dense = vec![0.0; n * n];
-            let (mut diag, mut off) = (vec![0.0; n], vec![0.0; n - 1]);
-            self.chain.tangent_stiffness_into(&theta, &mut diag, &mut off);
+            let mut values = vec![0.0; 2 * n - 1];
+            self.chain.tangent_stiffness_into(&theta, &mut values);
+            let (diag, off) = values.split_at(n);
             for i in 0..n {
                 dense[i * n + i] = diag[i];
             }
@@ -321,9 +326,10 @@ impl Chain {
         let theta = self.theta(theta)?;
         let (n, m) = (self.n(), self.chain.spring_count());
         let (left, right) = py.detach(|| {
-            let (mut left, mut right) = (vec![0.0; m], vec![0.0; m]);
-            self.chain.compatibility_into(&theta, &mut left, &mut right);
-            (left, right)
+            let mut values = vec![0.0; 2 * m];
+            self.chain.compatibility_into(&theta, &mut values);
+            let right = values.split_off(m);
+            (values, right)
         });
         if dense {
             dense_size(py, "compatibility: springs x rotors", m, n)?;
@@ -688,13 +694,14 @@ impl Chain {
         &self,
         py: Python<'_>,
         theta: &Bound<'_, PyAny>,
-        f: impl Fn(&RuntimeChain, &[f64], &mut [f64], &mut [f64]) + Sync,
+        f: impl Fn(&RuntimeChain, &[f64], &mut [f64]) + Sync,
     ) -> PyResult<Banded> {
         let theta = self.theta(theta)?;
         let n = theta.len();
         let (diag, off) = py.detach(|| {
-            let (mut diag, mut off) = (vec![0.0; n], vec![0.0; n - 1]);
-            f(&self.chain, &theta, &mut diag, &mut off);
+            let mut diag = vec![0.0; 2 * n - 1];
+            f(&self.chain, &theta, &mut diag);
+            let off = diag.split_off(n);
             (diag, off)
         });
         Ok((array(py, diag), array(py, off)))

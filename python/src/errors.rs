@@ -4,7 +4,7 @@
 //! Rust variant, and every number the variant carries is an attribute (and an entry of
 //! `details`). A wrapped error is `details["source"]` and the exception's `__cause__`.
 
-use chain_sweep::scattering::{ConfigError, PointError, VerletBreach};
+use chain_sweep::scattering::{BudgetError, ConfigError, PointError, VerletBreach};
 use chain_sweep::{GridError, SweepError};
 use pyo3::prelude::*;
 use pyo3::sync::PyOnceLock;
@@ -13,6 +13,7 @@ use rotor_chain::dynamics::DynamicsError;
 use rotor_chain::dynamics::integrate::IntegrateError;
 use rotor_chain::geometry::CountText;
 use rotor_chain::linalg::LinalgError;
+use rotor_chain::network::{CellError, NetworkError};
 use rotor_chain::statics::StaticsError;
 use rotor_chain::{BranchError, ParameterError};
 
@@ -340,31 +341,41 @@ pub fn point(py: Python<'_>, e: &PointError) -> PyErr {
     let d = match e {
         PointError::Config(c) => Details { variant: "Config", ..d }.source(config(py, c)),
         PointError::Chain(p) => Details { variant: "Chain", ..d }.source(parameter(py, p)),
-        PointError::Run { integrator, source } => {
+        PointError::Scatter(b) => budget(py, b, d),
+        _ => Details { variant: "Other", ..d },
+    };
+    d.raise("PointError", e.to_string())
+}
+
+/// The details of a point that broke its energy budget (the dynamics' `BudgetError`), under the
+/// variant names Python has always seen (`Run`, `EnergyBudget`, `Recomputed`, ...).
+fn budget<'py>(py: Python<'py>, e: &BudgetError, d: Details<'py>) -> Details<'py> {
+    match e {
+        BudgetError::Run { integrator, source } => {
             Details { variant: "Run", ..d }.f("integrator", integrator.name()).source(dynamics(py, source))
         }
-        &PointError::EnergyBudget { error, tolerance, integrator } => {
+        &BudgetError::EnergyBudget { error, tolerance, integrator } => {
             Details { variant: "EnergyBudget", ..d }
                 .f("error", error)
                 .f("tolerance", tolerance)
                 .f("integrator", integrator.name())
         }
-        PointError::Recomputed { verlet, dop853 } => {
+        BudgetError::Recomputed { verlet, dop853 } => {
             let d = Details { variant: "Recomputed", ..d }.f("verlet", verlet.to_string());
             let d = match verlet {
                 VerletBreach::EnergyError { error } => d.f("verlet_energy_error", *error),
                 VerletBreach::Failed { source } => d.f("verlet_error", dynamics(py, source).value(py)),
                 _ => d,
             };
-            d.source(point(py, dop853))
+            let inner = budget(py, dop853, Details::new(py, "")).raise("PointError", dop853.to_string());
+            d.source(inner)
         }
-        &PointError::SpunThroughPi { time, outputs } => {
+        &BudgetError::SpunThroughPi { time, outputs } => {
             Details { variant: "SpunThroughPi", ..d }.f("time", time).f("outputs", outputs)
         }
-        PointError::NothingRecorded => Details { variant: "NothingRecorded", ..d },
+        BudgetError::NothingRecorded => Details { variant: "NothingRecorded", ..d },
         _ => Details { variant: "Other", ..d },
-    };
-    d.raise("PointError", e.to_string())
+    }
 }
 
 pub fn grid(py: Python<'_>, e: &GridError) -> PyErr {
@@ -462,4 +473,99 @@ pub fn sweep(py: Python<'_>, e: &SweepError) -> PyErr {
 /// caller, which the Rust API treats as panics.
 pub fn value_error(message: impl Into<String>) -> PyErr {
     pyo3::exceptions::PyValueError::new_err(message.into())
+}
+
+/// A cell that cannot be read or is not valid: `CellError` with `key` and `line` (None when the
+/// cell did not come from text) and the variant's numbers.
+pub fn cell(py: Python<'_>, e: &CellError) -> PyErr {
+    let d = Details::new(py, "");
+    let at = e.location();
+    let d = d.f("key", at.map(|a| a.key.clone())).f("line", e.line());
+    let d = match e {
+        CellError::Syntax { column, message, .. } => {
+            Details { variant: "Syntax", ..d }.f("column", *column).f("reason", message.clone())
+        }
+        CellError::Missing { .. } => Details { variant: "Missing", ..d },
+        CellError::NotForKind { kind, .. } => Details { variant: "NotForKind", ..d }.f("kind", *kind),
+        CellError::NotFinite { value, .. } => Details { variant: "NotFinite", ..d }.f("value", *value),
+        CellError::OutOfRange { value, rule, .. } => {
+            Details { variant: "OutOfRange", ..d }.f("value", *value).f("rule", *rule)
+        }
+        CellError::Length { expected, found, .. } => {
+            Details { variant: "Length", ..d }.f("expected", *expected).f("found", *found)
+        }
+        CellError::Dimension { found, .. } => Details { variant: "Dimension", ..d }.f("found", *found),
+        CellError::DegenerateLattice { det, relative, .. } => {
+            Details { variant: "DegenerateLattice", ..d }.f("det", *det).f("relative", *relative)
+        }
+        CellError::Empty { .. } => Details { variant: "Empty", ..d },
+        CellError::UnknownKind { found, .. } => {
+            Details { variant: "UnknownKind", ..d }.f("found", found.clone())
+        }
+        CellError::BadName { name, .. } => Details { variant: "BadName", ..d }.f("name", name.clone()),
+        CellError::UnknownNode { name, suggestion, .. } => Details { variant: "UnknownNode", ..d }
+            .f("name", name.clone())
+            .f("suggestion", suggestion.clone()),
+        CellError::ZeroLengthBond { bond, length, .. } => {
+            Details { variant: "ZeroLengthBond", ..d }.f("bond", *bond).f("length", *length)
+        }
+        CellError::DuplicateBond { first, second, .. } => {
+            Details { variant: "DuplicateBond", ..d }.f("first", *first).f("second", *second)
+        }
+        _ => Details { variant: "Other", ..d },
+    };
+    d.raise("CellError", e.to_string())
+}
+
+/// An analysis of a network that cannot be carried out: `NetworkError` (`WindingUndefined` and
+/// `WeylPoints` for a winding that does not exist), with the variant's numbers.
+pub fn network(py: Python<'_>, e: &NetworkError) -> PyErr {
+    let d = Details::new(py, "");
+    let d = match e {
+        NetworkError::PatchSize { what, direction, found, rule } => Details { variant: "PatchSize", ..d }
+            .f("what", *what)
+            .f("direction", *direction)
+            .f("found", *found)
+            .f("rule", rule.clone()),
+        NetworkError::PeriodicImage { cells, bond, problem } => Details { variant: "PeriodicImage", ..d }
+            .f("cells", cells.to_vec())
+            .f("bond", *bond)
+            .f("problem", problem.clone()),
+        NetworkError::TooLarge { what, rows, cols, limit } => Details { variant: "TooLarge", ..d }
+            .f("what", *what)
+            .f("rows", *rows)
+            .f("cols", *cols)
+            .f("limit", *limit),
+        NetworkError::NoConvergence { what, decomposition, rows, cols } => {
+            Details { variant: "NoConvergence", ..d }
+                .f("what", *what)
+                .f("decomposition", *decomposition)
+                .f("rows", *rows)
+                .f("cols", *cols)
+        }
+        NetworkError::IndexTheorem { zero_modes, self_stresses, dof, bonds } => {
+            Details { variant: "IndexTheorem", ..d }
+                .f("zero_modes", *zero_modes)
+                .f("self_stresses", *self_stresses)
+                .f("dof", *dof)
+                .f("bonds", *bonds)
+        }
+        NetworkError::NotSquare { bonds, dof } => {
+            Details { variant: "NotSquare", ..d }.f("bonds", *bonds).f("dof", *dof)
+        }
+        NetworkError::WindingUndefined { direction, reason } => Details { variant: "WindingUndefined", ..d }
+            .f("direction", *direction)
+            .f("reason", reason.clone()),
+        NetworkError::WeylPoints { direction, transverse, windings } => {
+            Details { variant: "WeylPoints", ..d }
+                .f("direction", *direction)
+                .f("transverse", transverse.clone())
+                .f("windings", windings.clone())
+        }
+        NetworkError::Argument { what, problem } => {
+            Details { variant: "Argument", ..d }.f("what", *what).f("problem", problem.clone())
+        }
+        _ => Details { variant: "Other", ..d },
+    };
+    d.raise("NetworkError", e.to_string())
 }

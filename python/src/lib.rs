@@ -16,6 +16,7 @@ mod args;
 mod chain;
 mod dynamics;
 mod errors;
+mod network;
 mod pickle;
 mod statics;
 mod sweep;
@@ -24,6 +25,7 @@ mod sweep;
 fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<chain::Chain>()?;
     m.add_class::<chain::Continuum>()?;
+    m.add_class::<network::Network>()?;
     m.add_class::<statics::Antikink>()?;
     m.add_class::<statics::PeierlsNabarro>()?;
     m.add_class::<statics::Modes>()?;

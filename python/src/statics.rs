@@ -3,7 +3,6 @@
 
 use numpy::{PyArray1, PyArray2};
 use pyo3::prelude::*;
-use rotor_chain::ChainModel;
 use rotor_chain::statics::antikink::{self as ak, AntikinkOptions, Ends};
 use rotor_chain::statics::classify::EquilibriumKind;
 use rotor_chain::statics::counting;
@@ -14,6 +13,8 @@ use crate::args::{AtMost, array, choice, rows};
 use crate::chain::Chain;
 use crate::errors;
 use crate::pickle::{self, pickle_fields};
+use rotor_chain::ChainGeometry;
+use rotor_chain::SpringNetwork;
 
 fn ends(name: &str) -> PyResult<Ends> {
     choice("ends", name, &[("held", Ends::Held), ("free", Ends::Free)])
@@ -276,6 +277,7 @@ pub fn modes(
                 ModeKind::Edge { left: true } => "edge-left",
                 ModeKind::Edge { left: false } => "edge-right",
                 ModeKind::Extended => "extended",
+                _ => "unlabelled",
             })
             .map(str::to_owned)
             .collect(),

@@ -12,7 +12,7 @@ use std::path::PathBuf;
 use std::str::FromStr;
 
 use chain_sweep::scattering::{
-    Defect, Ends, Integrator, LaterEvent, Outcome, PhaseDiagram as Diagram, PointRecord, Recomputed,
+    Defect, Ends, LaterEvent, Outcome, PhaseDiagram as Diagram, PointRecord, Recomputed, method_by_name,
 };
 use chain_sweep::{Axis, Grid, Point, ResultsFile as File, SweepOptions};
 use pyo3::prelude::*;
@@ -68,7 +68,7 @@ impl PhaseDiagram {
         let unknown = |e: chain_sweep::scattering::UnknownName| value_error(e.to_string());
         let defect: Defect = defect.parse().map_err(unknown)?;
         let ends: Ends = ends.parse().map_err(unknown)?;
-        let integrator: Integrator = integrator.parse().map_err(unknown)?;
+        let integrator = method_by_name(integrator).map_err(unknown)?;
         // A wrong type stays the TypeError that names `n`; a wrong count is a setting's error.
         let n = n.0.map_err(|cause| {
             if cause.is_instance_of::<pyo3::exceptions::PyTypeError>(py) {

@@ -90,12 +90,6 @@ pub fn assert_close(x: f64, y: f64, tol: f64, what: &str) {
 
 /// A deterministic configuration near the uniform state with some structure, for `n` rotors.
 pub fn wavy(n: usize, theta_bar: f64, seed: u64) -> Vec<f64> {
-    let mut state = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
-    (0..n)
-        .map(|i| {
-            state = state.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
-            let noise = ((state >> 11) as f64 / (1u64 << 53) as f64 - 0.5) * 0.2;
-            theta_bar * (0.3 * i as f64).cos() + noise
-        })
-        .collect()
+    let mut random = test_support::random::SplitMix(seed);
+    (0..n).map(|i| theta_bar * (0.3 * i as f64).cos() + random.range(-0.1, 0.1)).collect()
 }

@@ -42,9 +42,9 @@ fn an_override_that_gives_nothing_is_an_error() {
 #[test]
 fn an_override_repeated_is_an_error_whatever_it_gives() {
     let cases = [
-        builder(10).spring(3, Some(2.0), None).spring(3, None, Some(1.7)),
-        builder(10).spring(3, Some(2.0), None).spring(3, Some(2.0), None),
-        builder(10).spring(4, Some(2.0), None).spring(3, Some(1.0), Some(1.8)).spring(3, Some(2.0), None),
+        builder(10).spring_constant(3, 2.0).spring_rest_length(3, 1.7),
+        builder(10).spring_constant(3, 2.0).spring_constant(3, 2.0),
+        builder(10).spring_constant(4, 2.0).spring(3, Some(1.0), Some(1.8)).spring_constant(3, 2.0),
     ];
     for case in cases {
         assert_eq!(case.build(), Err(ParameterError::OverriddenTwice { kind: IndexKind::Spring, index: 3 }));
@@ -59,7 +59,7 @@ fn an_override_repeated_is_an_error_whatever_it_gives() {
 fn overrides_of_missing_springs_and_rotors_are_errors() {
     for (p, springs) in [(9, 9), (100, 9), (usize::MAX, 9)] {
         assert_eq!(
-            builder(10).spring(p, Some(1.0), None).build(),
+            builder(10).spring_constant(p, 1.0).build(),
             Err(ParameterError::IndexOutOfRange { kind: IndexKind::Spring, index: p, count: springs })
         );
     }
@@ -78,22 +78,21 @@ fn the_runtime_error_says_what_the_compile_error_says() {
         empty,
         "the override of spring 3 changes nothing: give a stiffness `k` and/or a rest length `l0`"
     );
-    let twice = builder(10).spring(3, Some(1.0), None).spring(3, None, Some(1.7)).build().unwrap_err();
+    let twice = builder(10).spring_constant(3, 1.0).spring_rest_length(3, 1.7).build().unwrap_err();
     assert_eq!(twice.to_string(), "spring 3 is overridden twice: give all of its values in one override");
 }
 
 #[test]
 fn valid_overrides_still_apply() {
-    let chain =
-        builder(10).spring(3, Some(2.0), None).spring(4, None, Some(1.9)).rotor(2, 0.7).build().unwrap();
-    assert_eq!((chain.stiffness(3), chain.rest_length(4), chain.rotor_length(2)), (2.0, 1.9, 0.7));
-    assert_eq!(chain.stiffness(4), 1.0e4);
+    let chain = builder(10).spring_constant(3, 2.0).spring_rest_length(4, 1.9).rotor(2, 0.7).build().unwrap();
+    assert_eq!((chain.spring_constant(3), chain.rest_length(4), chain.rotor_length(2)), (2.0, 1.9, 0.7));
+    assert_eq!(chain.spring_constant(4), 1.0e4);
 }
 
 #[test]
 fn messages_count_in_the_singular_and_name_a_nan() {
     // A two-rotor chain has one spring: the message says so in the singular.
-    let one = RuntimeChain::builder(2, 0.8, 1.0e4, 0.58).spring(1, Some(1.0), None).build().unwrap_err();
+    let one = RuntimeChain::builder(2, 0.8, 1.0e4, 0.58).spring_constant(1, 1.0).build().unwrap_err();
     assert_eq!(one.to_string(), "spring index 1 is out of range: the chain has 1 spring, numbered 0 to 0");
     let many = builder(10).rotor(10, 0.7).build().unwrap_err();
     assert_eq!(many.to_string(), "rotor index 10 is out of range: the chain has 10 rotors, numbered 0 to 9");

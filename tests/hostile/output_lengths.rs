@@ -47,7 +47,7 @@ fn a_wrong_slice_length_names_the_slice_and_points_at_the_caller() {
     let cases: Vec<Case> = vec![
         (
             Box::new(|| chain.batch_gradient_into(&[0.3; 13], &mut zeros(13))),
-            "thetas has 13 angles, not a whole number of configurations of 6 rotors",
+            "the batch has 13 values, not a whole number of configurations of 6 degrees of freedom",
         ),
         (
             Box::new(|| chain.batch_energy_and_gradient_into(&[0.3; 12], &mut zeros(3), &mut zeros(12))),
@@ -95,16 +95,16 @@ fn check_slice_lengths(chain: &impl ChainModel) {
             "out has 5 values, the chain has 6 rotors (one value per rotor)",
         ),
         (
-            Box::new(|| chain.tangent_stiffness_into(&theta, &mut zeros(6), &mut zeros(4))),
-            "off has 4 values, the chain has 5 springs (one value per spring)",
+            Box::new(|| chain.tangent_stiffness_into(&theta, &mut zeros(10))),
+            "values has 10 values, a tridiagonal matrix of 6 rows needs 11",
         ),
         (
-            Box::new(|| chain.material_stiffness_into(&theta, &mut zeros(7), &mut zeros(5))),
-            "diag has 7 values, the chain has 6 rotors (one value per rotor)",
+            Box::new(|| chain.material_stiffness_into(&theta, &mut zeros(12))),
+            "values has 12 values, a tridiagonal matrix of 6 rows needs 11",
         ),
         (
-            Box::new(|| chain.stress_matrix_into(&theta, &mut zeros(6), &mut zeros(6))),
-            "off has 6 values, the chain has 5 springs (one value per spring)",
+            Box::new(|| chain.stress_matrix_into(&theta, &mut zeros(6))),
+            "values has 6 values, a tridiagonal matrix of 6 rows needs 11",
         ),
         (
             Box::new(|| chain.spring_lengths_into(&theta, &mut zeros(6))),
@@ -115,8 +115,8 @@ fn check_slice_lengths(chain: &impl ChainModel) {
             "out has 1 value, the chain has 5 springs (one value per spring)",
         ),
         (
-            Box::new(|| chain.compatibility_into(&theta, &mut zeros(5), &mut zeros(6))),
-            "right has 6 values, the chain has 5 springs (one value per spring)",
+            Box::new(|| chain.compatibility_into(&theta, &mut zeros(11))),
+            "values has 11 values, a bidiagonal matrix of 5 springs needs 10",
         ),
         (
             Box::new(|| {
@@ -126,7 +126,7 @@ fn check_slice_lengths(chain: &impl ChainModel) {
         ),
         (
             Box::new(|| {
-                chain.energy_gradient_stiffness_into(&theta, &mut zeros(0), &mut zeros(6), &mut zeros(5));
+                chain.energy_gradient_stiffness_into(&theta, &mut zeros(0), &mut zeros(11));
             }),
             "grad has 0 values, the chain has 6 rotors (one value per rotor)",
         ),
@@ -140,9 +140,9 @@ fn check_slice_lengths(chain: &impl ChainModel) {
         }
     }
     // The right lengths work.
-    let (mut g, mut d, mut o) = (zeros(6), zeros(6), zeros(5));
-    let e = chain.energy_gradient_stiffness_into(&theta, &mut g, &mut d, &mut o);
-    assert!(e > 0.0 && g.iter().any(|&x| x != 0.0) && d.iter().all(|x| x.is_finite()));
+    let (mut g, mut k) = (zeros(6), zeros(11));
+    let e = chain.energy_gradient_stiffness_into(&theta, &mut g, &mut k);
+    assert!(e > 0.0 && g.iter().any(|&x| x != 0.0) && k.iter().all(|x| x.is_finite()));
 }
 
 #[test]

@@ -4,6 +4,7 @@
 //! does not have, settings out of range, models whose parameters are not finite, sizes too large
 //! to hold.
 
+use rotor_chain::linalg::{LinalgError, SymmetricMatrix};
 use rotor_chain::prelude::*;
 use rotor_chain::statics::StaticsError;
 use rotor_chain::statics::antikink::{AntikinkOptions, antikink_at, antikink_relaxed, peierls_nabarro};
@@ -125,7 +126,8 @@ fn settings_out_of_range_are_errors() {
         invalid(relax(&model, &theta, &o).unwrap_err(), "damping");
         let o = ModeOptions { cluster: bad, ..ModeOptions::default() };
         invalid(modes(&model, &theta, &o).unwrap_err(), "cluster");
-        invalid(classify(&[1.0, 2.0], &[0.5], bad).unwrap_err(), "relative");
+        let k = SymmetricMatrix::tridiagonal(&[1.0, 2.0], &[0.5]).unwrap();
+        invalid(classify(&k, bad).unwrap_err(), "relative");
         invalid(maxwell_calladine(&model, &theta, Some(bad)).unwrap_err(), "tolerance");
         let o = AntikinkOptions { zero_tolerance: Some(bad), ..AntikinkOptions::default() };
         invalid(antikink_at(&model, 9.0, &o).unwrap_err(), "zero_tolerance");
@@ -137,8 +139,13 @@ fn settings_out_of_range_are_errors() {
     let o = RelaxOptions { time_step: 0.0, ..RelaxOptions::default() };
     invalid(relax(&model, &theta, &o).unwrap_err(), "time_step");
     // Bands with a NaN: the Sturm counts would be meaningless.
-    assert!(matches!(classify(&[1.0, f64::NAN], &[0.5], 1e-10), Err(StaticsError::Linalg(_))));
-    assert!(matches!(classify(&[1.0, 2.0], &[0.5, 0.5], 1e-10), Err(StaticsError::Linalg(_))));
+    let nan = SymmetricMatrix::tridiagonal(&[1.0, f64::NAN], &[0.5]).unwrap();
+    assert!(matches!(classify(&nan, 1e-10), Err(StaticsError::Linalg(_))));
+    // Bands of mismatched lengths are no matrix at all.
+    assert!(matches!(
+        SymmetricMatrix::tridiagonal(&[1.0, 2.0], &[0.5, 0.5]),
+        Err(LinalgError::DimensionMismatch { .. })
+    ));
 }
 
 #[test]

@@ -9,15 +9,22 @@
 //! - [`observe`]: trajectories, kinetic-energy fluctuations, Peierls-Nabarro trapping;
 //! - [`scatter`]: scattering on a stiffness impurity and its outcome (Sec. VI).
 
-pub mod integrate;
+/// The integrators, which live above the statics and the dynamics ([`crate::integrate`]);
+/// re-exported here, where earlier versions had them.
+#[doc(no_inline)]
+pub use crate::integrate;
 pub mod launch;
+#[cfg(feature = "alloc")]
 pub mod observe;
+#[cfg(feature = "alloc")]
 pub mod run;
+#[cfg(feature = "alloc")]
 pub mod scatter;
+#[cfg(feature = "alloc")]
 pub mod track;
 
+use crate::integrate::IntegrateError;
 use crate::statics::StaticsError;
-use integrate::IntegrateError;
 
 /// A dynamics run that could not be carried out.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
@@ -58,5 +65,27 @@ pub enum DynamicsError {
         value: f64,
         /// The rule it breaks, in words.
         rule: &'static str,
+    },
+    /// A chain's analysis given a model whose matrices are not in a chain's layout.
+    #[error("{what} of the model is not {expected}, as a rotor chain's is")]
+    NotAChain {
+        /// Which matrix.
+        what: &'static str,
+        /// The chain's layout.
+        expected: &'static str,
+    },
+    /// The kink's zero mode cannot be continued along the chain: a spring's compatibility entry
+    /// divides by zero or the recurrence overflows.
+    #[error(
+        "no translation mode: spring {spring} has compatibility entries C[p][p] = {left}, \
+         C[p][p+1] = {right}, so its zero mode cannot be continued past it"
+    )]
+    NoZeroMode {
+        /// The spring.
+        spring: usize,
+        /// `C[p][p]`.
+        left: f64,
+        /// `C[p][p + 1]`.
+        right: f64,
     },
 }

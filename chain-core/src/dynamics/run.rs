@@ -9,39 +9,20 @@
 use alloc::vec::Vec;
 
 use super::DynamicsError;
-use super::integrate::{
+use super::track::{Snapshot, SpaceTime, Tracker};
+/// The one way to choose an integrator ([`crate::integrate::Method`]), re-exported where runs are
+/// configured.
+pub use crate::integrate::Method;
+use crate::integrate::{
     AdaptiveOptions, DEFAULT_ENERGY_LIMIT, Flow, IntegrateError, Integrator, Report, Schedule, Sponge, State,
     VerletOptions, kinetic_energy,
 };
-use super::track::{Snapshot, SpaceTime, Tracker};
-use crate::model::ChainModel;
+use crate::model::{ChainModel, Potential, Stiffness};
 
 /// The most angles a space-time image ([`RunOptions::space_time`]) may hold: 2^27, 1 GiB of
 /// `f64`. Checked before the run starts ([`IntegrateError::SpaceTimeBudget`]), so a run of a long
 /// chain with many outputs fails at once instead of exhausting the memory after hours.
 pub const MAX_SPACE_TIME_VALUES: usize = 1 << 27;
-
-/// Which integrator a run uses.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum Method {
-    /// Velocity Verlet with the step [`RunOptions::dt`]: symplectic, one gradient per step.
-    Verlet,
-    /// DOP853 with these tolerances (the run's damping, sponge and energy limit apply).
-    Dop853 {
-        /// Relative tolerance of the error control.
-        rtol: f64,
-        /// Absolute tolerance of the error control, in radians and radians per `t`.
-        atol: f64,
-    },
-}
-
-impl Method {
-    /// DOP853 at its default tolerances (`rtol = 1e-10`, `atol = 1e-11`).
-    pub fn dop853() -> Self {
-        let d = AdaptiveOptions::default();
-        Method::Dop853 { rtol: d.rtol, atol: d.atol }
-    }
-}
 
 /// Settings of a run.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -113,7 +94,7 @@ impl Integrator for RunIntegrator {
         }
     }
 
-    fn integrate<M: ChainModel + ?Sized>(
+    fn integrate<M: Potential + ?Sized>(
         &self,
         model: &M,
         state: &mut State,
@@ -130,7 +111,7 @@ impl Integrator for RunIntegrator {
 impl RunOptions {
     /// The integrator of these options for `model` starting from `theta` (Verlet's default step
     /// comes from the tangent stiffness there).
-    pub fn integrator<M: ChainModel + ?Sized>(
+    pub fn integrator<M: Stiffness + ?Sized>(
         &self,
         model: &M,
         theta: &[f64],
@@ -156,6 +137,7 @@ impl RunOptions {
                 damping: self.damping,
                 sponge: self.absorbing_ends,
                 energy_limit: self.energy_limit,
+                omega_max: crate::integrate::omega_bound(model, theta).ok().map(|b| b.omega),
                 ..AdaptiveOptions::default()
             }),
         })

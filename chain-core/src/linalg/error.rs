@@ -15,6 +15,8 @@ pub enum Input {
     /// A scalar: the shift of a solve, the point of a Sturm count, or the target of
     /// [`eigenpairs_near`](super::eigenpairs_near).
     Shift,
+    /// The matrix's values.
+    Matrix,
 }
 
 impl fmt::Display for Input {
@@ -24,6 +26,7 @@ impl fmt::Display for Input {
             Input::Off => "off",
             Input::Rhs => "rhs",
             Input::Shift => "shift",
+            Input::Matrix => "the matrix's values",
         })
     }
 }
@@ -93,5 +96,24 @@ pub enum LinalgError {
         index: usize,
         /// The residual reached (relative, as the message says).
         residual: f64,
+    },
+    /// A sparse pattern that is not well formed.
+    #[error("sparse pattern: {0}")]
+    Pattern(#[from] crate::model::PatternError),
+    /// A matrix whose pattern does not fit the model's number of degrees of freedom.
+    #[error("the pattern has {found} rows, the model {expected} degrees of freedom")]
+    WrongDimension {
+        /// The model's degrees of freedom.
+        expected: usize,
+        /// The pattern's rows.
+        found: usize,
+    },
+    /// A sparse matrix too large for the dense path (`n x n` numbers above the bound).
+    #[error("a {n} x {n} matrix is too large for the dense algorithms: at most {max} numbers")]
+    TooLarge {
+        /// The dimension.
+        n: usize,
+        /// [`super::MAX_DENSE_VALUES`].
+        max: usize,
     },
 }

@@ -1,5 +1,7 @@
-//! Linear algebra on the chain's banded matrices (symmetric tridiagonal): spectra, lowest modes,
-//! Sturm counts and solves in O(n) to O(n^2), where a dense decomposition would cost O(n^3).
+//! Linear algebra of the analyses (with `alloc`; the errors always): [`SymmetricMatrix`], a
+//! model's tangent stiffness in its layout with the algorithms the analyses need, and beneath it
+//! the chain's fast path on banded matrices (symmetric tridiagonal): spectra, lowest modes, Sturm
+//! counts and solves in O(n) to O(n^2), where a dense decomposition would cost O(n^3).
 //!
 //! A symmetric tridiagonal matrix `T` is given by two slices: `diag` (length `n`) and `off`
 //! (length `n - 1`, `off[i] = T[i][i+1] = T[i+1][i]`), as in [`Tridiagonal`](crate::Tridiagonal).
@@ -16,6 +18,9 @@
 //!   within clusters. O(n) per eigenpair outside large clusters.
 //! - [`solve`](mod@solve): [`solve`](fn@solve), [`solve_shifted`], Gaussian elimination with
 //!   partial pivoting. O(n).
+//!
+//! - [`SymmetricMatrix`] (`symmetric.rs`): the tridiagonal path through the functions above, a
+//!   sparse upper triangle through dense decompositions up to [`MAX_DENSE_VALUES`].
 //!
 //! What they share (input checks, exact scaling, norms) is in the private `bands.rs`.
 //!
@@ -44,17 +49,32 @@
 //! `eps ||T||` (`||T||` the largest absolute row sum) and eigenvectors have residuals
 //! `||T v - lambda v||` of the same order, which is what backward-stable methods promise.
 
+#[cfg(feature = "alloc")]
 mod bands;
+#[cfg(feature = "alloc")]
 pub mod bisection;
 pub mod error;
+#[cfg(feature = "alloc")]
 pub mod inverse_iteration;
+#[cfg(feature = "alloc")]
 pub mod ql;
+#[cfg(feature = "alloc")]
 pub mod solve;
+#[cfg(feature = "alloc")]
 pub mod sturm;
+#[cfg(feature = "alloc")]
+mod symmetric;
 
+#[cfg(feature = "alloc")]
 pub use bisection::eigenvalues_in_index_range;
 pub use error::{Input, LinalgError};
+#[cfg(feature = "alloc")]
 pub use inverse_iteration::{Eigenpair, eigenpairs_in_index_range, eigenpairs_near, lowest_eigenpairs};
+#[cfg(feature = "alloc")]
 pub use ql::{eigenpairs, eigenvalues, eigenvalues_ql};
+#[cfg(feature = "alloc")]
 pub use solve::{solve, solve_shifted};
+#[cfg(feature = "alloc")]
 pub use sturm::{count_below, try_count_below};
+#[cfg(feature = "alloc")]
+pub use symmetric::{MAX_DENSE_VALUES, SymmetricMatrix};

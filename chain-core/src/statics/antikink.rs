@@ -36,10 +36,11 @@
 use alloc::vec::Vec;
 
 use super::classify::{Classification, EquilibriumKind, classify};
-use super::equilibrium::{NewtonOptions, RelaxOptions, newton, relax, stiffness};
+use super::equilibrium::{NewtonOptions, RelaxOptions, newton, relax};
 use super::error::StaticsError;
 use super::kink::reflected_kink;
 use super::walls::{Charge, domain_walls};
+use crate::linalg::SymmetricMatrix;
 use crate::model::ChainModel;
 
 /// How the chain's ends are treated (see the module doc).
@@ -141,9 +142,9 @@ impl Antikink {
             });
         }
         // With held ends the stability is that of the moving rotors.
-        let (diag, off) = stiffness(model, &theta);
-        let (diag, off) = super::equilibrium::restricted(&diag, &off, options.hold());
-        let classification = classify(&diag, &off, options.zero_tolerance.unwrap_or(DEFAULT_ZERO_TOLERANCE))?;
+        let k = SymmetricMatrix::tangent_stiffness(model, &theta)?;
+        let k = k.principal(super::equilibrium::moving(theta.len(), options.hold()));
+        let classification = classify(&k, options.zero_tolerance.unwrap_or(DEFAULT_ZERO_TOLERANCE))?;
         Ok(Self {
             energy: model.energy(&theta),
             centre: antikinks[0],

@@ -7,7 +7,7 @@
 
 use super::error::StaticsError;
 use super::validate;
-use crate::linalg;
+use crate::linalg::SymmetricMatrix;
 
 /// What kind of equilibrium the spectrum shows.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -39,18 +39,20 @@ pub struct Classification {
     pub kind: EquilibriumKind,
 }
 
-/// Classifies the symmetric tridiagonal tangent stiffness `(diag, off)`; eigenvalues within
-/// `relative * ||K||` of zero count as zero. A relative tolerance of `1e-10` separates rounding
-/// (`~1e-16`) and exponentially soft edge modes from physical soft modes.
+/// Classifies the tangent stiffness `k` (of any model, [`SymmetricMatrix::tangent_stiffness`]):
+/// eigenvalues within `relative * ||K||` of zero count as zero. A relative tolerance of `1e-10`
+/// separates rounding (`~1e-16`) and exponentially soft edge modes from physical soft modes.
+/// The counts are Sturm counts for a chain's tridiagonal `K` (O(n)).
 ///
 /// # Errors
-/// Bands of mismatched lengths or with a non-finite entry ([`StaticsError::Linalg`]), or a
-/// `relative` tolerance that is not finite and `>= 0`.
-pub fn classify(diag: &[f64], off: &[f64], relative: f64) -> Result<Classification, StaticsError> {
+/// A non-finite entry ([`StaticsError::Linalg`]), or a `relative` tolerance that is not finite
+/// and `>= 0`.
+pub fn classify(k: &SymmetricMatrix, relative: f64) -> Result<Classification, StaticsError> {
     let relative = validate::non_negative("relative tolerance", relative)?;
-    let tolerance = relative * super::equilibrium::norm(diag, off);
-    let index = linalg::try_count_below(diag, off, -tolerance)?;
-    let nullity = linalg::try_count_below(diag, off, tolerance)? - index;
+    k.check_finite()?;
+    let tolerance = relative * k.inf_norm();
+    let index = k.count_below(-tolerance)?;
+    let nullity = k.count_below(tolerance)? - index;
     let kind = match (index, nullity) {
         (0, 0) => EquilibriumKind::Minimum,
         (0, nullity) => EquilibriumKind::DegenerateMinimum { nullity },

@@ -63,8 +63,7 @@ pub fn branch_slope<M: ChainModel + ?Sized>(
     let mut theta = vec![0.0; n];
     theta[p] = theta_p;
     theta[p + 1] = theta_next;
-    let (mut left, mut right) = (vec![0.0; n - 1], vec![0.0; n - 1]);
-    model.compatibility_into(&theta, &mut left, &mut right);
+    let (left, right) = super::counting::compatibility(model, &theta);
     // C = dl / d(r theta): undo the rotor lengths to get dl/dtheta.
     Ok(-(left[p] * model.rotor_length(p)) / (right[p] * model.rotor_length(p + 1)))
 }

@@ -1,17 +1,18 @@
-//! Maxwell-Calladine counting (paper Sec. VII-A; Kane and Lubensky 2014).
+//! Maxwell-Calladine counting (paper Sec. VII-A; Kane and Lubensky 2014), for any
+//! [`SpringNetwork`].
 //!
-//! The compatibility matrix `C` (`(n - 1) x n`, `C[p][i] = dl_p / d(r_i theta_i)`) maps rotor
-//! displacements to spring extensions. Its null space holds the **zero modes** (displacements that
-//! stretch no spring) and the null space of `C^T` the **states of self-stress** (tensions in
-//! equilibrium with no load). With `rank C = rho`, there are `n - rho` zero modes and
-//! `(n - 1) - rho` self-stresses, so `N_zero - N_selfstress = n - (n - 1) = 1` on every
-//! configuration, whatever its geometry.
+//! The compatibility matrix `C` (`m x n` for `m` springs and `n` degrees of freedom; a chain's is
+//! `(n - 1) x n`, `C[p][i] = dl_p / d(r_i theta_i)`) maps displacements to spring extensions. Its
+//! null space holds the **zero modes** (displacements that stretch no spring) and the null space
+//! of `C^T` the **states of self-stress** (tensions in equilibrium with no load). With
+//! `rank C = rho`, there are `n - rho` zero modes and `m - rho` self-stresses, so
+//! `N_zero - N_selfstress = n - m` on every configuration, whatever its geometry (1 for a chain).
 //!
 //! The rank comes from the singular values of `C` (a dense SVD; `C` is small next to the O(n^3)
 //! it costs only for chains of thousands of rotors) with the tolerance
 //! `max(n, n - 1) * epsilon * sigma_max` (the usual numerical-rank rule). The vectors of both null
 //! spaces are singular vectors of `C` with a row of zeros appended (square, so that its
-//! decomposition holds all `n` right vectors; nalgebra's decomposition with vectors is less
+//! decomposition holds all right vectors; nalgebra's decomposition with vectors is less
 //! accurate in its singular values, 1e-5 to 3e-3 seen, so the values come from a decomposition
 //! without vectors): the `n - rank` right vectors that `C` maps nearest to zero are the zero
 //! modes, and the `n - rank` left ones that `C^T` maps nearest to zero span the self-stresses and
@@ -19,8 +20,8 @@
 //! cannot tell apart singular values below `sqrt(epsilon) sigma_max`: a singular value of 3e-14,
 //! just above the rank tolerance, left a "zero mode" with `|C z| = 3e-14`, a mix of the null
 //! vector and its neighbour (found by a mirror-symmetry audit; the singular vectors give
-//! `|C z| ~ epsilon sigma_max`). The **tensional modes** are eigenvectors of the tridiagonal
-//! `C C^T`.
+//! `|C z| ~ epsilon sigma_max`). The **tensional modes** of a chain are eigenvectors of the
+//! tridiagonal `C C^T`.
 
 use alloc::vec;
 use alloc::vec::Vec;
@@ -30,12 +31,13 @@ use nalgebra::DMatrix;
 use super::error::StaticsError;
 use super::validate;
 use crate::linalg;
-use crate::model::ChainModel;
+use crate::model::layout::bidiagonal_parts;
+use crate::model::{ChainModel, CompatibilityLayout, SpringNetwork};
 
 /// The outcome of the counting at one configuration.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Counting {
-    /// Rotors (degrees of freedom).
+    /// Degrees of freedom (the rotors of a chain).
     pub rotors: usize,
     /// Springs (constraints).
     pub springs: usize,
@@ -67,34 +69,97 @@ pub struct TensionalMode {
     pub tensions: Vec<f64>,
 }
 
-/// The bands of `C` at `theta`.
+/// The bands of a chain's `C` at `theta`: `(C[p][p], C[p][p + 1])`.
 pub fn compatibility<M: ChainModel + ?Sized>(model: &M, theta: &[f64]) -> (Vec<f64>, Vec<f64>) {
     let m = model.spring_count();
-    let (mut left, mut right) = (vec![0.0; m], vec![0.0; m]);
-    model.compatibility_into(theta, &mut left, &mut right);
-    (left, right)
+    let mut values = vec![0.0; 2 * m];
+    model.compatibility_into(theta, &mut values);
+    let (left, right) = bidiagonal_parts(m, &values);
+    (left.to_vec(), right.to_vec())
 }
 
-/// The bands of `C` at `theta`, checked: `theta` one finite angle per rotor, and every entry of
-/// `C` finite (a model whose parameters make a spring of zero length gives NaN).
-fn checked_compatibility<M: ChainModel + ?Sized>(
-    model: &M,
-    theta: &[f64],
-) -> Result<(Vec<f64>, Vec<f64>), StaticsError> {
-    validate::angles(model, theta)?;
-    let (left, right) = compatibility(model, theta);
-    validate::finite("the compatibility matrix's diagonal", &left)?;
-    validate::finite("the compatibility matrix's superdiagonal", &right)?;
-    Ok((left, right))
+/// A compatibility matrix by rows, from any layout: each row's `(column, value)` entries,
+/// ascending.
+struct Rows {
+    columns: usize,
+    starts: Vec<usize>,
+    entries: Vec<(usize, f64)>,
+}
+
+impl Rows {
+    /// `C` of `model` at `theta`, checked: `theta` one finite value per degree of freedom, every
+    /// entry finite (a model whose parameters make a spring of zero length gives NaN), the layout
+    /// well formed.
+    fn of<M: SpringNetwork + ?Sized>(model: &M, theta: &[f64]) -> Result<Self, StaticsError> {
+        validate::angles(model, theta)?;
+        let (n, m) = (model.dof_count(), model.spring_count());
+        let mut values = vec![0.0; model.compatibility_values()];
+        model.compatibility_into(theta, &mut values);
+        validate::finite("the compatibility matrix", &values)?;
+        let (mut starts, mut entries) = (vec![0], Vec::with_capacity(values.len()));
+        match model.compatibility_layout() {
+            CompatibilityLayout::Bidiagonal => {
+                let (left, right) = bidiagonal_parts(m, &values);
+                for p in 0..m {
+                    entries.extend([(p, left[p]), (p + 1, right[p])]);
+                    starts.push(entries.len());
+                }
+            }
+            CompatibilityLayout::Sparse(pattern) => {
+                pattern.check(false).map_err(crate::linalg::LinalgError::from)?;
+                entries.extend(pattern.columns.iter().copied().zip(values.iter().copied()));
+                starts = pattern.row_starts.to_vec();
+            }
+        }
+        if starts.len() != m + 1 || entries.iter().any(|&(c, _)| c >= n) {
+            let what = "the compatibility matrix's rows";
+            return Err(StaticsError::WrongLength { what, len: starts.len() - 1, expected: m });
+        }
+        Ok(Self { columns: n, starts, entries })
+    }
+
+    fn rows(&self) -> usize {
+        self.starts.len() - 1
+    }
+
+    fn row(&self, p: usize) -> &[(usize, f64)] {
+        &self.entries[self.starts[p]..self.starts[p + 1]]
+    }
+
+    fn to_dense(&self) -> DMatrix<f64> {
+        let mut c = DMatrix::zeros(self.rows(), self.columns);
+        for p in 0..self.rows() {
+            for &(i, v) in self.row(p) {
+                c[(p, i)] = v;
+            }
+        }
+        c
+    }
+
+    /// `|C v|^2`.
+    fn residual(&self, v: &[f64]) -> f64 {
+        (0..self.rows()).map(|p| self.row(p).iter().fold(0.0, |s, &(i, c)| s + c * v[i])).map(|x| x * x).sum()
+    }
+
+    /// `|C^T u|^2` for `u` with one entry per row (and any more, ignored).
+    fn transpose_residual(&self, u: &[f64]) -> f64 {
+        let mut out = vec![0.0; self.columns];
+        for (p, &up) in u.iter().enumerate().take(self.rows()) {
+            for &(i, c) in self.row(p) {
+                out[i] += c * up;
+            }
+        }
+        out.iter().map(|x| x * x).sum()
+    }
 }
 
 /// Maxwell-Calladine counting at `theta`; `tolerance` overrides the numerical-rank rule.
 ///
 /// # Errors
-/// `theta` not one finite angle per rotor, a compatibility matrix that is not finite, a
-/// `tolerance` that is not finite and `>= 0`, or a failed SVD or eigensolver (each iteration
-/// bounded).
-pub fn maxwell_calladine<M: ChainModel + ?Sized>(
+/// `theta` not one finite value per degree of freedom, a compatibility matrix that is not finite
+/// or not well formed, a `tolerance` that is not finite and `>= 0`, a matrix too large for the
+/// dense decomposition, or a failed SVD (each iteration bounded).
+pub fn maxwell_calladine<M: SpringNetwork + ?Sized>(
     model: &M,
     theta: &[f64],
     tolerance: Option<f64>,
@@ -102,18 +167,16 @@ pub fn maxwell_calladine<M: ChainModel + ?Sized>(
     if let Some(t) = tolerance {
         validate::non_negative("tolerance", t)?;
     }
-    let (n, m) = (model.rotor_count(), model.spring_count());
-    let (left, right) = checked_compatibility(model, theta)?;
-    validate::at_most("rotors x springs of the dense SVD", n.saturating_mul(m), super::MAX_DENSE_VALUES)?;
-    let c = DMatrix::from_fn(m, n, |p, i| {
-        if i == p {
-            left[p]
-        } else if i == p + 1 {
-            right[p]
-        } else {
-            0.0
-        }
-    });
+    let (n, m) = (model.dof_count(), model.spring_count());
+    let rows = Rows::of(model, theta)?;
+    // The square matrix of the vectors' decomposition holds max(n, m)^2 numbers.
+    let side = n.max(m);
+    validate::at_most(
+        "rotors x springs of the dense SVD",
+        side.saturating_mul(side),
+        super::MAX_DENSE_VALUES,
+    )?;
+    let c = rows.to_dense();
     // nalgebra's `singular_values()` iterates without a bound; LAPACK's `dbdsqr` allows
     // 6 n^2 sweeps, which is what this gives.
     let budget = 6 * n.max(m) * n.max(m);
@@ -133,10 +196,12 @@ pub fn maxwell_calladine<M: ChainModel + ?Sized>(
     let sigma_max = singular_values.first().copied().unwrap_or(0.0);
     let tolerance = tolerance.unwrap_or(n.max(m) as f64 * f64::EPSILON * sigma_max);
     let rank = singular_values.iter().filter(|&&s| s > tolerance).count();
-    // The vectors: `C` with a row of zeros appended, square, whose decomposition holds all `n`
-    // right vectors. On the right, `n - rank` of them span the null space of `C` (the zero
-    // modes); on the left, the self-stresses `[s; 0]` and the appended row's `e_n`.
-    let square = c.resize(n, n, 0.0);
+    // The vectors: `C` padded square with rows (or columns) of zeros, whose decomposition holds
+    // every right and left vector. On the right, `side - rank` of them span the null space of the
+    // padded `C`: the `n - rank` zero modes and, for a network with more springs than degrees of
+    // freedom, the padded columns' axes; on the left, the self-stresses `[s; 0]` and the padded
+    // rows' axes (a chain's one appended row `e_n`).
+    let square = c.resize(side, side, 0.0);
     let full = square.try_svd(true, true, f64::EPSILON, budget).ok_or_else(failed)?;
     let (u, v_t) = (full.u.as_ref().ok_or_else(failed)?, full.v_t.as_ref().ok_or_else(failed)?);
     // Which vectors span the null spaces is read from what `C` does to them (`|C v|`, and
@@ -144,23 +209,25 @@ pub fn maxwell_calladine<M: ChainModel + ?Sized>(
     // this decomposition pairs them with: with vectors, nalgebra's values can be off (3e-3 seen
     // on the square `C` of a 41-rotor chain, which is why the values above come from the
     // vector-free decomposition).
-    let right_residual =
-        |v: &[f64]| -> f64 { (0..m).map(|p| left[p] * v[p] + right[p] * v[p + 1]).map(|x| x * x).sum() };
-    let left_residual = |u: &[f64]| -> f64 {
-        (0..n)
-            .map(|i| {
-                let below = if i < m { left[i] * u[i] } else { 0.0 };
-                let above = if i > 0 { right[i - 1] * u[i - 1] } else { 0.0 };
-                (below + above) * (below + above)
-            })
-            .sum()
-    };
-    let rows: Vec<Vec<f64>> = (0..n).map(|j| v_t.row(j).iter().copied().collect()).collect();
-    let columns: Vec<Vec<f64>> = (0..n).map(|j| u.column(j).iter().copied().collect()).collect();
-    let zero_modes = least(&rows, n - rank, right_residual).into_iter().map(oriented).collect();
-    let stresses_and_axis = least(&columns, n - rank, left_residual);
-    let self_stresses = without_last_axis(&stresses_and_axis).into_iter().map(oriented).collect();
+    // The `side - rank` vectors of each side that the padded matrix maps nearest to zero span
+    // the null space and the padded axes (which the residuals, reading only the first `n`
+    // columns or `m` rows, map to zero); the axes are then taken out of the span.
+    let right_vectors: Vec<Vec<f64>> = (0..side).map(|j| v_t.row(j).iter().copied().collect()).collect();
+    let left_vectors: Vec<Vec<f64>> = (0..side).map(|j| u.column(j).iter().copied().collect()).collect();
+    let zero_span = least(&right_vectors, side - rank, |v| rows.residual(v));
+    let zero_modes = without_last_axes(zero_span, side - n).into_iter().map(oriented).collect();
+    let stress_span = least(&left_vectors, side - rank, |u| rows.transpose_residual(u));
+    let self_stresses = without_last_axes(stress_span, side - m).into_iter().map(oriented).collect();
     Ok(Counting { rotors: n, springs: m, singular_values, tolerance, rank, zero_modes, self_stresses })
+}
+
+/// [`without_last_axis`] `count` times: the span without its last `count` axes (the padding of
+/// the decomposition's square matrix), each vector `count` entries shorter.
+fn without_last_axes(mut basis: Vec<Vec<f64>>, count: usize) -> Vec<Vec<f64>> {
+    for _ in 0..count {
+        basis = without_last_axis(&basis);
+    }
+    basis
 }
 
 /// An orthonormal basis of the vectors of `span(basis)` (orthonormal, each of length `n`, the
@@ -225,7 +292,10 @@ pub fn tensional_modes<M: ChainModel + ?Sized>(
     theta: &[f64],
     count: usize,
 ) -> Result<Vec<TensionalMode>, StaticsError> {
-    let (left, right) = checked_compatibility(model, theta)?;
+    validate::angles(model, theta)?;
+    let (left, right) = compatibility(model, theta);
+    validate::finite("the compatibility matrix's diagonal", &left)?;
+    validate::finite("the compatibility matrix's superdiagonal", &right)?;
     let (diag, off) = cct(&left, &right);
     Ok(linalg::lowest_eigenpairs(&diag, &off, count.min(left.len()))?
         .into_iter()

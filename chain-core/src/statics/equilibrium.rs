@@ -1,10 +1,14 @@
 //! Finding equilibria `dV/dtheta = 0`: dissipative Newtonian dynamics (the paper's relaxation,
 //! Sec. II) and a Newton polish on the gradient.
 //!
+//! Both work on any model with a tangent stiffness ([`Stiffness`]): a rotor chain, or a model of
+//! your own. "The ends" are the first and the last degree of freedom (a chain's end rotors).
+//!
 //! **Newton's method** converges to the equilibrium nearest its starting point whatever its
 //! index, so it finds saddles (the Peierls-Nabarro maximum) as well as minima. Each step solves
-//! `(K + mu I) delta = -g` with the tridiagonal tangent stiffness `K` by Gaussian elimination with
-//! partial pivoting (`K` is indefinite at a saddle), in O(n).
+//! `(K + mu I) delta = -g` with the tangent stiffness `K` by Gaussian elimination with partial
+//! pivoting (`K` is indefinite at a saddle): in O(n) for a chain's tridiagonal `K`
+//! ([`SymmetricMatrix`]).
 //!
 //! **Near-null modes (constrained Newton).** A free chain always has a mechanism
 //! (Maxwell-Calladine: n rotors, n - 1 springs), and around an antikink the two uniform domains
@@ -39,8 +43,10 @@ use alloc::vec::Vec;
 
 use super::error::StaticsError;
 use super::validate;
-use crate::linalg;
-use crate::model::ChainModel;
+use crate::integrate::bound::omega_bound;
+use crate::integrate::{State, Verlet};
+use crate::linalg::SymmetricMatrix;
+use crate::model::Stiffness;
 
 /// Settings of [`newton`].
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -121,32 +127,6 @@ pub(crate) fn moving(n: usize, hold_ends: bool) -> core::ops::Range<usize> {
     if hold_ends && n > 2 { 1..n - 1 } else { 0..n }
 }
 
-/// The tangent stiffness restricted to the moving rotors (bands of any lengths are cut to the
-/// block both describe).
-pub fn restricted(diag: &[f64], off: &[f64], hold_ends: bool) -> (Vec<f64>, Vec<f64>) {
-    let n = diag.len().min(off.len() + 1);
-    let r = moving(n, hold_ends);
-    (diag[r.clone()].to_vec(), off[r.start..r.end.saturating_sub(1).max(r.start)].to_vec())
-}
-
-/// The tangent stiffness of `model` at `theta` as `(diag, off)`.
-pub fn stiffness<M: ChainModel + ?Sized>(model: &M, theta: &[f64]) -> (Vec<f64>, Vec<f64>) {
-    let n = model.rotor_count();
-    let (mut diag, mut off) = (vec![0.0; n], vec![0.0; n - 1]);
-    model.tangent_stiffness_into(theta, &mut diag, &mut off);
-    (diag, off)
-}
-
-/// `max_i sum_j |K_ij|`, the infinity norm of a symmetric tridiagonal matrix (NaN if an entry
-/// is NaN).
-pub fn norm(diag: &[f64], off: &[f64]) -> f64 {
-    (0..diag.len())
-        .map(|i| {
-            diag[i].abs() + if i > 0 { off[i - 1].abs() } else { 0.0 } + off.get(i).map_or(0.0, |o| o.abs())
-        })
-        .fold(0.0, nan_max)
-}
-
 /// `max(a, b)`, but NaN if either is: `f64::max` drops a NaN, which would turn a NaN force into
 /// a zero residual.
 fn nan_max(a: f64, b: f64) -> f64 {
@@ -193,21 +173,21 @@ fn finite_residual(
 }
 
 /// How many eigenvalues of `K` lie within `tolerance` of zero.
-fn near_null_count(diag: &[f64], off: &[f64], tolerance: f64) -> usize {
-    linalg::count_below(diag, off, tolerance) - linalg::count_below(diag, off, -tolerance)
+fn near_null_count(k: &SymmetricMatrix, tolerance: f64) -> Result<usize, StaticsError> {
+    Ok(k.count_below(tolerance)? - k.count_below(-tolerance)?)
 }
 
 /// The eigenvectors of the `count` eigenvalues of `K` nearest zero (orthonormal).
-fn nearest_to_zero(diag: &[f64], off: &[f64], count: usize) -> Result<Vec<Vec<f64>>, StaticsError> {
+fn nearest_to_zero(k: &SymmetricMatrix, count: usize) -> Result<Vec<Vec<f64>>, StaticsError> {
     if count == 0 {
         return Ok(Vec::new());
     }
-    Ok(linalg::eigenpairs_near(diag, off, 0.0, count)?.into_iter().map(|p| p.vector).collect())
+    Ok(k.eigenpairs_near(0.0, count)?.into_iter().map(|p| p.vector).collect())
 }
 
 /// The eigenvectors of `K` with eigenvalues within `tolerance` of zero (orthonormal).
-fn near_null(diag: &[f64], off: &[f64], tolerance: f64) -> Result<Vec<Vec<f64>>, StaticsError> {
-    nearest_to_zero(diag, off, near_null_count(diag, off, tolerance))
+fn near_null(k: &SymmetricMatrix, tolerance: f64) -> Result<Vec<Vec<f64>>, StaticsError> {
+    nearest_to_zero(k, near_null_count(k, tolerance)?)
 }
 
 /// `v - sum_k (b_k . v) b_k` for an orthonormal basis `b`.
@@ -228,7 +208,7 @@ fn projected_residual(g: &[f64], basis: &[Vec<f64>], scale: f64) -> f64 {
 
 /// Newton's method on the gradient from `theta`: the nearest equilibrium, of any index, with the
 /// near-null directions (and, if asked, the end rotors) held (see the module doc).
-pub fn newton<M: ChainModel + ?Sized>(
+pub fn newton<M: Stiffness + ?Sized>(
     model: &M,
     theta: &[f64],
     options: &NewtonOptions,
@@ -236,26 +216,24 @@ pub fn newton<M: ChainModel + ?Sized>(
     validate::angles(model, theta)?;
     options.check()?;
     const METHOD: &str = "Newton's method on the gradient";
-    let n = model.rotor_count();
+    let n = model.dof_count();
     let range = moving(n, options.hold_ends);
     let mut theta = theta.to_vec();
     let mut g = vec![0.0; n];
     let mut trial = vec![0.0; n];
     let mut g_trial = vec![0.0; n];
-    // Gradient and tangent stiffness in one pass ([`ChainModel::energy_gradient_stiffness_into`]),
+    // Gradient and tangent stiffness in one pass ([`Stiffness::energy_gradient_stiffness_into`]),
     // at the start and at every trial point: the stiffness of an accepted trial is the next
     // iteration's (most steps are accepted at once).
-    let (mut diag, mut off) = (vec![0.0; n], vec![0.0; n.saturating_sub(1)]);
-    let (mut d_trial, mut o_trial) = (diag.clone(), off.clone());
-    model.energy_gradient_stiffness_into(&theta, &mut g, &mut diag, &mut off);
+    let mut k = SymmetricMatrix::for_model(model)?;
+    let mut k_trial = k.clone();
+    model.energy_gradient_stiffness_into(&theta, &mut g, k.values_mut());
     // Finite angles can still give non-finite forces (a model whose parameters are not finite,
     // a spring of zero length): an error, not a NaN residual.
     validate::finite("the model's gradient at theta", &g)?;
-    validate::finite("the model's tangent stiffness (diagonal) at theta", &diag)?;
-    validate::finite("the model's tangent stiffness (off-diagonal) at theta", &off)?;
-    let scale = norm(&diag, &off).max(f64::MIN_POSITIVE);
-    let (rd, ro) = restricted(&diag, &off, options.hold_ends);
-    let mut held = near_null(&rd, &ro, options.null_tolerance * scale)?;
+    validate::finite("the model's tangent stiffness at theta", k.values())?;
+    let scale = k.inf_norm().max(f64::MIN_POSITIVE);
+    let mut held = near_null(&k.principal(range.clone()), options.null_tolerance * scale)?;
     let mut residual = projected_residual(&g[range.clone()], &held, scale);
     let mut previous = f64::INFINITY;
     let mut iterations = 0;
@@ -269,7 +247,7 @@ pub fn newton<M: ChainModel + ?Sized>(
             });
         }
         iterations += 1;
-        let (rd, ro) = restricted(&diag, &off, options.hold_ends);
+        let moving = k.principal(range.clone());
         // The held set only grows (a borderline eigenvalue must not flip in and out), and the
         // residual is re-measured in the new basis so the line search compares like with like.
         // When a step barely helps, the softest free direction is held too: there is no exact
@@ -277,16 +255,16 @@ pub fn newton<M: ChainModel + ?Sized>(
         // is the point of the adiabatic trajectory at this centring.
         let stagnating = iterations > 1 && residual > 0.5 * previous;
         let grow = usize::from(stagnating && held.len() < options.max_held);
-        let count = (held.len() + grow).max(near_null_count(&rd, &ro, options.null_tolerance * scale));
+        let count = (held.len() + grow).max(near_null_count(&moving, options.null_tolerance * scale)?);
         previous = residual;
-        held = nearest_to_zero(&rd, &ro, count)?;
+        held = nearest_to_zero(&moving, count)?;
         residual = projected_residual(&g[range.clone()], &held, scale);
         if residual <= options.tolerance {
             break;
         }
         let mut rhs: Vec<f64> = g[range.clone()].iter().map(|x| -x).collect();
         project_out(&mut rhs, &held);
-        let mut delta = linalg::solve_shifted(&rd, &ro, -options.shift * scale, &rhs)?;
+        let mut delta = moving.solve_shifted(-options.shift * scale, &rhs)?;
         project_out(&mut delta, &held);
         // Backtracking on the projected force: the full step, halved until it decreases.
         let mut alpha = 1.0;
@@ -295,13 +273,12 @@ pub fn newton<M: ChainModel + ?Sized>(
             for (t, d) in trial[range.clone()].iter_mut().zip(&delta) {
                 *t += alpha * d;
             }
-            model.energy_gradient_stiffness_into(&trial, &mut g_trial, &mut d_trial, &mut o_trial);
+            model.energy_gradient_stiffness_into(&trial, &mut g_trial, k_trial.values_mut());
             let r = projected_residual(&g_trial[range.clone()], &held, scale);
             if r < residual || alpha < 1e-6 {
                 core::mem::swap(&mut theta, &mut trial);
                 core::mem::swap(&mut g, &mut g_trial);
-                core::mem::swap(&mut diag, &mut d_trial);
-                core::mem::swap(&mut off, &mut o_trial);
+                core::mem::swap(&mut k, &mut k_trial);
                 residual = r;
                 break;
             }
@@ -316,36 +293,32 @@ pub fn newton<M: ChainModel + ?Sized>(
 /// Dissipative Newtonian dynamics from rest at `theta` (paper Sec. II), until the forces fall
 /// below the tolerance. Returns the relaxed angles and the number of time steps taken.
 ///
-/// The steps are those of the dynamics' damped velocity Verlet
-/// ([`Stepper`](crate::dynamics::integrate::verlet::Stepper): the damping applied as an exact
-/// decay of the velocities), with the end rotors held if asked.
-pub fn relax<M: ChainModel + ?Sized>(
+/// The steps are those of the damped velocity Verlet of [`Verlet`] (the damping applied as an
+/// exact decay of the velocities), with the step and the damping scaled by the integrators' bound
+/// on the fastest mode ([`omega_bound`]), and the end degrees of freedom held if asked.
+pub fn relax<M: Stiffness + ?Sized>(
     model: &M,
     theta: &[f64],
     options: &RelaxOptions,
 ) -> Result<(Vec<f64>, usize), StaticsError> {
-    use crate::dynamics::integrate::State;
-    use crate::dynamics::integrate::verlet::Stepper;
     validate::angles(model, theta)?;
     options.check()?;
-    let n = model.rotor_count();
-    let (diag, off) = stiffness(model, theta);
-    let scale = norm(&diag, &off).max(f64::MIN_POSITIVE);
-    let min_inertia = (0..n).map(|i| model.inertia(i)).fold(f64::INFINITY, f64::min);
-    // Gershgorin: every eigenvalue of K is at most ||K||, so omega_max <= sqrt(||K|| / I_min).
-    let omega_max = crate::math::sqrt(scale / min_inertia);
-    let dt = options.time_step / omega_max;
-    let gamma = options.damping * omega_max;
-    let range = moving(n, options.hold_ends);
+    let n = model.dof_count();
     let no_convergence = |iterations: usize, residual: f64| StaticsError::NoConvergence {
         method: "dissipative dynamics",
         iterations,
         residual,
         tolerance: options.tolerance,
     };
-    let mut state = State::at_rest(theta.to_vec());
+    // The integrators' bound on the fastest mode: omega_max <= sqrt(||K|| / I_min).
+    let bound = omega_bound(model, theta).map_err(|_| no_convergence(0, f64::NAN))?;
+    let scale = bound.norm.max(f64::MIN_POSITIVE);
+    let dt = options.time_step / bound.omega;
+    let gamma = options.damping * bound.omega;
+    let range = moving(n, options.hold_ends);
     let rates = vec![gamma; n];
-    let mut stepper = Stepper::new(model, &mut state, dt, &rates).map_err(|_| no_convergence(0, f64::NAN))?;
+    let mut stepper = Verlet::damped(model, State::at_rest(theta.to_vec()), dt, &rates)
+        .map_err(|_| no_convergence(0, f64::NAN))?;
     for i in (0..n).filter(|i| !range.contains(i)) {
         stepper.hold(i);
     }
@@ -353,14 +326,14 @@ pub fn relax<M: ChainModel + ?Sized>(
     loop {
         let residual = max_abs(&stepper.gradient()[range.clone()]) / scale;
         if residual <= options.tolerance {
-            return Ok((stepper.state().theta.clone(), step));
+            return Ok((stepper.into_state().theta, step));
         }
         if !residual.is_finite() || step == options.max_steps {
             return Err(no_convergence(step, residual));
         }
         step += 1;
         // Verlet counts its own time; relaxation only needs the configuration.
-        if stepper.step(step as f64 * dt).is_err() {
+        if stepper.step_to(model, step as f64 * dt).is_err() {
             return Err(no_convergence(step, f64::NAN));
         }
     }

@@ -1,4 +1,6 @@
-//! The zero-energy kink at any centre (paper Sec. II), and the mechanism it moves along.
+//! The zero-energy kink at any centre (paper Sec. II), built by the branch solve (into a caller's
+//! array without a heap, or into a new `Vec`); the paper's reflected kink, the first
+//! approximation of the antikink; and the mechanism, the kink moved along the chain.
 //!
 //! Forward iteration of the branch map from the left end cannot centre a kink deep in a long
 //! chain: near `+theta_bar` the map's slope is `F' = (a + 2 r sin theta_bar)/(a - 2 r sin theta_bar)`
@@ -6,18 +8,140 @@
 //! below double precision. Instead the kink is built **outward from its centre**: the forward map
 //! to the right and the inverse map to the left. Each runs into the *attracting* fixed point of its
 //! direction (`-theta_bar` to the right, `+theta_bar` to the left), so rounding errors shrink at
-//! every step, whatever the length of the chain.
+//! every step, whatever the length of the chain and the float type.
 //!
 //! The centre is the wall position of Appendix C: for an integer centre `c` rotor `c` stands
 //! vertical; for `c = i + f` the angles of rotors `i` and `i + 1` are chosen on the spring-`i`
-//! constraint so that the interpolated sign change sits at `i + f`.
+//! constraint, by bisection, so that the interpolated sign change sits at `i + f`.
 
+#[cfg(feature = "alloc")]
 use alloc::vec;
+#[cfg(feature = "alloc")]
 use alloc::vec::Vec;
 
 use super::error::StaticsError;
-use crate::embedded::{self, EmbeddedError};
+use super::walls::{Charge, count_walls};
+use crate::model::ChainGeometry;
+#[cfg(feature = "alloc")]
 use crate::model::ChainModel;
+use crate::real::Real;
+
+/// The most bisection steps for a fractional centre: each halves the bracket, so 200 reach the
+/// float's resolution from any bracket (64 suffice for `f64`); the loop stops earlier when the
+/// midpoint no longer moves.
+const BISECTION_STEPS: usize = 200;
+
+/// Writes the zero-energy kink of `model` centred at `centre` (in rotor indices,
+/// `0 <= centre <= n - 1`) into `theta`, which must hold one angle per rotor. At `centre = 0` or
+/// `n - 1` the wall sits on the end rotor, which stands vertical: the wall has reached the end and
+/// the chain is one domain (as for the statics' `kink`). A centre inside the chain whose profile
+/// shows no wall (a `theta_bar` so small that the wall is far wider than the chain and its angles
+/// round to zero) is [`StaticsError::NoWall`]. The wall's interpolated sign change sits at
+/// `centre` to about `eps a / (r theta_bar^2)` sites (the statics' `kink` says why), below 1e-12
+/// for `theta_bar >= 0.01`.
+pub fn kink_into<T: Real, M: ChainGeometry<T> + ?Sized>(
+    model: &M,
+    centre: T,
+    theta: &mut [T],
+) -> Result<(), StaticsError> {
+    wall_into(model, centre, theta, Wall::Kink)
+}
+
+/// Writes the paper's first approximation of the antikink (Sec. II, Fig. `fig:akcobweb`) into
+/// `theta`: the kink's spring points reflected across the diagonal of the cobweb plot. Every spring
+/// `p` is at rest, with its two angles swapped: `(theta_{p+1}, theta_p)` lies on spring `p`'s
+/// flipper branch. It runs from `-theta_bar` to `+theta_bar`, centred at `centre`, and is not an
+/// equilibrium.
+pub fn reflected_kink_into<T: Real, M: ChainGeometry<T> + ?Sized>(
+    model: &M,
+    centre: T,
+    theta: &mut [T],
+) -> Result<(), StaticsError> {
+    wall_into(model, centre, theta, Wall::Reflected)
+}
+
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Wall {
+    Kink,
+    Reflected,
+}
+
+/// Builds a wall outward from its centre. For the kink, the forward map runs to the right and the
+/// inverse map to the left; the reflected wall swaps the two maps.
+fn wall_into<T: Real, M: ChainGeometry<T> + ?Sized>(
+    model: &M,
+    centre: T,
+    theta: &mut [T],
+    wall: Wall,
+) -> Result<(), StaticsError> {
+    let n = model.rotor_count();
+    if theta.len() != n {
+        return Err(StaticsError::WrongLength { what: "theta", len: theta.len(), expected: n });
+    }
+    let max = T::of_index(n.saturating_sub(1));
+    if n < 2 || !(centre.is_finite() && centre >= T::ZERO && centre <= max) {
+        return Err(StaticsError::CentreOutOfRange { centre: centre.widen(), n, max: max.widen() });
+    }
+    // Spring p's map to the right (theta_p -> theta_{p+1}) and to the left.
+    let right = |p: usize, t: T| -> Result<T, StaticsError> {
+        Ok(match wall {
+            Wall::Kink => model.next_angles(p, t)?[0],
+            Wall::Reflected => model.previous_angles(p, t)?[0],
+        })
+    };
+    let left = |p: usize, t: T| -> Result<T, StaticsError> {
+        Ok(match wall {
+            Wall::Kink => model.previous_angles(p, t)?[0],
+            Wall::Reflected => model.next_angles(p, t)?[0],
+        })
+    };
+    // `centre = i + f` with `0 <= f < 1` and `i + 1 < n`; a centre on the last rotor is read as
+    // "rotor n - 1 vertical".
+    let whole = centre.floor();
+    let (i, f) = if whole >= max { (n - 1, T::ZERO) } else { (whole.floor_index(), centre - whole) };
+    theta.iter_mut().for_each(|t| *t = T::ZERO);
+    if f > T::ZERO {
+        // theta_i between 0 and the angle whose right neighbour is 0, chosen so that the
+        // interpolated sign change theta_i / (theta_i - theta_{i+1}) sits at i + f.
+        let end = left(i, T::ZERO)?;
+        let half = T::of(0.5);
+        let (mut near, mut far) = (T::ZERO, end);
+        for _ in 0..BISECTION_STEPS {
+            let mid = half * (near + far);
+            if mid == near || mid == far {
+                break;
+            }
+            if mid / (mid - right(i, mid)?) < f {
+                near = mid;
+            } else {
+                far = mid;
+            }
+        }
+        theta[i] = half * (near + far);
+    }
+    for p in i..n - 1 {
+        theta[p + 1] = right(p, theta[p])?;
+    }
+    for p in (0..i).rev() {
+        theta[p] = left(p, theta[p + 1])?;
+    }
+    // A centre inside the chain leaves one wall of the asked charge there. At a `theta_bar` so
+    // small that the wall is far wider than the chain (1e-8 at n = 60) the angles round to zero
+    // with no sign change: that is no kink, and says so.
+    if centre > T::ZERO && centre < max {
+        let (expected, charge) = match wall {
+            Wall::Kink => ("kink", Charge::Kink),
+            Wall::Reflected => ("antikink", Charge::Antikink),
+        };
+        let (kinks, antikinks) = count_walls(theta);
+        let found = if charge == Charge::Kink { (kinks, antikinks) } else { (antikinks, kinks) };
+        if found != (1, 0) {
+            let (centre, theta_bar) = (centre.widen(), model.theta_bar().widen());
+            return Err(StaticsError::NoWall { expected, centre, theta_bar, kinks, antikinks });
+        }
+    }
+    Ok(())
+}
 
 /// The zero-energy kink of `model` centred at `centre` (in rotor indices, `0 <= centre <= n - 1`).
 /// At `centre = 0` or `n - 1` the wall sits on the end rotor, which stands vertical: the wall has
@@ -45,10 +169,11 @@ use crate::model::ChainModel;
 /// let chain = RuntimeChain::builder(60, 0.8, 1.0e4, 0.58).build()?; // n, r, k, theta_bar
 /// let theta = kink(&chain, 41.25)?;                               // any centre, fractional too
 /// assert!((domain_walls(&theta)[0].position - 41.25).abs() < 1e-9);
-/// assert!(rotor_chain::ChainModel::energy(&chain, &theta) < 1e-16); // zero energy, in M a^2/t^2
+/// assert!(rotor_chain::Potential::energy(&chain, &theta) < 1e-16); // zero energy, in M a^2/t^2
 /// # Ok(())
 /// # }
 /// ```
+#[cfg(feature = "alloc")]
 pub fn kink<M: ChainModel + ?Sized>(model: &M, centre: f64) -> Result<Vec<f64>, StaticsError> {
     wall_profile(model, centre, Wall::Kink)
 }
@@ -58,45 +183,26 @@ pub fn kink<M: ChainModel + ?Sized>(model: &M, centre: f64) -> Result<Vec<f64>, 
 /// but with its two angles swapped: `(theta_{p+1}, theta_p)` lies on spring `p`'s flipper branch.
 /// It runs from `-theta_bar` to `+theta_bar`, centred at `centre`, and is not an equilibrium: the
 /// antikink analysis relaxes it.
+#[cfg(feature = "alloc")]
 pub fn reflected_kink<M: ChainModel + ?Sized>(model: &M, centre: f64) -> Result<Vec<f64>, StaticsError> {
     wall_profile(model, centre, Wall::Reflected)
 }
 
-#[derive(Clone, Copy, PartialEq, Eq)]
-enum Wall {
-    Kink,
-    Reflected,
-}
-
-/// Builds a wall outward from its centre: the no-alloc construction of `crate::embedded`
-/// ([`embedded::kink_into`], [`embedded::reflected_kink_into`]) into a `Vec`.
+/// Builds a wall outward from its centre into a new `Vec` ([`kink_into`] and
+/// [`reflected_kink_into`]).
+#[cfg(feature = "alloc")]
 fn wall_profile<M: ChainModel + ?Sized>(
     model: &M,
     centre: f64,
     wall: Wall,
 ) -> Result<Vec<f64>, StaticsError> {
-    let n = model.rotor_count();
-    let max = (n - 1) as f64;
-    if !(centre.is_finite() && (0.0..=max).contains(&centre)) {
-        return Err(StaticsError::CentreOutOfRange { centre, n, max });
-    }
-    let mut theta = vec![0.0; n];
-    let built = match wall {
-        Wall::Kink => embedded::kink_into(model, centre, &mut theta),
-        Wall::Reflected => embedded::reflected_kink_into(model, centre, &mut theta),
-    };
-    match built {
-        Ok(()) => Ok(theta),
-        Err(EmbeddedError::Branch(e)) => Err(StaticsError::Branch(e)),
-        Err(EmbeddedError::NoWall { expected, centre, kinks, antikinks }) => {
-            Err(StaticsError::NoWall { expected, centre, theta_bar: model.theta_bar(), kinks, antikinks })
-        }
-        // The centre and the length are checked above; a chain of one rotor has no wall.
-        Err(_) => Err(StaticsError::CentreOutOfRange { centre, n, max }),
-    }
+    let mut theta = vec![0.0; model.rotor_count()];
+    wall_into(model, centre, &mut theta, wall)?;
+    Ok(theta)
 }
 
 /// The most steps [`mechanism_path`] takes.
+#[cfg(feature = "alloc")]
 pub const MAX_PATH_STEPS: usize = 1_000_000;
 
 /// The mechanism: kinks at `steps + 1` evenly spaced centres from `from` to `to`, each a
@@ -105,6 +211,7 @@ pub const MAX_PATH_STEPS: usize = 1_000_000;
 /// # Errors
 /// A centre outside the chain or not finite, more than [`MAX_PATH_STEPS`] steps, or a failed
 /// branch solve.
+#[cfg(feature = "alloc")]
 pub fn mechanism_path<M: ChainModel + ?Sized>(
     model: &M,
     from: f64,

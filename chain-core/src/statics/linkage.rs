@@ -356,7 +356,7 @@ impl LinkageChain<RuntimeChain> {
         let impurity = RuntimeChain::builder(2, chain.r(), chain.k(), chain.theta_bar())
             .lattice_spacing(chain.a())
             .mass(chain.mass())
-            .spring(0, None, Some(l0))
+            .spring_rest_length(0, l0)
             .build()?;
         Self::with_impurity(chain, rotors, impurity)
     }

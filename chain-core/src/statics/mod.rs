@@ -1,5 +1,10 @@
-//! Static linkage analysis (paper Sections II-V, VII and Appendices A, C, D), generic over
-//! [`crate::ChainModel`], so it runs on macro-generated chains and runtime-sized chains alike.
+//! Static analysis (paper Sections II-V, VII and Appendices A, C, D), each analysis generic over
+//! the rung of the model ladder ([`crate::model`]) it needs: equilibria, their classification and
+//! the modes over [`Stiffness`](crate::model::Stiffness) (any model with a Hessian), counting over
+//! [`SpringNetwork`](crate::model::SpringNetwork), and the chain's own analyses (kinks, walls,
+//! cobweb, antikink) over [`ChainModel`](crate::ChainModel), so they run on macro-generated and
+//! runtime-sized chains alike. The kink's construction and the domain walls need no heap; the
+//! rest needs `alloc`.
 //!
 //! One analysis per file:
 //! - [`cobweb`]: fixed points, slopes and decay lengths of the branch map, cobweb-plot data (Sec. II);
@@ -20,23 +25,32 @@
 //! inputs (iteration budgets in the options, bisections of at most 200 halvings, Newton steps of
 //! at most 50), so no input makes an analysis hang, panic, or return a NaN as `Ok`.
 
+#[cfg(feature = "alloc")]
 pub mod antikink;
+#[cfg(feature = "alloc")]
 pub mod classify;
+#[cfg(feature = "alloc")]
 pub mod cobweb;
+#[cfg(feature = "alloc")]
 pub mod continuum;
+#[cfg(feature = "alloc")]
 pub mod counting;
+#[cfg(feature = "alloc")]
 pub mod equilibrium;
 pub mod error;
+#[cfg(feature = "alloc")]
 pub mod impurity;
 pub mod kink;
+#[cfg(feature = "alloc")]
 pub mod linkage;
+#[cfg(feature = "alloc")]
 pub mod modes;
+#[cfg(feature = "alloc")]
 mod validate;
 pub mod walls;
 
 pub use error::StaticsError;
 
-/// The most numbers a dense result may hold (2^26 `f64`s, 512 MiB): the `n x (n - 1)` matrix of
-/// [`counting::maxwell_calladine`]'s SVD, the `k` vectors of length `n` of [`modes::modes`]. A
-/// larger request is [`StaticsError::TooLarge`], not an allocation failure.
-pub const MAX_DENSE_VALUES: usize = 1 << 26;
+/// The most numbers a dense result may hold ([`crate::linalg::MAX_DENSE_VALUES`]).
+#[cfg(feature = "alloc")]
+pub use crate::linalg::MAX_DENSE_VALUES;

@@ -1,9 +1,12 @@
 //! Vibrational modes about an equilibrium (paper Sec. IV, Figs. `fig:mode-config`, `fig:w-th`).
 //!
-//! Small oscillations obey `K v = omega^2 I v` with `K` the tangent stiffness and `I = diag(M r_i^2)`.
-//! Scaling by `I^{-1/2}` keeps the problem symmetric tridiagonal, so the lowest modes of a long
-//! chain come from bisection and inverse iteration in O(n) each; the whole spectrum comes from the
-//! implicit QL iteration, O(n^2) for the values and O(n^3) with the vectors (`crate::linalg`).
+//! Small oscillations obey `K v = omega^2 I v` with `K` the tangent stiffness and `I` the
+//! inertias (`diag(M r_i^2)` for a chain). [`normal_modes`] solves it for any model with a
+//! tangent stiffness ([`Stiffness`]); [`modes`] adds, for a rotor chain, where each mode lives.
+//! Scaling by `I^{-1/2}` keeps the problem symmetric (tridiagonal for a chain), so the lowest
+//! modes of a long chain come from bisection and inverse iteration in O(n) each; the whole
+//! spectrum comes from the implicit QL iteration, O(n^2) for the values and O(n^3) with the
+//! vectors ([`SymmetricMatrix`]).
 //!
 //! **Kinds of mode**, by where the mode lives: a mode concentrated near a domain wall is its
 //! *translation* mode (the one most parallel to the wall's displacement `dtheta/dx`) or a *shape*
@@ -22,12 +25,13 @@ use nalgebra::DMatrix;
 use super::error::StaticsError;
 use super::validate;
 use super::walls::domain_walls;
-use crate::linalg;
+use crate::linalg::SymmetricMatrix;
 use crate::math;
-use crate::model::ChainModel;
+use crate::model::{ChainModel, Stiffness};
 
 /// Where a mode lives.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
 pub enum ModeKind {
     /// At a domain wall, along the wall's own displacement.
     Translation,
@@ -40,6 +44,9 @@ pub enum ModeKind {
     },
     /// Spread over the chain.
     Extended,
+    /// Not labelled: [`normal_modes`] of a model that is not a rotor chain has no walls or ends
+    /// to place a mode by (its position and participation say where it lives).
+    Unlabelled,
 }
 
 /// One vibrational mode.
@@ -135,10 +142,27 @@ pub fn modes<M: ChainModel + ?Sized>(
     theta: &[f64],
     options: &ModeOptions,
 ) -> Result<Vec<Mode>, StaticsError> {
-    validate::angles(model, theta)?;
+    let mut result = normal_modes(model, theta, options)?;
+    label_kinds(model, theta, options, &mut result);
+    Ok(result)
+}
+
+/// The lowest modes of any model with a tangent stiffness about `x` ([`ModeOptions::count`] of
+/// them), ascending in `omega^2`, their kinds [`ModeKind::Unlabelled`] ([`modes`] labels a
+/// chain's). [`ModeOptions::hold_ends`] holds the first and the last degree of freedom.
+///
+/// # Errors
+/// As [`modes`].
+pub fn normal_modes<M: Stiffness + ?Sized>(
+    model: &M,
+    x: &[f64],
+    options: &ModeOptions,
+) -> Result<Vec<Mode>, StaticsError> {
+    validate::angles(model, x)?;
     options.check()?;
-    let n = model.rotor_count();
-    let (diag, off) = super::equilibrium::stiffness(model, theta);
+    let n = model.dof_count();
+    let k = SymmetricMatrix::tangent_stiffness(model, x)?;
+    k.check_finite()?;
     let inertia: Vec<f64> = (0..n).map(|i| model.inertia(i)).collect();
     if let Some(index) = inertia.iter().position(|&x| !(x.is_finite() && x > 0.0)) {
         return Err(StaticsError::InvalidValue {
@@ -148,34 +172,24 @@ pub fn modes<M: ChainModel + ?Sized>(
         });
     }
     let root: Vec<f64> = inertia.iter().map(|&x| math::sqrt(x)).collect();
-    // The moving rotors: all, or all but the held ends.
-    let core::ops::Range { start: first, end } = super::equilibrium::moving(n, options.hold_ends);
-    let sdiag: Vec<f64> = (first..end).map(|i| diag[i] / inertia[i]).collect();
-    let soff: Vec<f64> = (first..end - 1).map(|i| off[i] / (root[i] * root[i + 1])).collect();
-    let k = options.count.unwrap_or(n).min(sdiag.len());
-    validate::at_most("modes x rotors", k.saturating_mul(n), super::MAX_DENSE_VALUES)?;
-    let pairs = linalg::lowest_eigenpairs(&sdiag, &soff, k)?;
+    // The moving degrees of freedom: all, or all but the held ends.
+    let range = super::equilibrium::moving(n, options.hold_ends);
+    let scaled = k.principal(range.clone()).mass_scaled(&inertia[range.clone()]);
+    let count = options.count.unwrap_or(n).min(scaled.dim());
+    validate::at_most("modes x rotors", count.saturating_mul(n), super::MAX_DENSE_VALUES)?;
+    let pairs = scaled.lowest_eigenpairs(count)?;
     let mut values: Vec<f64> = pairs.iter().map(|p| p.value).collect();
     let mut vectors: Vec<Vec<f64>> = pairs
         .into_iter()
         .map(|p| {
             let mut full = vec![0.0; n];
-            full[first..end].copy_from_slice(&p.vector);
+            full[range.clone()].copy_from_slice(&p.vector);
             full
         })
         .collect();
-    let scaled_norm = super::equilibrium::norm(&sdiag, &soff).max(f64::MIN_POSITIVE);
+    let scaled_norm = scaled.inf_norm().max(f64::MIN_POSITIVE);
     localise_clusters(&mut values, &mut vectors, options.cluster * scaled_norm);
-
-    let walls = domain_walls(theta);
-    // The displacement of each wall, dtheta/dx, by central differences of the profile.
-    let slope: Vec<f64> = (0..n)
-        .map(|i| {
-            let (l, r) = (theta[i.saturating_sub(1)], theta[(i + 1).min(n - 1)]);
-            (r - l) / ((i + 1).min(n - 1) - i.saturating_sub(1)) as f64
-        })
-        .collect();
-    let mut result: Vec<Mode> = values
+    Ok(values
         .iter()
         .zip(vectors)
         .map(|(&value, u)| {
@@ -190,8 +204,24 @@ pub fn modes<M: ChainModel + ?Sized>(
                 shape,
                 position,
                 participation,
-                kind: ModeKind::Extended,
+                kind: ModeKind::Unlabelled,
             }
+        })
+        .collect())
+}
+
+/// Labels the kinds of a chain's modes (the module doc): edges first, then walls; at each wall the
+/// mode most parallel to `dtheta/dx` translates it; the rest extended.
+fn label_kinds<M: ChainModel + ?Sized>(model: &M, theta: &[f64], options: &ModeOptions, result: &mut [Mode]) {
+    let n = model.rotor_count();
+    let inertia: Vec<f64> = (0..n).map(|i| model.inertia(i)).collect();
+    result.iter_mut().for_each(|m| m.kind = ModeKind::Extended);
+    let walls = domain_walls(theta);
+    // The displacement of each wall, dtheta/dx, by central differences of the profile.
+    let slope: Vec<f64> = (0..n)
+        .map(|i| {
+            let (l, r) = (theta[i.saturating_sub(1)], theta[(i + 1).min(n - 1)]);
+            (r - l) / ((i + 1).min(n - 1) - i.saturating_sub(1)) as f64
         })
         .collect();
     // Kinds: edges first, then walls; at each wall the mode most parallel to dtheta/dx translates it.
@@ -235,7 +265,6 @@ pub fn modes<M: ChainModel + ?Sized>(
             m.kind = ModeKind::Translation;
         }
     }
-    Ok(result)
 }
 
 /// Rotates every cluster of eigenvalues closer than `tolerance` to the basis in which the

@@ -4,11 +4,11 @@
 
 use super::error::StaticsError;
 use crate::error::BranchError;
-use crate::model::ChainModel;
+use crate::model::{ChainGeometry, Potential, SpringNetwork};
 
-/// `theta` has one finite angle per rotor.
-pub(crate) fn angles<M: ChainModel + ?Sized>(model: &M, theta: &[f64]) -> Result<(), StaticsError> {
-    let n = model.rotor_count();
+/// `theta` has one finite value per degree of freedom (an angle per rotor for a chain).
+pub(crate) fn angles<M: Potential + ?Sized>(model: &M, theta: &[f64]) -> Result<(), StaticsError> {
+    let n = model.dof_count();
     if theta.len() != n {
         return Err(StaticsError::WrongLength { what: "theta", len: theta.len(), expected: n });
     }
@@ -24,7 +24,7 @@ pub(crate) fn finite(what: &'static str, values: &[f64]) -> Result<(), StaticsEr
 }
 
 /// `p` is a spring of the chain.
-pub(crate) fn spring<M: ChainModel + ?Sized>(model: &M, p: usize) -> Result<(), StaticsError> {
+pub(crate) fn spring<M: SpringNetwork + ?Sized>(model: &M, p: usize) -> Result<(), StaticsError> {
     let springs = model.spring_count();
     if p < springs { Ok(()) } else { Err(BranchError::NoSuchSpring { spring: p, springs }.into()) }
 }
@@ -49,7 +49,7 @@ pub(crate) fn positive(what: &'static str, value: f64) -> Result<f64, StaticsErr
 
 /// The model's `theta_bar`, which must be finite and `> 0` (a chain declared with a field for its
 /// rest length that admits no uniform state reports NaN; its `check()` says why).
-pub(crate) fn theta_bar<M: ChainModel + ?Sized>(model: &M) -> Result<f64, StaticsError> {
+pub(crate) fn theta_bar<M: ChainGeometry + ?Sized>(model: &M) -> Result<f64, StaticsError> {
     let value = model.theta_bar();
     if value.is_finite() && value > 0.0 {
         Ok(value)

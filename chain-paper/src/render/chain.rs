@@ -122,7 +122,11 @@ where
 }
 
 /// A green arrow from `from` to `to` (pixels) with a filled head.
-fn arrow<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, from: (i32, i32), to: (i32, i32)) -> Drawn
+pub(super) fn arrow<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    from: (i32, i32),
+    to: (i32, i32),
+) -> Drawn
 where
     DB::ErrorType: 'static,
 {

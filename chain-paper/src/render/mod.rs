@@ -10,6 +10,7 @@
 //! - `heatmap`: heat maps (diverging colours centred on zero for signed values) and colour bars;
 //!   `log_axis`: their axis of `log10` values, labelled with the values;
 //! - `chain`: drawings of the chain;
+//! - `network`: drawings of a network's patch (equal scales, like the chain's);
 //! - `text`: text drawn glyph by glyph, combining marks (`θ̄`, `l̄`) placed over their letter.
 
 use std::error::Error;
@@ -29,6 +30,7 @@ mod heatmap;
 mod legend;
 mod lines;
 mod log_axis;
+mod network;
 mod text;
 
 pub use text::{glyph_font, missing_glyphs};
@@ -215,6 +217,7 @@ where
             Chart::Lines(panel) => lines::draw(&area, panel)?,
             Chart::Heat(map) => heatmap::draw(&area, map)?,
             Chart::Chain(drawing) => chain::draw(&area, drawing)?,
+            Chart::Network(drawing) => network::draw(&area, drawing)?,
         }
     }
     Ok(())

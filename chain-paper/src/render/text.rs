@@ -44,6 +44,7 @@ pub fn missing_glyphs(figure: &Figure) -> Vec<char> {
                 texts.extend(h.categories.iter().map(String::as_str));
             }
             Chart::Chain(d) => texts.push(&d.title),
+            Chart::Network(d) => texts.push(&d.title),
         }
     }
     let mut missing = Vec::new();
@@ -117,6 +118,7 @@ pub fn displayed(figure: &Figure) -> Figure {
                 }
             }
             Chart::Chain(d) => d.title = math(&d.title),
+            Chart::Network(d) => d.title = math(&d.title),
         }
     }
     f

@@ -33,7 +33,7 @@ use std::sync::atomic::{AtomicBool, AtomicI32, Ordering};
 use std::time::Duration;
 
 use chain_sweep::scattering::{
-    DEFAULT_ENERGY_TOLERANCE, Defect, Ends, Integrator, PhaseDiagram, PointRecord, fake_point,
+    DEFAULT_ENERGY_TOLERANCE, Defect, Ends, Method, PhaseDiagram, PointRecord, fake_point,
 };
 use chain_sweep::{
     Axis, Grid, MergeSummary, Shard, Summary, SweepError, SweepOptions, find_shards, merge_shards, run_sweep,
@@ -82,9 +82,9 @@ struct Cli {
     /// The chain's ends: free (the paper's) or absorbing (a damping sponge on the last 10 rotors)
     #[arg(long, value_enum, default_value_t = EndsArg::Free)]
     ends: EndsArg,
-    /// The integrator each point starts with
-    #[arg(long, value_enum, default_value_t = IntegratorArg::Verlet)]
-    integrator: IntegratorArg,
+    /// The integrator each point starts with (the names of `rotor_chain::integrate::Method`)
+    #[arg(long, default_value = "verlet", value_parser = integrator_parser())]
+    integrator: Method,
     /// Verlet's time step, shortened to divide the output interval (0.01 sqrt(1e4 mass / k): the
     /// paper's 0.01 in the chain's time unit) [default: a tenth of its stability limit]
     #[arg(long)]
@@ -154,10 +154,11 @@ enum EndsArg {
     Absorbing,
 }
 
-#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
-enum IntegratorArg {
-    Verlet,
-    Dop853,
+/// The integrator's names, as `Method` spells them everywhere (runs, files, Python).
+fn integrator_parser() -> impl clap::builder::TypedValueParser<Value = Method> {
+    use clap::builder::TypedValueParser;
+    clap::builder::PossibleValuesParser::new(Method::NAMES)
+        .try_map(|name: String| chain_sweep::scattering::method_by_name(&name))
 }
 
 /// Why the tool stopped, and with which exit status.
@@ -183,10 +184,7 @@ fn diagram(cli: &Cli, ki: &Axis, v0: &Axis) -> Result<PhaseDiagram, Failure> {
         EndsArg::Free => Ends::Free,
         EndsArg::Absorbing => Ends::Absorbing,
     };
-    d.integrator = match cli.integrator {
-        IntegratorArg::Verlet => Integrator::Verlet,
-        IntegratorArg::Dop853 => Integrator::Dop853,
-    };
+    d.integrator = cli.integrator;
     d.dt = cli.dt;
     d.energy_tolerance = cli.energy_tolerance;
     d.recompute = !cli.no_recompute;

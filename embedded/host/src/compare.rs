@@ -14,7 +14,7 @@
 use core::fmt;
 
 use embedded_check::report::{Header, ParseError, Record};
-use embedded_check::{EmbeddedError, FloatChain, Real, Sample, Scenario, Summary, run};
+use embedded_check::{ChainGeometry, DynamicsError, Real, Sample, Scenario, Summary, run};
 
 /// How far the firmware's numbers may lie from the host's.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -134,7 +134,7 @@ pub enum CompareError {
     NoFinalEnergy,
     #[error("the host run failed: {0}")]
     /// The host run failed.
-    Host(#[from] EmbeddedError),
+    Host(#[from] DynamicsError),
     #[error("the firmware printed {firmware} samples, the host computed {host}")]
     /// Different numbers of samples.
     SampleCount {
@@ -151,7 +151,7 @@ pub enum CompareError {
         /// The sample.
         index: usize,
         /// Its Verlet step.
-        step: u32,
+        step: u64,
         /// The quantity.
         what: &'static str,
         /// The firmware's value.
@@ -169,7 +169,7 @@ pub enum CompareError {
         /// The sample.
         index: usize,
         /// Its Verlet step.
-        step: u32,
+        step: u64,
         /// What differs.
         what: &'static str,
         /// The firmware's.
@@ -180,10 +180,10 @@ pub enum CompareError {
 }
 
 /// The host's run of `scenario`: its samples and summary.
-pub fn host_run<T: Real, M: FloatChain<T>, const N: usize>(
+pub fn host_run<T: Real, M: ChainGeometry<T>, const N: usize>(
     model: &M,
     scenario: &Scenario,
-) -> Result<(Vec<Sample<T>>, Summary<T>), EmbeddedError> {
+) -> Result<(Vec<Sample<T>>, Summary<T>), DynamicsError> {
     let mut samples = Vec::new();
     let summary = run::<T, M, _, N>(model, scenario, |s| samples.push(*s))?;
     Ok((samples, summary))
@@ -207,7 +207,7 @@ fn read_run<'a, T: Tolerated, const N: usize>(
 
 /// The firmware's output `text` against the host's run of [`Scenario::FIRMWARE`] on `model`, in
 /// float type `T`, within `T`'s [`Tolerance`].
-pub fn compare<T: Tolerated, M: FloatChain<T>, const N: usize>(
+pub fn compare<T: Tolerated, M: ChainGeometry<T>, const N: usize>(
     model: &M,
     text: &str,
 ) -> Result<Agreement, CompareError> {
@@ -220,7 +220,7 @@ pub fn compare<T: Tolerated, M: FloatChain<T>, const N: usize>(
 /// The firmware's output `text`, computed in `T`, against the host's `f64` run of
 /// [`Scenario::FIRMWARE`] on `reference` (the same chain in `f64`), within `T`'s
 /// [`Tolerated::ACCURACY`]: wall counts and charges must be equal, positions and energies close.
-pub fn compare_accuracy<T: Tolerated, M: FloatChain<f64>, const N: usize>(
+pub fn compare_accuracy<T: Tolerated, M: ChainGeometry<f64>, const N: usize>(
     reference: &M,
     text: &str,
 ) -> Result<Agreement, CompareError> {
@@ -350,7 +350,7 @@ pub fn check<T: Real>(
 #[derive(Clone, Copy)]
 struct At {
     index: usize,
-    step: u32,
+    step: u64,
 }
 
 impl At {

@@ -10,30 +10,13 @@
 use embedded_check::Scenario;
 use embedded_check::report::Header;
 use embedded_check::{
-    Chain16, Chain16F32, FloatChain, Real, Verlet, domain_walls, kink_into, launch_velocities,
+    Chain16, Chain16F32, DomainWalls, Phase, Real, Verlet, kink_into, kink_launch_velocities,
 };
 use embedded_host::{Tolerated, compare_accuracy, host_run};
 use rotor_chain::prelude::*;
+use test_support::random::SplitMix;
 
 const EPS: f64 = f32::EPSILON as f64;
-
-/// A SplitMix64 generator: reproducible random configurations without a dependency.
-struct SplitMix(u64);
-
-impl SplitMix {
-    fn next_u64(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    }
-
-    /// Uniform in `[lo, hi)`.
-    fn uniform(&mut self, lo: f64, hi: f64) -> f64 {
-        lo + (hi - lo) * (self.next_u64() >> 11) as f64 / (1u64 << 53) as f64
-    }
-}
 
 /// The shortest spring the random configurations allow, in units of `a`. With `a = 1` and
 /// `r = 0.8` two tips can meet (`l = 0`), where the derivatives of `l` carry `1 / l` and every
@@ -54,10 +37,10 @@ fn configurations(count: usize) -> Vec<[f32; 16]> {
         }
         let theta: [f32; 16] = core::array::from_fn(|_| {
             let theta = if k % 2 == 0 {
-                rng.uniform(-core::f64::consts::PI, core::f64::consts::PI)
+                rng.range(-core::f64::consts::PI, core::f64::consts::PI)
             } else {
-                let sign = if rng.uniform(0.0, 1.0) < 0.5 { -1.0 } else { 1.0 };
-                sign * 0.58 + rng.uniform(-0.05, 0.05)
+                let sign = if rng.range(0.0, 1.0) < 0.5 { -1.0 } else { 1.0 };
+                sign * 0.58 + rng.range(-0.05, 0.05)
             };
             theta as f32
         });
@@ -137,8 +120,8 @@ fn a_kink_built_by_the_f32_branch_solve_matches_the_f64_kink() {
         for (x, y) in t32.iter().zip(&t64) {
             angle = angle.max((f64::from(*x) - y).abs());
         }
-        let w32: Vec<_> = domain_walls(&t32).collect();
-        let w64: Vec<_> = domain_walls(&t64).collect();
+        let w32: Vec<_> = DomainWalls::of(&t32).collect();
+        let w64: Vec<_> = DomainWalls::of(&t64).collect();
         assert_eq!(w32.len(), w64.len(), "centre {centre}: walls {w32:?} against {w64:?}");
         for (a, b) in w32.iter().zip(&w64) {
             assert_eq!(a.charge, b.charge, "centre {centre}");
@@ -174,20 +157,20 @@ struct Trajectory {
     final_energy: f64,
 }
 
-fn trajectory<T: Real, M: FloatChain<T>>(chain: &M, steps: u32) -> Trajectory {
+fn trajectory<T: Real, M: ChainGeometry<T>>(chain: &M, steps: u32) -> Trajectory {
     const N: usize = 48;
     let (centre, v0, dt) = (8.25, 1.0, 1.953125e-3);
     let mut theta = [T::ZERO; N];
     kink_into(chain, T::of(centre), &mut theta).unwrap();
-    let omega = launch_velocities(chain, &theta, T::of(v0)).unwrap();
-    let mut stepper = Verlet::new(chain, theta, omega, T::of(dt)).unwrap();
-    let energy = |s: &Verlet<T, N>| (s.kinetic_energy(chain) + s.potential_energy(chain)).widen();
+    let omega = kink_launch_velocities(chain, &theta, T::of(v0)).unwrap();
+    let mut stepper = Verlet::new(chain, Phase { time: T::ZERO, theta, omega }, T::of(dt)).unwrap();
+    let energy = |s: &Verlet<T, [T; N]>| (s.kinetic_energy(chain) + s.potential_energy(chain)).widen();
     let energy0 = energy(&stepper);
     let (mut walls, mut max_drift) = (Vec::new(), 0.0f64);
     for step in 1..=steps {
         stepper.step(chain).unwrap();
         if step % 100 == 0 {
-            let found: Vec<_> = domain_walls(stepper.theta()).collect();
+            let found: Vec<_> = DomainWalls::of(stepper.theta()).collect();
             assert_eq!(found.len(), 1, "step {step}: {} walls in {}", found.len(), T::NAME);
             walls.push(found[0].position.widen());
             max_drift = max_drift.max((energy(&stepper) - energy0).abs());
@@ -274,8 +257,8 @@ fn other_declarations_agree_with_f64_too() {
             break;
         }
         let theta: [f32; 12] = core::array::from_fn(|_| {
-            let sign = if rng.uniform(0.0, 1.0) < 0.5 { -1.0 } else { 1.0 };
-            (sign * 0.58 + rng.uniform(-0.2, 0.2)) as f32
+            let sign = if rng.range(0.0, 1.0) < 0.5 { -1.0 } else { 1.0 };
+            (sign * 0.58 + rng.range(-0.2, 0.2)) as f32
         });
         let wide = widen(&theta);
         if c64.spring_lengths(&wide).iter().any(|&l| l < SHORTEST_SPRING) {
@@ -296,8 +279,8 @@ fn other_declarations_agree_with_f64_too() {
         for k in 0..=40 {
             let t = (0.3 + 0.5 * f64::from(k) / 40.0) as f32;
             let pairs = [
-                (c32.next_angles(p, t), ChainModel::next_angles(&c64, p, f64::from(t))),
-                (c32.previous_angles(p, t), ChainModel::previous_angles(&c64, p, f64::from(t))),
+                (c32.next_angles(p, t), ChainGeometry::next_angles(&c64, p, f64::from(t))),
+                (c32.previous_angles(p, t), ChainGeometry::previous_angles(&c64, p, f64::from(t))),
             ];
             for pair in pairs {
                 match pair {

@@ -3,11 +3,13 @@
 //! eigenvector of the tangent stiffness, the library's Verlet and its DOP853.
 
 use embedded_check::{
-    Chain16, FloatChain, Scenario, Verlet, domain_walls, kink_into, launch_velocities, run, translation_mode,
+    Chain16, ChainGeometry, DomainWalls, Scenario, Verlet, kink_into, kink_launch_velocities,
+    kink_translation_mode, run,
 };
-use rotor_chain::dynamics::integrate::{self, AdaptiveOptions, Flow, State, VerletOptions};
+use rotor_chain::SpringNetwork;
 use rotor_chain::dynamics::launch::{Direction, launch};
-use rotor_chain::embedded::EmbeddedError;
+use rotor_chain::integrate::IntegrateError;
+use rotor_chain::integrate::{self, AdaptiveOptions, Flow, Phase, State, VerletOptions};
 use rotor_chain::statics::walls::Charge;
 use rotor_chain::{ChainModel, RuntimeChain};
 
@@ -39,13 +41,13 @@ fn kink_has_every_spring_at_rest_at_integer_and_fractional_centres() {
         kink_into(&Chain16, centre, &mut ours).unwrap();
         assert!(worst_stretch(&Chain16, &ours) <= 1e-13, "centre {centre}: {ours:?}");
         // The kink costs no energy (paper Sec. II).
-        assert!(ChainModel::energy(&Chain16, &ours) < 1e-20, "centre {centre}");
+        assert!(rotor_chain::Potential::energy(&Chain16, &ours) < 1e-20, "centre {centre}");
     }
     for centre in [2.0, 11.3, 20.0, 38.75] {
         let mut ours = [0.0; 40];
         kink_into(&chain, centre, &mut ours).unwrap();
         assert!(worst_stretch(&chain, &ours) <= 1e-13, "n = 40, centre {centre}");
-        let wall = domain_walls(&ours).next().unwrap();
+        let wall = DomainWalls::of(&ours).next().unwrap();
         if centre <= 38.0 {
             assert!((wall.position - centre).abs() < 1e-9, "wall at {} for centre {centre}", wall.position);
         }
@@ -56,10 +58,10 @@ fn kink_has_every_spring_at_rest_at_integer_and_fractional_centres() {
 fn a_centre_outside_the_chain_is_an_error_with_the_numbers() {
     let mut theta = [0.0; 16];
     let error = kink_into(&Chain16, 15.5, &mut theta).unwrap_err();
-    assert_eq!(error.to_string(), "kink centre 15.5 is outside the chain: need 0 <= centre <= 15");
+    assert_eq!(error.to_string(), "centre 15.5 is outside the chain: it must lie in [0, 15] for 16 rotors");
     assert!(kink_into(&Chain16, f64::NAN, &mut theta).is_err());
     let error = kink_into(&Chain16, 3.0, &mut [0.0; 15]).unwrap_err();
-    assert_eq!(error.to_string(), "the chain has 16 rotors, but the arrays hold 15 angles");
+    assert_eq!(error.to_string(), "theta has 15 values, the chain needs 16");
 }
 
 #[test]
@@ -69,7 +71,7 @@ fn launch_equals_the_library_launch_along_the_lowest_eigenvector() {
     // no stress matrix) the two must coincide.
     let mut theta = [0.0; 16];
     kink_into(&Chain16, 4.25, &mut theta).unwrap();
-    let ours = launch_velocities(&Chain16, &theta, 2.0).unwrap();
+    let ours = kink_launch_velocities(&Chain16, &theta, 2.0).unwrap();
     let reference = launch(&Chain16, Charge::Kink, 4.25, 2.0, Direction::Right).unwrap();
     assert!(max_difference(&reference.state.theta, &theta) <= 1e-14);
     assert!(max_difference(&ours, &reference.state.omega) <= 1e-8, "{ours:?} vs {:?}", reference.state.omega);
@@ -77,7 +79,7 @@ fn launch_equals_the_library_launch_along_the_lowest_eigenvector() {
     let chain = runtime_chain();
     let mut theta = [0.0; 40];
     kink_into(&chain, 24.6, &mut theta).unwrap();
-    let ours = launch_velocities(&chain, &theta, 3.0).unwrap();
+    let ours = kink_launch_velocities(&chain, &theta, 3.0).unwrap();
     let reference = launch(&chain, Charge::Kink, 24.6, 3.0, Direction::Right).unwrap();
     assert!(max_difference(&ours, &reference.state.omega) <= 1e-8);
 }
@@ -88,7 +90,7 @@ fn translation_mode_stretches_no_spring_to_first_order() {
     // the spring lengths. A first-order change would be of size h; along the mode it is O(h^2).
     let mut theta = [0.0; 16];
     kink_into(&Chain16, 6.7, &mut theta).unwrap();
-    let e = translation_mode(&Chain16, &theta).unwrap();
+    let e = kink_translation_mode(&Chain16, &theta).unwrap();
     assert!((e.iter().map(|x| x * x).sum::<f64>() - 1.0).abs() < 1e-14);
     let h = 1e-6;
     let lengths = |theta: &[f64]| {
@@ -97,7 +99,7 @@ fn translation_mode_stretches_no_spring_to_first_order() {
         l
     };
     let moved: Vec<f64> =
-        (0..16).map(|i| theta[i] + h * e[i] / FloatChain::rotor_length(&Chain16, i)).collect();
+        (0..16).map(|i| theta[i] + h * e[i] / ChainGeometry::rotor_length(&Chain16, i)).collect();
     let stretch = max_difference(&lengths(&moved), &lengths(&theta));
     assert!(stretch < 1e-10, "springs stretched by {stretch} for a displacement of {h}");
     // A generic direction stretches them at first order.
@@ -157,10 +159,10 @@ fn firmware_trajectory_converges_to_an_independent_integrator_at_second_order() 
     let mut state = State { time: 0.0, theta: start.theta().to_vec(), omega: start.omega().to_vec() };
     let outputs: Vec<f64> =
         (1..=scenario.steps / scenario.every).map(|k| scenario.time(k * scenario.every)).collect();
-    let mut reference = vec![domain_walls(&state.theta).next().unwrap().position];
+    let mut reference = vec![DomainWalls::of(&state.theta).next().unwrap().position];
     let options = AdaptiveOptions { rtol: 1e-12, atol: 1e-13, ..AdaptiveOptions::default() };
     integrate::adaptive(&Chain16, &mut state, &outputs, &options, &mut |s| {
-        reference.push(domain_walls(&s.theta).next().unwrap().position);
+        reference.push(DomainWalls::of(&s.theta).next().unwrap().position);
         Flow::Continue
     })
     .unwrap();
@@ -205,21 +207,21 @@ fn firmware_time_step_is_within_the_accuracy_bound() {
 fn a_non_finite_state_or_step_is_an_error_with_the_numbers() {
     let mut theta = [0.0; 16];
     kink_into(&Chain16, 4.25, &mut theta).unwrap();
-    let mut omega = launch_velocities(&Chain16, &theta, 2.0).unwrap();
-    let error = Verlet::new(&Chain16, theta, omega, 0.0).unwrap_err();
-    assert_eq!(error.to_string(), "dt = 0 must be positive and finite");
+    let mut omega = kink_launch_velocities(&Chain16, &theta, 2.0).unwrap();
+    let error = Verlet::new(&Chain16, Phase { time: 0.0, theta, omega }, 0.0).unwrap_err();
+    assert_eq!(error.to_string(), "dt = 0 is invalid: it must be positive and finite");
     omega[3] = f64::NAN;
-    let error = Verlet::new(&Chain16, theta, omega, 1e-3).unwrap_err();
-    assert_eq!(error.to_string(), "omega[3] = NaN is not finite after step 0");
+    let error = Verlet::new(&Chain16, Phase { time: 0.0, theta, omega }, 1e-3).unwrap_err();
+    assert_eq!(error.to_string(), "omega[3] is not finite (NaN) at t = 0");
     theta[5] = f64::INFINITY;
-    assert!(Verlet::new(&Chain16, theta, omega, 1e-3).is_err());
+    assert!(Verlet::new(&Chain16, Phase { time: 0.0, theta, omega }, 1e-3).is_err());
 }
 
 #[test]
 fn an_unstable_step_is_caught_by_the_energy_check_before_any_number_overflows() {
     let launched = |dt: f64| {
         let start = embedded_check::launched_kink::<f64, _, 16>(&Chain16, &Scenario::FIRMWARE).unwrap();
-        Verlet::new(&Chain16, *start.theta(), *start.omega(), dt).unwrap()
+        Verlet::new(&Chain16, Phase { time: 0.0, theta: *start.theta(), omega: *start.omega() }, dt).unwrap()
     };
     let reference = launched(Scenario::FIRMWARE.dt).check_energy(&Chain16, 0.0, f64::INFINITY).unwrap();
     let tolerance = 0.05 * reference;
@@ -242,7 +244,7 @@ fn an_unstable_step_is_caught_by_the_energy_check_before_any_number_overflows() 
                 break;
             }
         }
-        let Some(EmbeddedError::EnergyDrift { step, energy, reference: r, tolerance: t, dt: d }) = caught
+        let Some(IntegrateError::EnergyDrift { step, energy, reference: r, tolerance: t, dt: d }) = caught
         else {
             panic!("dt = {dt}: no energy drift found in 1000 steps: {caught:?}");
         };
@@ -260,16 +262,17 @@ fn an_unstable_step_is_caught_by_the_energy_check_before_any_number_overflows() 
 fn a_negative_launch_speed_sends_the_kink_the_other_way() {
     let mut theta = [0.0; 16];
     kink_into(&Chain16, 7.5, &mut theta).unwrap();
-    let right = launch_velocities(&Chain16, &theta, 2.0).unwrap();
-    let left = launch_velocities(&Chain16, &theta, -2.0).unwrap();
+    let right = kink_launch_velocities(&Chain16, &theta, 2.0).unwrap();
+    let left = kink_launch_velocities(&Chain16, &theta, -2.0).unwrap();
     assert!(right.iter().zip(&left).all(|(r, l)| *l == -*r));
     // Followed for t = 0.5, the two walls move by the same distance in opposite directions.
     let walk = |omega: [f64; 16]| {
-        let mut stepper = Verlet::new(&Chain16, theta, omega, Scenario::FIRMWARE.dt).unwrap();
+        let mut stepper =
+            Verlet::new(&Chain16, Phase { time: 0.0, theta, omega }, Scenario::FIRMWARE.dt).unwrap();
         for _ in 0..256 {
             stepper.step(&Chain16).unwrap();
         }
-        domain_walls(stepper.theta()).next().unwrap().position - 7.5
+        DomainWalls::of(stepper.theta()).next().unwrap().position - 7.5
     };
     let (to_the_right, to_the_left) = (walk(right), walk(left));
     assert!(to_the_right > 1.0 && to_the_left < -1.0, "{to_the_right}, {to_the_left}");

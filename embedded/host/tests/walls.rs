@@ -4,7 +4,7 @@
 //! that list that lean opposite ways put a wall, interpolated when they are adjacent rotors and
 //! in the middle of the vertical run between them otherwise; a kink when the left one leans `+`.
 
-use embedded_check::domain_walls;
+use embedded_check::DomainWalls;
 use proptest::prelude::*;
 
 fn angle() -> impl Strategy<Value = f64> {
@@ -37,7 +37,7 @@ proptest! {
 
     #[test]
     fn walls_follow_the_documented_rule(theta in proptest::collection::vec(angle(), 0..24)) {
-        let ours: Vec<_> = domain_walls(&theta).collect();
+        let ours: Vec<_> = DomainWalls::of(&theta).collect();
         let expected = reference(&theta);
         prop_assert_eq!(ours.len(), expected.len());
         for (wall, (x, charge)) in ours.iter().zip(&expected) {

@@ -13,6 +13,10 @@
 
 use std::io::Read;
 
+use rotor_chain::ChainGeometry;
+use rotor_chain::Potential;
+use rotor_chain::SpringNetwork;
+use rotor_chain::Stiffness;
 use rotor_chain::dynamics::integrate::State;
 use rotor_chain::dynamics::launch::{Direction, launch};
 use rotor_chain::dynamics::run::{ABSORBING_ENDS, Method, RunOptions, propagate};
@@ -23,7 +27,7 @@ use rotor_chain::statics::counting::maxwell_calladine;
 use rotor_chain::statics::kink::kink;
 use rotor_chain::statics::modes::{ModeOptions, modes};
 use rotor_chain::statics::walls::Charge;
-use rotor_chain::{ChainModel, Law, RuntimeChain};
+use rotor_chain::{Law, RuntimeChain};
 use serde::Deserialize;
 use serde_json::{Value, json};
 
@@ -155,14 +159,11 @@ fn method(name: &str) -> Method {
     if name == "dop853" { Method::dop853() } else { Method::Verlet }
 }
 
-fn banded(
-    c: &RuntimeChain,
-    theta: &[f64],
-    f: impl Fn(&RuntimeChain, &[f64], &mut [f64], &mut [f64]),
-) -> Value {
+fn banded(c: &RuntimeChain, theta: &[f64], f: impl Fn(&RuntimeChain, &[f64], &mut [f64])) -> Value {
     let n = c.rotor_count();
-    let (mut d, mut o) = (vec![0.0; n], vec![0.0; n - 1]);
-    f(c, theta, &mut d, &mut o);
+    let mut values = vec![0.0; 2 * n - 1];
+    f(c, theta, &mut values);
+    let (d, o) = values.split_at(n);
     json!({"diag": d, "off": o})
 }
 
@@ -200,18 +201,19 @@ fn compute(case: &Case) -> Result<Value, String> {
             let mut eg = vec![0.0; n];
             let e2 = c.energy_and_gradient_into(theta, &mut eg);
             let m = n - 1;
-            let (mut l, mut t, mut cl, mut cr) = (vec![0.0; m], vec![0.0; m], vec![0.0; m], vec![0.0; m]);
+            let (mut l, mut t, mut c_values) = (vec![0.0; m], vec![0.0; m], vec![0.0; 2 * m]);
             c.spring_lengths_into(theta, &mut l);
             c.tensions_into(theta, &mut t);
-            c.compatibility_into(theta, &mut cl, &mut cr);
+            c.compatibility_into(theta, &mut c_values);
+            let (cl, cr) = c_values.split_at(m);
             json!({
                 "energy": c.energy(theta),
                 "gradient": g,
                 "energy_fused": e2,
                 "gradient_fused": eg,
-                "stiffness": banded(&c, theta, |c, t, d, o| c.tangent_stiffness_into(t, d, o)),
-                "material": banded(&c, theta, |c, t, d, o| c.material_stiffness_into(t, d, o)),
-                "stress": banded(&c, theta, |c, t, d, o| c.stress_matrix_into(t, d, o)),
+                "stiffness": banded(&c, theta, |c, t, v| c.tangent_stiffness_into(t, v)),
+                "material": banded(&c, theta, |c, t, v| c.material_stiffness_into(t, v)),
+                "stress": banded(&c, theta, |c, t, v| c.stress_matrix_into(t, v)),
                 "spring_lengths": l,
                 "tensions": t,
                 "compatibility": {"left": cl, "right": cr},

@@ -5,7 +5,8 @@
 use std::io::Write;
 use std::process::{Command, Stdio};
 
-use rotor_chain::{ChainModel, RuntimeChain};
+use rotor_chain::Potential;
+use rotor_chain::RuntimeChain;
 use serde_json::{Value, json};
 
 fn reference(cases: &Value) -> Vec<Value> {

@@ -17,6 +17,7 @@
 //! [`Outcome::PairCreation`], and [`Outcome::Undecided`] means only that the run ended before
 //! anything was settled.
 
+pub mod budget;
 mod follow;
 mod rules;
 
@@ -27,6 +28,7 @@ use super::track::Snapshot;
 use crate::model::ChainModel;
 use crate::statics::walls::Charge;
 
+pub use budget::{BudgetError, Budgeted, EnergyBudget, scatter_within_budget};
 pub use follow::{Followed, Follower, Origin, Vanished};
 
 /// What the impurity did to the incoming defect.
@@ -380,7 +382,7 @@ pub struct Scattering {
 ///
 /// # fn main() -> Result<(), Box<dyn std::error::Error>> {
 /// let k = 1.0e4;
-/// let chain = RuntimeChain::builder(60, 0.8, k, 0.28).spring(29, Some(0.2 * k), None).build()?;
+/// let chain = RuntimeChain::builder(60, 0.8, k, 0.28).spring_constant(29, 0.2 * k).build()?;
 /// let result = scatter(&chain, &ScatterSetup::from_the_right(Charge::Antikink, 4.8, 29))?;
 /// assert_eq!(result.outcome, Outcome::Reflected);
 /// # Ok(())

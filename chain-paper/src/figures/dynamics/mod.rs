@@ -126,7 +126,7 @@ const MAX_IMAGE_ROWS: usize = 400;
 fn chain(params: &Params, theta_bar: f64, impurity: Option<f64>) -> Result<RuntimeChain, ParameterError> {
     let mut builder = RuntimeChain::builder(params.n, params.r, params.k, theta_bar).mass(params.mass);
     if let Some(ki_ratio) = impurity {
-        builder = builder.spring(middle_spring(params), Some(ki_ratio * params.k), None);
+        builder = builder.spring_constant(middle_spring(params), ki_ratio * params.k);
     }
     builder.build()
 }

@@ -3,7 +3,7 @@
 //! slopes, the alternating window and the antikink's stability against `v0`; the grid and ranges
 //! are [`Scattering`](super::Scattering)'s.
 
-use chain_sweep::scattering::{Defect, Ends, Integrator, PhaseDiagram};
+use chain_sweep::scattering::{Defect, Ends, Method, PhaseDiagram};
 use chain_sweep::{Axis, Grid, compute_grid};
 use rayon::prelude::*;
 use rotor_chain::dynamics::observe::stability;
@@ -50,7 +50,7 @@ fn cell_name(cell: &Cell) -> &'static str {
 /// events of a chaotic run). Empty when no cell is isolated.
 fn isolated_cells(params: &Params, defect: Defect, outcomes: &OutcomeGrid) -> Result<Vec<String>, Cause> {
     let cells = outcomes.isolated();
-    let dop853 = PhaseDiagram { integrator: Integrator::Dop853, ..settings(params, defect)? };
+    let dop853 = PhaseDiagram { integrator: Method::dop853(), ..settings(params, defect)? };
     let absorbing = PhaseDiagram { ends: Ends::Absorbing, ..settings(params, defect)? };
     cells
         .par_iter()

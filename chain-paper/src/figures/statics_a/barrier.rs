@@ -2,7 +2,6 @@
 //! Peierls-Nabarro equilibria drawn and plotted (`fig:akconfigpn`), and the barrier against the
 //! antikink's width (`fig:logvpn-theta`) and the chain's length (`fig:logvpn-size`).
 
-use rotor_chain::ChainModel;
 use rotor_chain::RuntimeChain;
 use rotor_chain::statics::antikink::{Antikink, AntikinkOptions, barrier_vs_size};
 use rotor_chain::statics::continuum::PN_ASYMPTOTIC_LOG_SLOPE;
@@ -11,6 +10,7 @@ use super::{ka2, pn, profile, uniform_levels};
 use crate::drawing::window;
 use crate::figures::{Cause, FigureError, Params, chain, continuum, grid};
 use crate::model::{ChainDrawing, Chart, Figure, Panel, Quality, Quantity, Row, Series, Style};
+use rotor_chain::ChainGeometry;
 
 /// The paper's Sec. V energies (absolute, `k = 1e4`): minimum, saddle, barrier, as printed.
 const PAPER_MINIMUM: &str = "1359.15";

@@ -12,6 +12,8 @@ use rotor_chain::{ChainModel, RuntimeChain};
 use super::{profile, uniform_levels};
 use crate::figures::{FigureError, Params, chain, continuum, grid};
 use crate::model::{ChainDrawing, Chart, Figure, Panel, Quality, Quantity, Series, Style};
+use rotor_chain::ChainGeometry;
+use rotor_chain::SpringNetwork;
 
 /// Half-width of the cobweb plot's window (rad): wide enough to show the constraint curve turning
 /// back beyond `+-theta_bar` (its vertical tangent is at `theta_{i+1} = 0.70`).

@@ -30,7 +30,7 @@ fn linkage_drawing(
     let m = model.rotors();
     let chain = RuntimeChain::builder(2 * m, params.r, params.k, params.linkage.theta_bar)
         .mass(params.mass)
-        .spring(m - 1, None, Some(model.impurity_rest_length()))
+        .spring_rest_length(m - 1, model.impurity_rest_length())
         .build()?;
     let theta = model.chain_profile(x.0, x.1);
     Ok(ChainDrawing::new(title, &chain, &theta, 0..2 * m)?.into())

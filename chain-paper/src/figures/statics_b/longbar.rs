@@ -1,7 +1,6 @@
 //! Sec. VII-A: a long middle spring (`fig:longbar`): its zero mode, soft mode and soft tensional
 //! mode, drawn on the chain and plotted, and the paper's numbers about them.
 
-use rotor_chain::ChainModel;
 use rotor_chain::RuntimeChain;
 use rotor_chain::statics::counting::maxwell_calladine;
 use rotor_chain::statics::impurity::{impurity_analysis, two_kink_configuration};
@@ -14,6 +13,7 @@ use crate::figures::{FigureError, Params, chain, continuum};
 use crate::model::{
     ChainDrawing, Chart, Figure, Panel, Quality, Quantity, Row, Series, Style, format_number,
 };
+use rotor_chain::SpringNetwork;
 
 /// Rotors drawn either side of the impurity.
 const DRAWN: usize = 7;

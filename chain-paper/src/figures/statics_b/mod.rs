@@ -9,7 +9,7 @@
 //! `M a^2 / t^2` (with `a = 1`), positions in lattice spacings `a`.
 
 use rotor_chain::RuntimeChain;
-use rotor_chain::statics::equilibrium::{norm, stiffness};
+use rotor_chain::linalg::SymmetricMatrix;
 use rotor_chain::statics::modes::{Mode, ModeKind};
 
 use super::{FigureFn, Params};
@@ -117,8 +117,8 @@ fn first_of(list: &[Mode], kind: ModeKind) -> Option<&Mode> {
 /// the rounding of a double-precision `omega^2` (a margin of 100 in `omega^2`); below it a
 /// frequency is zero at machine precision.
 fn frequency_resolution(model: &RuntimeChain, theta: &[f64], params: &Params) -> f64 {
-    let (diag, off) = stiffness(model, theta);
-    10.0 * (f64::EPSILON * norm(&diag, &off) / (params.mass * params.r * params.r)).sqrt()
+    let norm = SymmetricMatrix::tangent_stiffness(model, theta).map_or(f64::NAN, |k| k.inf_norm());
+    10.0 * (f64::EPSILON * norm / (params.mass * params.r * params.r)).sqrt()
 }
 
 /// `"0.8936 (r/a)√(k/M)"`, or `"0 (rounding)"` below the resolution `floor` (both in `1/t`).

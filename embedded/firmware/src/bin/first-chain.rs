@@ -8,7 +8,7 @@
 use cortex_m_rt::entry;
 use cortex_m_semihosting::{debug, hprintln};
 use panic_semihosting as _;
-use rotor_chain::embedded::{EmbeddedError, Verlet, domain_walls, kink_into, launch_velocities};
+use rotor_chain::embedded::{DomainWalls, DynamicsError, Phase, Verlet, kink_into, kink_launch_velocities};
 use rotor_chain::rotor_chain;
 
 /// 24 rotors in single precision (the Cortex-M4F's FPU); the paper's geometry, `theta_bar = 0.58`.
@@ -36,11 +36,11 @@ fn main() -> ! {
 
 /// The kink at rotor 6, launched at `v0 = 1` towards rotor 23 and followed for `t = 4` (2048 steps
 /// of `2^-9`); returns its wall position and the energy.
-fn run() -> Result<(f32, f32), EmbeddedError> {
+fn run() -> Result<(f32, f32), DynamicsError> {
     let mut theta = [0.0f32; 24];
     kink_into(&Chain, 6.0, &mut theta)?;
-    let omega = launch_velocities(&Chain, &theta, 1.0)?;
-    let mut verlet = Verlet::new(&Chain, theta, omega, 1.0 / 512.0)?;
+    let omega = kink_launch_velocities(&Chain, &theta, 1.0)?;
+    let mut verlet = Verlet::new(&Chain, Phase { time: 0.0, theta, omega }, 1.0 / 512.0)?;
     let launched = verlet.kinetic_energy(&Chain) + verlet.potential_energy(&Chain);
     let mut energy = launched;
     for step in 1..=2048 {
@@ -51,6 +51,6 @@ fn run() -> Result<(f32, f32), EmbeddedError> {
         }
     }
     // The kink: one wall, between the rotors. `NaN` would mean it left the chain.
-    let position = domain_walls(verlet.theta()).next().map_or(f32::NAN, |wall| wall.position);
+    let position = DomainWalls::of(verlet.theta()).next().map_or(f32::NAN, |wall| wall.position);
     Ok((position, energy))
 }

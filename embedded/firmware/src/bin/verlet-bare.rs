@@ -10,7 +10,7 @@ use core::panic::PanicInfo;
 
 use cortex_m_rt::entry;
 use cortex_m_semihosting::hio;
-use embedded_check::{EmbeddedError, Real, Scenario, launched_kink};
+use embedded_check::{DynamicsError, Real, Scenario, launched_kink};
 use kink_firmware::{Chain, Float, N, exit, peak_stack_bytes};
 
 /// The steps of the kink run (and of `verlet-cost`'s measured loop).
@@ -31,7 +31,7 @@ fn main() -> ! {
 }
 
 /// `E = T + V` after `STEPS` steps of the launched kink.
-fn run() -> Result<Float, EmbeddedError> {
+fn run() -> Result<Float, DynamicsError> {
     let mut stepper = launched_kink::<Float, _, N>(&Chain, &Scenario::FIRMWARE)?;
     for _ in 0..STEPS {
         stepper.step(&Chain)?;

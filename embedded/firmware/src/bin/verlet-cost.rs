@@ -20,7 +20,7 @@ use cortex_m::peripheral::SYST;
 use cortex_m::peripheral::syst::SystClkSource;
 use cortex_m_rt::entry;
 use cortex_m_semihosting::hprintln;
-use embedded_check::{EmbeddedError, FloatChain, Real, Scenario, launched_kink};
+use embedded_check::{DynamicsError, Potential, Real, Scenario, launched_kink};
 use kink_firmware::{Chain, Float, N, exit, peak_stack_bytes};
 use panic_semihosting as _;
 
@@ -76,15 +76,15 @@ fn main() -> ! {
 
 /// Calibrates, then times `STEPS` Verlet steps of the launched kink of `Scenario::FIRMWARE` and
 /// `STEPS` gradient evaluations at the state they reach.
-fn measure() -> Result<Costs, EmbeddedError> {
+fn measure() -> Result<Costs, DynamicsError> {
     let calibration = calibration_ticks();
     let overhead = ticks_of(|| Ok(()))?;
     let mut stepper = launched_kink::<Float, _, N>(&Chain, &Scenario::FIRMWARE)?;
-    let step = ticks_of(|| stepper.step(&Chain))?;
+    let step = ticks_of(|| Ok(stepper.step(&Chain)?))?;
     let theta = *stepper.theta();
     let mut out = [Float::of(0.0); N];
     let gradient = ticks_of(|| {
-        FloatChain::gradient_into(&Chain, black_box(&theta), &mut out);
+        Potential::gradient_into(&Chain, black_box(&theta), &mut out);
         black_box(&out);
         Ok(())
     })?;
@@ -94,7 +94,7 @@ fn measure() -> Result<Costs, EmbeddedError> {
 
 /// SysTick ticks of `STEPS` calls of `work`, read after every call.
 #[inline(never)]
-fn ticks_of(mut work: impl FnMut() -> Result<(), EmbeddedError>) -> Result<u64, EmbeddedError> {
+fn ticks_of(mut work: impl FnMut() -> Result<(), DynamicsError>) -> Result<u64, DynamicsError> {
     let mut total = 0u64;
     let mut last = SYST::get_current();
     for _ in 0..STEPS {

@@ -12,7 +12,7 @@
 use std::process::ExitCode;
 
 use embedded_check::report::{Header, Record};
-use embedded_check::{Chain16, Chain16F32, FloatChain, Scenario};
+use embedded_check::{Chain16, Chain16F32, ChainGeometry, Scenario};
 use embedded_host::{
     Agreement, CompareError, Tolerance, Tolerated, compare, compare_accuracy, compare_final_energy, host_run,
 };
@@ -46,7 +46,7 @@ fn main() -> ExitCode {
     }
 }
 
-fn print_host<T: Tolerated, M: FloatChain<T>>(chain: &M) -> ExitCode {
+fn print_host<T: Tolerated, M: ChainGeometry<T>>(chain: &M) -> ExitCode {
     let scenario = Scenario::FIRMWARE;
     println!("{}", Header { n: N, float: T::NAME, scenario });
     match host_run::<T, _, N>(chain, &scenario) {
@@ -94,7 +94,7 @@ fn check(run: &str, costs: &[String]) -> Result<(), String> {
 
 /// `text` (from the file `run`) against the host's run in `T`, and the final energy of each cost
 /// file.
-fn check_float<T: Tolerated, M: FloatChain<T>>(
+fn check_float<T: Tolerated, M: ChainGeometry<T>>(
     chain: &M,
     run: &str,
     text: &str,

@@ -1,5 +1,5 @@
 //! A chain declared with `float = f32`, literal and field parameters, stepped without a heap.
-use rotor_chain::embedded::{kink_into, launch_velocities};
+use rotor_chain::embedded::{kink_into, kink_launch_velocities};
 use rotor_chain::prelude::*;
 
 #[rotor_chain(n = 6, r = 0.8, theta_bar = 0.58, k = 1.0e4, float = f32)]
@@ -15,11 +15,11 @@ pub struct Fields {
 #[rotor_chain(n = 16, r = 0.8, theta_bar = 0.58, k = 1.0e4, mass = 1.0, float = f32)]
 pub struct Chain16F32;
 
-fn go() -> Result<(), rotor_chain::embedded::EmbeddedError> {
+fn go() -> Result<(), rotor_chain::embedded::DynamicsError> {
     let chain = Chain16F32;
     let mut theta = [0.0f32; 16];
     kink_into(&chain, 4.25, &mut theta)?;
-    let omega = launch_velocities(&chain, &theta, 2.0)?;
+    let omega = kink_launch_velocities(&chain, &theta, 2.0)?;
     let mut stepper = chain.verlet(theta, omega, 1.953125e-3)?;
     for _ in 0..1024 {
         stepper.step(&chain)?;

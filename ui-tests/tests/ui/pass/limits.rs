@@ -10,7 +10,7 @@ pub struct LongestGradient;
 
 fn main() {
     assert_eq!(Largest::N, 100_000_000);
-    assert_eq!(ChainModel::spring_count(&Largest), 99_999_999);
+    assert_eq!(SpringNetwork::spring_count(&Largest), 99_999_999);
     Largest.check().unwrap();
     let theta = vec![0.58; LongestGradient::N];
     let fixed: &[f64; 49152] = theta.as_slice().try_into().unwrap();

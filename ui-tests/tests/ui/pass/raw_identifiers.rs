@@ -16,10 +16,10 @@ pub struct r#Unrolled {
 fn main() {
     let looped = r#Chain { r#type: 1.0e4, k_imp: 50.0 };
     looped.check().unwrap();
-    let reference = RuntimeChain::builder(300, 0.8, 1.0e4, 0.58).spring(10, Some(50.0), None).build().unwrap();
+    let reference = RuntimeChain::builder(300, 0.8, 1.0e4, 0.58).spring_constant(10, 50.0).build().unwrap();
     let mut theta = vec![0.58; 300];
     theta[10] = 0.3;
-    let e = ChainModel::energy(&looped, &theta);
+    let e = Potential::energy(&looped, &theta);
     assert!((e - reference.energy(&theta)).abs() <= 1e-9 * e.abs(), "{e}");
 
     let unrolled = Unrolled { r#type: 1.0e4 };

@@ -1,0 +1,118 @@
+//! The TOML cell format (issue 33) read into the unvalidated form [`Raw`], every value with its
+//! line. Unknown keys and wrong types are reported by the TOML reader at their line; everything
+//! else (missing keys, ranges, names) by [`super::validate`].
+
+use super::validate::{Raw, RawBond, RawNode, Val};
+use crate::error::CellError;
+use serde::Deserialize;
+use toml::Spanned;
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct File {
+    dimension: Option<Spanned<i64>>,
+    lattice: Option<Spanned<Vec<Vec<f64>>>>,
+    #[serde(default)]
+    node: Vec<Spanned<NodeTable>>,
+    #[serde(default)]
+    bond: Vec<Spanned<BondTable>>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct NodeTable {
+    name: Option<Spanned<String>>,
+    kind: Option<Spanned<String>>,
+    position: Option<Spanned<Vec<f64>>>,
+    pivot: Option<Spanned<Vec<f64>>>,
+    length: Option<Spanned<f64>>,
+    angle: Option<Spanned<f64>>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct BondTable {
+    from: Option<Spanned<String>>,
+    to: Option<Spanned<String>>,
+    cell: Option<Spanned<Vec<i64>>>,
+    k: Option<Spanned<f64>>,
+    rest_length: Option<Spanned<f64>>,
+}
+
+/// 1-based line and column of byte `offset` in `text`.
+fn line_column(text: &str, offset: usize) -> (usize, usize) {
+    let before = &text[..offset.min(text.len())];
+    let line = before.matches('\n').count() + 1;
+    let column = before.len() - before.rfind('\n').map_or(0, |i| i + 1) + 1;
+    (line, column)
+}
+
+/// Parse the text of a cell file.
+pub(crate) fn parse(text: &str) -> Result<Raw, CellError> {
+    let file: File = toml::from_str(text).map_err(|e| {
+        let (line, column) = match e.span() {
+            Some(span) => {
+                let (l, c) = line_column(text, span.start);
+                (Some(l), Some(c))
+            }
+            None => (None, None),
+        };
+        CellError::Syntax { line, column, message: e.message().trim_end().to_owned() }
+    })?;
+    let line = |start: usize| Some(line_column(text, start).0);
+    fn val<T>(s: Spanned<T>, line: &dyn Fn(usize) -> Option<usize>) -> Val<T> {
+        let l = line(s.span().start);
+        Val { value: s.into_inner(), line: l }
+    }
+    Ok(Raw {
+        dimension: file.dimension.map(|v| val(v, &line)),
+        lattice: file.lattice.map(|v| val(v, &line)),
+        line: Some(1),
+        nodes: file
+            .node
+            .into_iter()
+            .map(|t| {
+                let l = line(t.span().start);
+                let t = t.into_inner();
+                RawNode {
+                    line: l,
+                    name: t.name.map(|v| val(v, &line)),
+                    kind: t.kind.map(|v| val(v, &line)),
+                    position: t.position.map(|v| val(v, &line)),
+                    pivot: t.pivot.map(|v| val(v, &line)),
+                    length: t.length.map(|v| val(v, &line)),
+                    angle: t.angle.map(|v| val(v, &line)),
+                }
+            })
+            .collect(),
+        bonds: file
+            .bond
+            .into_iter()
+            .map(|t| {
+                let l = line(t.span().start);
+                let t = t.into_inner();
+                RawBond {
+                    line: l,
+                    from: t.from.map(|v| val(v, &line)),
+                    to: t.to.map(|v| val(v, &line)),
+                    cell: t.cell.map(|v| val(v, &line)),
+                    k: t.k.map(|v| val(v, &line)),
+                    rest_length: t.rest_length.map(|v| val(v, &line)),
+                }
+            })
+            .collect(),
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn lines_and_columns_are_one_based() {
+        let text = "a = 1\nbb = 2\n";
+        assert_eq!(line_column(text, 0), (1, 1));
+        assert_eq!(line_column(text, 6), (2, 1));
+        assert_eq!(line_column(text, 8), (2, 3));
+    }
+}

@@ -1,0 +1,105 @@
+//! Drawings of a network's patch ([`NetworkDrawing`]) at equal scale in x and y: the unit cell
+//! dashed, bonds grey, rotor arms black from pivot crosses, nodes (joints, rotor tips) blue, and
+//! a mode's displacements as green arrows.
+
+use plotters::coord::Shift;
+use plotters::prelude::*;
+use plotters::style::text_anchor::{HPos, Pos, VPos};
+
+use super::chain::arrow;
+use super::{Drawn, title_font};
+use crate::model::Quantity;
+use crate::network::NetworkDrawing;
+
+/// Length of the largest arrow, as a fraction of the drawing's smaller extent.
+const ARROW: f64 = 0.08;
+
+/// Draw `d` into `area`: its title on top, the patch below.
+pub fn draw<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, d: &NetworkDrawing) -> Drawn
+where
+    DB::ErrorType: 'static,
+{
+    let width = area.dim_in_pixel().0;
+    let title = title_font(&d.title, width);
+    area.draw(&Text::new(
+        d.title.as_str(),
+        (width as i32 / 2, 8),
+        title.into_text_style(area).pos(Pos::new(HPos::Center, VPos::Top)),
+    ))?;
+    let body = area.clone().margin(40, 12, 12, 12);
+    let points: Vec<(f64, f64)> = d
+        .bonds
+        .iter()
+        .chain(&d.arms)
+        .flat_map(|&(a, b)| [a, b])
+        .chain(d.cell.iter().copied())
+        .chain(d.nodes.iter().copied())
+        .collect();
+    if points.is_empty() {
+        return Ok(());
+    }
+    let (x0, x1) =
+        points.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), p| (a.min(p.0), b.max(p.0)));
+    let (y0, y1) =
+        points.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), p| (a.min(p.1), b.max(p.1)));
+    let extent = (x1 - x0).max(y1 - y0).max(1e-9);
+    let arrow_length = ARROW * extent;
+    let pad = 0.05 * extent + arrow_length;
+    let (x0, x1, y0, y1) = (x0 - pad, x1 + pad, y0 - pad, y1 + pad);
+    let (bw, bh) = body.dim_in_pixel();
+    let scale = (f64::from(bw) / (x1 - x0)).min(f64::from(bh) / (y1 - y0));
+    let (ox, oy) = (0.5 * (f64::from(bw) - scale * (x1 - x0)), 0.5 * (f64::from(bh) - scale * (y1 - y0)));
+    let px = |(x, y): (f64, f64)| -> (i32, i32) {
+        ((ox + scale * (x - x0)).round() as i32, (oy + scale * (y1 - y)).round() as i32)
+    };
+    if d.cell.len() > 1 {
+        let mut outline: Vec<(i32, i32)> = d.cell.iter().map(|&p| px(p)).collect();
+        outline.push(outline[0]);
+        for pair in outline.windows(2) {
+            dashed(&body, pair[0], pair[1])?;
+        }
+    }
+    let line = (0.012 * scale * extent / 10.0).clamp(1.0, 4.0) as u32;
+    for &(a, b) in &d.bonds {
+        body.draw(&PathElement::new(vec![px(a), px(b)], RGBColor(110, 110, 110).stroke_width(line + 1)))?;
+    }
+    for (&(pivot, tip), _) in d.arms.iter().zip(0..) {
+        body.draw(&PathElement::new(vec![px(pivot), px(tip)], BLACK.stroke_width(line + 1)))?;
+        let (cx, cy) = px(pivot);
+        let s = 4;
+        body.draw(&PathElement::new(vec![(cx - s, cy - s), (cx + s, cy + s)], BLACK.stroke_width(2)))?;
+        body.draw(&PathElement::new(vec![(cx - s, cy + s), (cx + s, cy - s)], BLACK.stroke_width(2)))?;
+    }
+    let dot = (0.025 * scale * extent / 10.0).clamp(2.0, 7.0) as u32;
+    for &p in &d.nodes {
+        body.draw(&Circle::new(px(p), dot, Quantity::Rotor.colour().filled()))?;
+    }
+    for &(from, (dx, dy)) in &d.arrows {
+        if dx.hypot(dy) * arrow_length * scale >= 3.0 {
+            arrow(&body, px(from), px((from.0 + arrow_length * dx, from.1 + arrow_length * dy)))?;
+        }
+    }
+    Ok(())
+}
+
+/// A grey dashed line from `a` to `b` (pixels): dashes of 6, gaps of 5.
+fn dashed<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, a: (i32, i32), b: (i32, i32)) -> Drawn
+where
+    DB::ErrorType: 'static,
+{
+    let (dx, dy) = (f64::from(b.0 - a.0), f64::from(b.1 - a.1));
+    let length = dx.hypot(dy);
+    let mut s = 0.0;
+    while s < length {
+        let e = (s + 6.0).min(length);
+        let at = |t: f64| {
+            (
+                (f64::from(a.0) + dx * t / length).round() as i32,
+                (f64::from(a.1) + dy * t / length).round() as i32,
+            )
+        };
+        area.draw(&PathElement::new(vec![at(s), at(e)], RGBColor(150, 150, 150).stroke_width(2)))?;
+        s += 11.0;
+    }
+    Ok(())
+}

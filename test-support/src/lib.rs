@@ -1,0 +1,9 @@
+//! Helpers shared by the tests and examples of every crate in the workspace (a dev-dependency
+//! only, never published): the one reproducible random generator ([`random::SplitMix`]) and the
+//! correctly rounded `sin`/`cos` reference with ulp distances ([`ulp`]).
+
+pub mod random;
+pub mod ulp;
+
+/// The arbitrary-precision floats behind [`ulp::reference`], for tests that need more digits.
+pub use dashu_float;
