@@ -7,7 +7,8 @@
 //!
 //! | module | guide | what it covers |
 //! |---|---|---|
-//! | [`readme`] | `README.md` | set-up, the two commands, what is where, measured numbers |
+//! | [`readme`] | `README.md` | what it is, set-up, the two commands, five measured numbers, where to go next |
+//! | [`first_hour`] | `docs/first-hour.md` | from the dependency line to a phase diagram and its picture, in Rust and Python |
 //! | [`theory`] | `docs/theory.md` | the model, sign conventions, which wall is the kink, the branch solve |
 //! | [`macros`] | `docs/macro.md` | every key of `#[rotor_chain]`, every generated item, every compile error |
 //! | [`models`] | `docs/models.md` | the model ladder, and a model of your own (a Frenkel–Kontorova chain) through every analysis |
@@ -26,6 +27,9 @@
 
 #[doc = include_str!("../README.md")]
 pub mod readme {}
+
+#[doc = include_str!("../docs/first-hour.md")]
+pub mod first_hour {}
 
 #[doc = include_str!("../docs/theory.md")]
 pub mod theory {}

@@ -93,6 +93,7 @@
 //! | guide | for |
 //! |---|---|
 //! | [`guide::readme`] | set-up, the two commands, measured numbers |
+//! | [`guide::first_hour`] | the first hour: a chain, its kink and antikink, a scattering run, a phase diagram and its picture, in Rust and Python |
 //! | [`guide::theory`] | the model and its sign conventions, equation by equation |
 //! | [`guide::macros`] | every key, generated item and compile error of the attribute |
 //! | [`guide::statics`] | each static analysis: what it computes, the API, numbers against the paper |
