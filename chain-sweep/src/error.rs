@@ -115,16 +115,16 @@ pub enum SweepError {
         /// Grid points along y.
         ny: usize,
     },
-    /// A point appended to a [`crate::ResultsFile`] whose coordinates are not, bit for bit, those
-    /// of the grid point its index names: it would be read back as the physics of another point.
+    /// A point appended to a [`crate::ResultsFile`] (or merged) whose coordinates are not, bit
+    /// for bit, those of the grid point its index names: it would be read back as the physics of
+    /// another point. (The file is the caller's, or named by the merge's other errors: no path
+    /// here keeps the error small.)
     #[error(
-        "point {index:?} was computed at ({}, {}) but the grid of {} has it at ({}, {}): \
+        "point {index:?} was computed at ({}, {}) but the grid has it at ({}, {}): \
          a point is filed only under its own coordinates",
-        Short(given.0), Short(given.1), path.display(), Short(grid.0), Short(grid.1)
+        Short(given.0), Short(given.1), Short(grid.0), Short(grid.1)
     )]
     WrongCoordinates {
-        /// The results file.
-        path: PathBuf,
         /// The point's grid index `(i, j)`.
         index: (usize, usize),
         /// The coordinates the point was computed at.

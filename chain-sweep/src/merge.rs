@@ -49,6 +49,8 @@ struct ShardPoint {
     index: (usize, usize),
     coords: (f64, f64),
     failed: bool,
+    /// Its line number in the file (from 1).
+    line_number: usize,
     /// The line as written, without its `\n`.
     line: Vec<u8>,
 }
@@ -81,7 +83,8 @@ fn read_shard<R: Record>(path: &Path) -> Result<ShardFile, SweepError> {
             return Err(fail(format!("point ({i}, {j}) does not belong to shard {shard}")));
         }
         let failed = point.outcome.is_err();
-        points.push(ShardPoint { index: point.index, coords: point.coords, failed, line: text.to_vec() });
+        let (index, coords, line_number) = (point.index, point.coords, line);
+        points.push(ShardPoint { index, coords, failed, line_number, line: text.to_vec() });
     }
     Ok(ShardFile { path: path.to_owned(), shard, grid, run, points })
 }
@@ -184,8 +187,9 @@ pub fn merge_shards<R: Record>(shards: &[PathBuf], out: &Path) -> Result<MergeSu
 }
 
 /// The grid of the points' coordinates. A row's x (a column's y) is the value most of its points
-/// have; a point that differs is [`SweepError::WrongCoordinates`], naming the point, its
-/// coordinates and those of its row and column: a point filed under another point's index.
+/// have; a point that differs is refused at its file and line ([`SweepError::Parse`]) with the
+/// text of [`SweepError::WrongCoordinates`]: the point, its coordinates and those of its row and
+/// column, a point filed under another point's index.
 fn rebuild_grid(
     seen: &Seen<'_>,
     (nx, ny): (usize, usize),
@@ -211,11 +215,11 @@ fn rebuild_grid(
         let (path, point) = seen[&(i, j)];
         let (x, y) = point.coords;
         if xs[i].to_bits() != x.to_bits() || ys[j].to_bits() != y.to_bits() {
-            return Err(SweepError::WrongCoordinates {
+            let wrong = SweepError::WrongCoordinates { index: (i, j), given: (x, y), grid: (xs[i], ys[j]) };
+            return Err(SweepError::Parse {
                 path: path.to_owned(),
-                index: (i, j),
-                given: (x, y),
-                grid: (xs[i], ys[j]),
+                line: point.line_number,
+                reason: wrong.to_string(),
             });
         }
     }

@@ -9,6 +9,7 @@
 //! grid's side: the chain and the experiment of each point, its record and its file columns.
 
 use std::fmt;
+use std::num::NonZeroUsize;
 use std::str::FromStr;
 
 use rotor_chain::dynamics::DynamicsError;
@@ -190,18 +191,28 @@ pub enum ConfigError {
         /// The most steps a run allows.
         budget: u64,
     },
-    #[error("a chain of {n} rotors cannot hold the experiment ({rule}): {source}")]
+    #[error("a chain of {n} rotors cannot hold the experiment ({}): {source}", experiment_rule(*n, *shortest))]
     /// The experiment of [`PhaseDiagram::setup`] does not fit on the chain (too short for the
     /// defect's start 15.5 sites right of the middle spring: `n >= 38` for the paper's).
     Experiment {
         /// Rotors.
         n: usize,
-        /// The rule it breaks: the fewest rotors that hold this experiment
-        /// ([`PhaseDiagram::shortest_chain`]).
-        rule: String,
-        /// What the setup breaks.
-        source: DynamicsError,
+        /// The fewest rotors that hold this experiment ([`PhaseDiagram::shortest_chain`]);
+        /// `None`: no chain of up to [`MAX_ROTORS_SEARCHED`] rotors.
+        shortest: Option<NonZeroUsize>,
+        /// What the setup breaks (boxed: it is the largest error of the dynamics, and this enum
+        /// travels inside the figures' and the sweep's errors).
+        source: Box<DynamicsError>,
     },
+}
+
+/// The rule an experiment that does not fit a chain of `n` rotors breaks, in words.
+fn experiment_rule(n: usize, shortest: Option<NonZeroUsize>) -> String {
+    match shortest {
+        Some(m) if m.get() > n => format!("this experiment needs n >= {m}"),
+        Some(_) => "this impurity, start and direction do not fit this chain".to_owned(),
+        None => format!("no chain of up to {MAX_ROTORS_SEARCHED} rotors holds this experiment"),
+    }
 }
 
 /// How far [`PhaseDiagram::shortest_chain`] looks: a chain longer than the phase diagrams use.
@@ -374,12 +385,8 @@ impl PhaseDiagram {
         // than `edge_margin` from the end): refused here, not at every point of the grid.
         self.setup(1.0, self.integrator).check(self.n).map_err(|source| ConfigError::Experiment {
             n: self.n,
-            rule: match self.shortest_chain() {
-                Some(m) if m > self.n => format!("this experiment needs n >= {m}"),
-                Some(_) => "this impurity, start and direction do not fit this chain".to_owned(),
-                None => format!("no chain of up to {MAX_ROTORS_SEARCHED} rotors holds this experiment"),
-            },
-            source,
+            shortest: self.shortest_chain().and_then(NonZeroUsize::new),
+            source: Box::new(source),
         })?;
         // The impurity's rest length must admit the chain (the builder's own check, once here).
         self.builder(1.0).build().map(|_| ()).map_err(ConfigError::Chain)
@@ -774,12 +781,12 @@ mod tests {
                         assert!(point.is_ok(), "n = {n}, {defect:?}: {point:?}");
                         shortest.get_or_insert(n);
                     }
-                    Err(ConfigError::Experiment { n: m, rule, source }) => {
-                        assert!(rule == "this experiment needs n >= 38" || n < 2, "n = {n}: {rule}");
+                    Err(ConfigError::Experiment { n: m, shortest: needs, source }) => {
+                        assert_eq!(needs.map(NonZeroUsize::get), Some(38), "n = {n}");
                         assert_eq!(m, n);
                         assert!(shortest.is_none(), "n = {n} refused after a shorter chain passed");
                         assert!(d.compute_point(0.5, 2.0).is_err(), "n = {n} refused, yet its point ran");
-                        let spring = matches!(source, DynamicsError::NoSuchSpring { .. }) && n < 2;
+                        let spring = matches!(*source, DynamicsError::NoSuchSpring { .. }) && n < 2;
                         assert!(spring || source.to_string().contains("start"), "n = {n}: {source}");
                     }
                     Err(other) => panic!("n = {n}: {other}"),

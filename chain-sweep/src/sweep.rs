@@ -278,12 +278,7 @@ impl<R: Record> ResultsFile<R> {
             });
         };
         if grid.0.to_bits() != coords.0.to_bits() || grid.1.to_bits() != coords.1.to_bits() {
-            return Err(SweepError::WrongCoordinates {
-                path: self.appender.path.clone(),
-                index,
-                given: coords,
-                grid,
-            });
+            return Err(SweepError::WrongCoordinates { index, given: coords, grid });
         }
         if self.done.contains_key(&index) {
             return Err(SweepError::AlreadyDone { path: self.appender.path.clone(), index });

@@ -329,9 +329,9 @@ pub fn config(py: Python<'_>, e: &ConfigError) -> PyErr {
             .f("t_max", t_max)
             .f("steps", steps)
             .f("budget", budget),
-        ConfigError::Experiment { n, rule, source } => Details { variant: "Experiment", ..d }
+        ConfigError::Experiment { n, shortest, source } => Details { variant: "Experiment", ..d }
             .f("n", *n)
-            .f("rule", rule.as_str())
+            .f("shortest", shortest.map(std::num::NonZeroUsize::get))
             .source(dynamics(py, source)),
         _ => Details { variant: "Other", ..d },
     };
@@ -446,13 +446,10 @@ pub fn sweep(py: Python<'_>, e: &SweepError) -> PyErr {
         SweepError::NotInSweep { path: p, index, .. } => {
             Details { variant: "NotInSweep", ..d }.f("path", path(p)).f("index", *index)
         }
-        SweepError::WrongCoordinates { path: p, index, given, grid } => {
-            Details { variant: "WrongCoordinates", ..d }
-                .f("path", path(p))
-                .f("index", *index)
-                .f("given", *given)
-                .f("grid", *grid)
-        }
+        SweepError::WrongCoordinates { index, given, grid } => Details { variant: "WrongCoordinates", ..d }
+            .f("index", *index)
+            .f("given", *given)
+            .f("grid", *grid),
         SweepError::AlreadyDone { path: p, index } => {
             Details { variant: "AlreadyDone", ..d }.f("path", path(p)).f("index", *index)
         }
