@@ -103,10 +103,13 @@ def test_a_worker_killed_mid_sweep_costs_only_its_chunk(client, expected):
     # the scheduler handed it between the kill and noticing it (never run there; so "given
     # twice" is not "computed twice", which the next check counts).
     assert {k for k, c in given.items() if c > 1}, f"no chunk was given out again after killing {victim}"
-    # Only the results the dead worker held, not yet gathered, were computed twice; nothing the
-    # live worker finished was.
+    # Only the dead worker's chunks were computed twice: the results it held, not yet gathered,
+    # and the chunks it was computing, whose result may have left it just before the kill and
+    # reached the scheduler just after (a clean clone's CI met that race: chunk 2 finished on
+    # the victim after the kill, then again on the live worker). Nothing the live worker
+    # finished was computed twice.
     twice = {k for k, c in finished.items() if c > 1}
-    assert twice <= set(held), (twice, held)
+    assert twice <= set(held) | set(busy), (twice, held, busy)
     assert set(finished) == set(given)  # every chunk's result reached the scheduler
     # The nanny restarts the worker: the cluster has its two workers again.
     deadline = time.monotonic() + 60
