@@ -213,7 +213,9 @@ pub fn peierls_nabarro(chain: &Chain, py: Python<'_>, ends_name: &str) -> PyResu
 /// ``K v = omega^2 I v`` with ``I = diag(M r_i^2)``.
 #[pyclass(frozen, get_all, module = "rotor_chain._native")]
 pub struct Modes {
-    /// ``omega`` (``1/t``; 0 for a negative ``omega^2``, an unstable direction).
+    /// Signed frequencies ``sign(omega^2) sqrt(|omega^2|)`` (``1/t``): negative for a negative
+    /// ``omega^2``, an unstable direction (its imaginary frequency ``i sqrt(-omega^2)`` written
+    /// with a minus sign), never 0 for one.
     frequencies: Py<PyArray1<f64>>,
     /// The eigenvalues ``omega^2`` (``1/t^2``).
     omega_squared: Py<PyArray1<f64>>,

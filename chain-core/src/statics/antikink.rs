@@ -35,8 +35,8 @@
 
 use alloc::vec::Vec;
 
-use super::classify::{Classification, EquilibriumKind, classify};
-use super::equilibrium::{NewtonOptions, RelaxOptions, newton, relax};
+use super::classify::{Classification, EquilibriumKind, classify, rounding_tolerance};
+use super::equilibrium::{NewtonOptions, RelaxOptions, newton, polish, relax};
 use super::error::StaticsError;
 use super::kink::reflected_kink;
 use super::walls::{Charge, domain_walls};
@@ -61,7 +61,9 @@ pub struct AntikinkOptions {
     pub newton: NewtonOptions,
     /// Settings of the dissipative relaxation.
     pub relax: RelaxOptions,
-    /// Relative tolerance for counting eigenvalues as zero ([`classify`]); default below.
+    /// Relative tolerance for counting eigenvalues as zero ([`classify`]). Default `None`: the
+    /// rounding error of the computation, [`rounding_tolerance`]`(n)` (`64 n eps`), so that a
+    /// resolved soft curvature (the translation at small `theta_bar`) is never called zero.
     pub zero_tolerance: Option<f64>,
     /// How the chain's ends are treated. Default [`Ends::Held`].
     pub ends: Ends,
@@ -92,8 +94,6 @@ fn initial_guess<M: ChainModel + ?Sized>(
     }
     Ok(guess)
 }
-
-const DEFAULT_ZERO_TOLERANCE: f64 = 1e-10;
 
 /// An antikink equilibrium.
 #[derive(Clone, Debug, PartialEq)]
@@ -144,7 +144,8 @@ impl Antikink {
         // With held ends the stability is that of the moving rotors.
         let k = SymmetricMatrix::tangent_stiffness(model, &theta)?;
         let k = k.principal(super::equilibrium::moving(theta.len(), options.hold()));
-        let classification = classify(&k, options.zero_tolerance.unwrap_or(DEFAULT_ZERO_TOLERANCE))?;
+        let relative = options.zero_tolerance.unwrap_or_else(|| rounding_tolerance(k.dim()));
+        let classification = classify(&k, relative)?;
         Ok(Self {
             energy: model.energy(&theta),
             centre: antikinks[0],
@@ -184,7 +185,7 @@ pub fn antikink_at<M: ChainModel + ?Sized>(
     }
     let guess = initial_guess(model, centre, options)?;
     let newton_options = NewtonOptions { hold_ends: options.hold(), ..options.newton };
-    let solution = newton(model, &guess, &newton_options)?;
+    let solution = polish(model, newton(model, &guess, &newton_options)?, &newton_options)?;
     Antikink::from_solution(model, solution, 0, options)
 }
 
@@ -224,7 +225,8 @@ pub fn antikink_relaxed<M: ChainModel + ?Sized>(
     let guess = initial_guess(model, centre, options)?;
     let (relaxed, steps) =
         relax(model, &guess, &RelaxOptions { hold_ends: options.hold(), ..options.relax })?;
-    let solution = newton(model, &relaxed, &NewtonOptions { hold_ends: options.hold(), ..options.newton })?;
+    let newton_options = NewtonOptions { hold_ends: options.hold(), ..options.newton };
+    let solution = polish(model, newton(model, &relaxed, &newton_options)?, &newton_options)?;
     let polished = Antikink::from_solution(model, solution, steps, options)?;
     if polished.classification.index == 0 && polished.held == 0 {
         return Ok(polished);
