@@ -253,6 +253,9 @@ pub(crate) fn solve_centring<M: ChainModel + ?Sized>(
 /// uniform chain the neighbouring centring; next to an impurity that repels the antikink, the
 /// first minimum where the Peierls-Nabarro pinning beats the repulsion (docs/statics.md §5).
 ///
+/// With [`Ends::Free`] there is no walk: the near-null edge modes of the two domains are held and
+/// counted in the index, so the lower of the two centrings is returned as it is.
+///
 /// # Errors
 /// [`StaticsError::NoMinimum`] when the walk ends without a minimum (near an end, the ends' pull
 /// on a wide antikink can beat the barrier everywhere on the way: an independent audit found such
@@ -278,7 +281,10 @@ pub fn antikink_relaxed<M: ChainModel + ?Sized>(
     options: &AntikinkOptions,
 ) -> Result<Antikink, StaticsError> {
     let start = relaxed_nearest(model, centre, options)?;
-    if start.is_free_minimum() {
+    // With free ends the domains' edge modes are held and enter the index (at `theta_bar = 0.5`
+    // they can be slightly negative), so "a free minimum" is not defined: the lower centring is
+    // returned, as its `held` and classification say.
+    if start.is_free_minimum() || options.ends == Ends::Free {
         return Ok(start);
     }
     let steps = start.relax_steps;
@@ -356,8 +362,8 @@ pub struct PeierlsNabarro {
     /// The Peierls-Nabarro barrier `V_saddle - V_minimum` (`|V_rotor - V_spring|`), meaningful
     /// when `resolved`.
     pub barrier: f64,
-    /// Whether the two centrings are free equilibria (nothing held, neither moved), exactly one a
-    /// minimum (index 0) and one a saddle (index 1). For very wide antikinks the barrier is below
+    /// Whether the two centrings stayed where they were asked for (neither `moved()`), exactly
+    /// one a minimum (index 0) and one a saddle (index 1). For very wide antikinks the barrier is below
     /// what double precision resolves and both may look alike; the barrier is then an upper
     /// estimate. On a chain with impurities the two centrings may not be equilibria at all.
     pub resolved: bool,
@@ -494,7 +500,8 @@ pub fn peierls_nabarro_near<M: ChainModel + ?Sized>(
     let spring_centred = solve_centring(model, rotor + 0.5, options)?;
     let barrier = (rotor_centred.energy - spring_centred.energy).abs();
     let (a, b) = (rotor_centred.classification.index, spring_centred.classification.index);
-    let resolved = rotor_centred.is_free() && spring_centred.is_free() && ((a == 0 && b == 1) || (a == 1 && b == 0));
+    let stayed = !rotor_centred.moved() && !spring_centred.moved();
+    let resolved = stayed && ((a == 0 && b == 1) || (a == 1 && b == 0));
     let impurity_springs = super::landscape::impurity_springs(model);
     let (landscape, impurities) = if resolved && impurity_springs.is_empty() {
         (alloc::vec![rotor_centred.clone(), spring_centred.clone()], Vec::new())
