@@ -655,7 +655,9 @@ fn antikinks_and_the_peierls_nabarro_barrier() {
                 [middle, middle + 0.5, middle + 1.0, (0.3 * last).round(), (0.3 * last).round() + 0.5]
             {
                 match (antikink_at(&c, centre, &options), antikink_at(&m, last - centre, &options)) {
-                    (Ok(a), Ok(am)) => assert_antikink_mirrored(&what(&format!("antikink at {centre}")), &am, &a, n),
+                    (Ok(a), Ok(am)) => {
+                        assert_antikink_mirrored(&what(&format!("antikink at {centre}")), &am, &a, n)
+                    }
                     // No equilibrium at this centring (an impurity's force slides the antikink
                     // away): the mirrored chain's antikink slides to the mirror image.
                     (
@@ -665,7 +667,12 @@ fn antikinks_and_the_peierls_nabarro_barrier() {
                         assert!((fm - (last - found)).abs() < 1e-6, "{}: {found} vs {fm}", what("slid"));
                         assert_eq!((index, held), (im, hm), "{}", what("slid"));
                     }
-                    (a, am) => panic!("{}: {:?} vs {:?}", what(&format!("antikink at {centre}")), a.map(|a| a.centre), am.map(|a| a.centre)),
+                    (a, am) => panic!(
+                        "{}: {:?} vs {:?}",
+                        what(&format!("antikink at {centre}")),
+                        a.map(|a| a.centre),
+                        am.map(|a| a.centre)
+                    ),
                 }
             }
             // The mirrored chain's middle rotor is the mirror image of rotor n - 1 - middle.

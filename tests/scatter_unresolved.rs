@@ -8,7 +8,9 @@
 //! separately, each through the energy budget.
 
 use chain_sweep::scattering::{Defect, PhaseDiagram};
-use rotor_chain::dynamics::scatter::{CrossChecked, EnergyBudget, Outcome, Unresolved, cross_checked, scatter_within_budget};
+use rotor_chain::dynamics::scatter::{
+    CrossChecked, EnergyBudget, Outcome, Unresolved, cross_checked, scatter_within_budget,
+};
 use rotor_chain::integrate::Method;
 
 #[test]
@@ -23,7 +25,9 @@ fn a_point_the_integrators_label_differently_is_unresolved_and_a_robust_one_is_n
     let (verlet, dop853) = (outcome(Method::Verlet), outcome(Method::dop853()));
     assert_ne!(verlet, dop853, "the integrators agree here");
     match cross_checked(&model, &diagram.setup(1.1, Method::Verlet), &budget).unwrap() {
-        CrossChecked::Unresolved { reason: Unresolved::IntegratorsDisagree { verlet: v, dop853: d }, .. } => {
+        CrossChecked::Unresolved {
+            reason: Unresolved::IntegratorsDisagree { verlet: v, dop853: d }, ..
+        } => {
             assert_eq!((v.0, d.0), (verlet, dop853));
             assert!(v.1 > 0.0 && d.1 > 0.0);
         }

@@ -209,8 +209,12 @@ fn shape_modes_match_the_continuum_at_small_theta_bar() {
 fn antikink_translation_is_soft_but_not_zero_and_separate_from_edge_modes() {
     let model = chain(60, 0.58);
     let pn = peierls_nabarro(&model, &AntikinkOptions::default()).unwrap();
-    let all = modes(&model, &pn.minimum().unwrap().theta, &ModeOptions { count: Some(8), ..ModeOptions::default() })
-        .unwrap();
+    let all = modes(
+        &model,
+        &pn.minimum().unwrap().theta,
+        &ModeOptions { count: Some(8), ..ModeOptions::default() },
+    )
+    .unwrap();
     let t = all.iter().find(|m| m.kind == ModeKind::Translation).expect("a translation mode");
     let s = all.iter().find(|m| m.kind == ModeKind::Shape).expect("a shape mode");
     assert!(
@@ -250,9 +254,12 @@ fn kink_translation_is_a_zero_mode_at_every_position() {
 fn maxwell_calladine_index_is_one_everywhere_and_l_critical_has_a_self_stress() {
     let model = chain(60, 0.58);
     let pn = peierls_nabarro(&model, &AntikinkOptions::default()).unwrap();
-    for theta in
-        [kink(&model, 20.3).unwrap(), pn.minimum().unwrap().theta.clone(), pn.saddle().unwrap().theta.clone(), vec![0.58; 60]]
-    {
+    for theta in [
+        kink(&model, 20.3).unwrap(),
+        pn.minimum().unwrap().theta.clone(),
+        pn.saddle().unwrap().theta.clone(),
+        vec![0.58; 60],
+    ] {
         let c = maxwell_calladine(&model, &theta, None).unwrap();
         assert_eq!(
             c.index(),
@@ -511,7 +518,10 @@ fn antikinks_are_found_across_the_required_range() {
             match pn.saddle() {
                 Ok(saddle) => assert!(saddle.residual <= 1e-11 && pn.resolved),
                 Err(StaticsError::NotAnEquilibrium { index, found, requested, .. }) => {
-                    assert!(!pn.resolved && (index == 0 || (found - requested).abs() > 0.25), "n = {n}, {theta_bar}")
+                    assert!(
+                        !pn.resolved && (index == 0 || (found - requested).abs() > 0.25),
+                        "n = {n}, {theta_bar}"
+                    )
                 }
                 Err(e) => panic!("n = {n}, theta_bar = {theta_bar}: {e}"),
             }
@@ -536,8 +546,11 @@ fn long_chains_barriers_agree_to_the_rounding_floor_the_paper_assumes() {
     for k in [1.0, 3.7, K] {
         let build = |n: usize| RuntimeChain::builder(n, 0.8, k, 0.40).build();
         let barriers = barrier_vs_size(&sizes, build, &AntikinkOptions::default()).unwrap();
-        let v_min =
-            peierls_nabarro(&build(60).unwrap(), &AntikinkOptions::default()).unwrap().minimum().unwrap().energy;
+        let v_min = peierls_nabarro(&build(60).unwrap(), &AntikinkOptions::default())
+            .unwrap()
+            .minimum()
+            .unwrap()
+            .energy;
         let (_, reference) = barriers[barriers.len() - 1];
         scaled.extend(
             barriers[..barriers.len() - 1].iter().map(|(_, b)| (b - reference) / (f64::EPSILON * v_min)),

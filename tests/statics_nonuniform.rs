@@ -12,7 +12,9 @@ mod common;
 use common::Reference;
 use rotor_chain::RuntimeChain;
 use rotor_chain::statics::StaticsError;
-use rotor_chain::statics::antikink::{Antikink, AntikinkOptions, antikink_at, antikink_relaxed, peierls_nabarro};
+use rotor_chain::statics::antikink::{
+    Antikink, AntikinkOptions, antikink_at, antikink_relaxed, peierls_nabarro,
+};
 use rotor_chain::statics::landscape::default_centre;
 use rotor_chain::statics::modes::{ModeOptions, modes};
 
@@ -170,7 +172,7 @@ fn a_stiff_impurity_repels_the_antikink_and_no_saddle_is_called_a_minimum() {
     }
     // The default placement keeps clear of the ends and of the impurity.
     let c = default_centre(&model);
-    assert!(c >= 9.0 && c <= 30.0 && (c - 19.5).abs() >= 9.0, "{c}");
+    assert!((9.0..=30.0).contains(&c) && (c - 19.5).abs() >= 9.0, "{c}");
 }
 
 /// Soft impurities (a spring at 0.1 k; a longer rest length) pin the antikink: the minimum sits on
@@ -241,9 +243,15 @@ fn small_curvatures_at_theta_bar_0_2_agree_with_the_reference_and_frequencies_ar
         let expected = refined_lowest(&reference, &a.theta);
         let ours = modes(&model, &a.theta, &held).unwrap()[0].clone();
         assert!(expected * sign > 3e-7, "{expected:e}");
-        assert!((ours.omega_squared * inertia / expected - 1.0).abs() < 1e-3, "{:e} vs {expected:e}", ours.omega_squared * inertia);
+        assert!(
+            (ours.omega_squared * inertia / expected - 1.0).abs() < 1e-3,
+            "{:e} vs {expected:e}",
+            ours.omega_squared * inertia
+        );
         assert_eq!(ours.frequency.signum(), sign);
-        assert!((ours.frequency.abs() - (expected.abs() / inertia).sqrt()).abs() < 1e-3 * ours.frequency.abs());
+        assert!(
+            (ours.frequency.abs() - (expected.abs() / inertia).sqrt()).abs() < 1e-3 * ours.frequency.abs()
+        );
     }
 }
 
@@ -259,5 +267,9 @@ fn the_saddles_unstable_direction_has_a_negative_frequency() {
     assert!(expected < -1.0);
     let held = ModeOptions { count: Some(1), hold_ends: true, ..ModeOptions::default() };
     let ours = &modes(&model, &saddle.theta, &held).unwrap()[0];
-    assert!((ours.frequency + (-expected).sqrt()).abs() < 1e-6 * (-expected).sqrt(), "{} vs {expected}", ours.frequency);
+    assert!(
+        (ours.frequency + (-expected).sqrt()).abs() < 1e-6 * (-expected).sqrt(),
+        "{} vs {expected}",
+        ours.frequency
+    );
 }

@@ -197,7 +197,9 @@ pub fn peierls_nabarro(chain: &Chain, py: Python<'_>, ends_name: &str) -> PyResu
     let rotor = Py::new(py, antikink_of(py, &pn.rotor_centred))?;
     let spring = Py::new(py, antikink_of(py, &pn.spring_centred))?;
     let pick = |a: Result<&ak::Antikink, _>| {
-        a.ok().map(|a| if core::ptr::eq(a, &pn.rotor_centred) { rotor.clone_ref(py) } else { spring.clone_ref(py) })
+        a.ok().map(|a| {
+            if core::ptr::eq(a, &pn.rotor_centred) { rotor.clone_ref(py) } else { spring.clone_ref(py) }
+        })
     };
     let (minimum, saddle) = (pick(pn.minimum()), pick(pn.saddle()));
     Ok(PeierlsNabarro {

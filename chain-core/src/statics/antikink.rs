@@ -176,7 +176,8 @@ impl Antikink {
     /// Whether the antikink found is centred more than [`MOVED`] from the centring asked for:
     /// there is no equilibrium at that centring.
     pub fn moved(&self) -> bool {
-        !((self.centre - self.requested).abs() <= MOVED)
+        let distance = (self.centre - self.requested).abs();
+        distance.is_nan() || distance > MOVED
     }
 
     /// A free equilibrium (nothing held) at the centring asked for.
@@ -388,11 +389,7 @@ impl PeierlsNabarro {
     /// away, as next to a stiff impurity): the landscape lists the minima nearby.
     pub fn minimum(&self) -> Result<&Antikink, StaticsError> {
         let lower = self.lower();
-        if lower.classification.index == 0 && !lower.moved() {
-            Ok(lower)
-        } else {
-            Err(self.no(lower))
-        }
+        if lower.classification.index == 0 && !lower.moved() { Ok(lower) } else { Err(self.no(lower)) }
     }
 
     /// The saddle at the requested place: the higher of the two centrings if its index is at

@@ -390,7 +390,7 @@ pub fn polish<M: Stiffness + ?Sized>(
         }
         model.energy_gradient_stiffness_into(&trial, &mut g_trial, k_trial.values_mut());
         let r = projected_residual(&g_trial[range.clone()], &held, scale);
-        if !(r < residual) {
+        if r.is_nan() || r >= residual {
             break;
         }
         core::mem::swap(&mut theta, &mut trial);

@@ -66,9 +66,8 @@ pub fn impurity_springs<M: ChainModel + ?Sized>(model: &M) -> Vec<usize> {
 /// then to the left.
 fn farthest_centring(n: usize, impurities: &[usize], offset: f64) -> f64 {
     let last = (n - 1) as f64;
-    let clearance = |c: f64| {
-        impurities.iter().map(|&p| (c - (p as f64 + 0.5)).abs()).fold(c.min(last - c), f64::min)
-    };
+    let clearance =
+        |c: f64| impurities.iter().map(|&p| (c - (p as f64 + 0.5)).abs()).fold(c.min(last - c), f64::min);
     let middle = last / 2.0;
     (0..n)
         .map(|i| i as f64 + offset)
@@ -126,10 +125,10 @@ pub fn scan<M: ChainModel + ?Sized>(
         let reference = farthest_centring(n, impurities, 0.5);
         let far = solve_centring(model, reference, options)?.energy;
         for p in near {
-            let on = landscape
-                .iter()
-                .find(|a| a.requested == p as f64 + 0.5)
-                .map_or_else(|| solve_centring(model, p as f64 + 0.5, options).map(|a| a.energy), |a| Ok(a.energy))?;
+            let on = landscape.iter().find(|a| a.requested == p as f64 + 0.5).map_or_else(
+                || solve_centring(model, p as f64 + 0.5, options).map(|a| a.energy),
+                |a| Ok(a.energy),
+            )?;
             energies.push(ImpurityEnergy { spring: p, energy: on - far, reference });
         }
     }

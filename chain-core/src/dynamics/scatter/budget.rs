@@ -226,7 +226,7 @@ impl fmt::Display for Unresolved {
 #[derive(Clone, Debug, PartialEq)]
 pub enum CrossChecked {
     /// Both integrators decided this outcome; the run kept is Verlet's (or its recomputation).
-    Resolved(Budgeted),
+    Resolved(Box<Budgeted>),
     /// The outcome is not robust: no label, the reason instead, and both runs.
     Unresolved {
         /// Why.
@@ -261,7 +261,7 @@ pub fn cross_checked<M: ChainModel + ?Sized>(
     let dop853 = with(Method::dop853())?;
     let (a, b) = (&verlet.scattering, &dop853.scattering);
     if a.outcome == b.outcome {
-        return Ok(CrossChecked::Resolved(verlet));
+        return Ok(CrossChecked::Resolved(Box::new(verlet)));
     }
     Ok(CrossChecked::Unresolved {
         reason: Unresolved::IntegratorsDisagree {

@@ -298,7 +298,11 @@ pub fn logvpn_size(p: &Params, q: Quality) -> Result<Figure, FigureError> {
     let barriers =
         barrier_vs_size(&sizes, build, &AntikinkOptions::default()).map_err(FigureError::on(LABEL))?;
     let (_, reference) = barriers[barriers.len() - 1];
-    let energy = pn(p, p.n, size_theta_bar).map_err(FigureError::on(LABEL))?.minimum().map_err(FigureError::on(LABEL))?.energy;
+    let energy = pn(p, p.n, size_theta_bar)
+        .map_err(FigureError::on(LABEL))?
+        .minimum()
+        .map_err(FigureError::on(LABEL))?
+        .energy;
     // Differences below this are rounding in the two energies of each barrier (measured: from
     // n = 27 on they scatter between 2 and 8 eps V_min instead of falling further).
     let floor = 20.0 * f64::EPSILON * energy / ka2(p);
