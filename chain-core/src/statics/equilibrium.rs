@@ -341,7 +341,7 @@ pub fn relax<M: Stiffness + ?Sized>(
 
 /// At most this many refinement steps in [`polish`]: from Newton's tolerance (`1e-11`) to the
 /// rounding floor (`~1e-16`) takes one or two quadratically convergent steps.
-const POLISH_STEPS: usize = 4;
+pub const POLISH_STEPS: usize = 4;
 
 /// Refines an equilibrium found by [`newton`] to the rounding floor of the gradient: projected
 /// Newton steps (the near-null directions of `options` left alone, as in [`newton`]; nothing
