@@ -380,40 +380,49 @@ pub struct PeierlsNabarro {
 }
 
 impl PeierlsNabarro {
-    /// The Peierls-Nabarro minimum at the requested place: the lower of the two centrings if it
-    /// has Morse index 0 and stayed at its centring (with `held > 0`, at small `theta_bar` in a
-    /// short chain, it is the minimum at fixed centring, as `held` says).
+    /// The Peierls-Nabarro minimum at the requested place: of the two centrings, those with Morse
+    /// index 0 that stayed where they were asked for, the lower (with `held > 0`, at small
+    /// `theta_bar` in a short chain, it is the minimum at fixed centring, as `held` says; where the
+    /// held ends confine a very wide antikink, both centrings slide to the middle and the one
+    /// that is there is the minimum).
     ///
     /// # Errors
-    /// [`StaticsError::NoMinimum`] when it is not (a saddle, a held point, an antikink that moved
+    /// [`StaticsError::NoMinimum`] when neither is (a saddle, a held point, an antikink that moved
     /// away, as next to a stiff impurity): the landscape lists the minima nearby.
     pub fn minimum(&self) -> Result<&Antikink, StaticsError> {
-        let lower = self.lower();
-        if lower.classification.index == 0 && !lower.moved() { Ok(lower) } else { Err(self.no(lower)) }
+        self.pair()
+            .filter(|a| a.classification.index == 0 && !a.moved())
+            .min_by(|a, b| a.energy.total_cmp(&b.energy))
+            .ok_or_else(|| self.no(self.lower()))
     }
 
-    /// The saddle at the requested place: the higher of the two centrings if its index is at
-    /// least 1 and it did not move.
+    /// The saddle at the requested place: of the two centrings, those of index at least 1 that
+    /// stayed where they were asked for, the higher.
     ///
     /// # Errors
-    /// [`StaticsError::NotAnEquilibrium`] otherwise (the centring, where the antikink went, its
-    /// index and held directions).
+    /// [`StaticsError::NotAnEquilibrium`] otherwise (the higher centring, where the antikink went,
+    /// its index and held directions).
     pub fn saddle(&self) -> Result<&Antikink, StaticsError> {
-        let higher = if core::ptr::eq(self.lower(), &self.rotor_centred) {
-            &self.spring_centred
-        } else {
-            &self.rotor_centred
-        };
-        if higher.classification.index >= 1 && !higher.moved() {
-            Ok(higher)
-        } else {
-            Err(StaticsError::NotAnEquilibrium {
-                requested: higher.requested,
-                found: higher.centre,
-                index: higher.classification.index,
-                held: higher.held,
+        self.pair()
+            .filter(|a| a.classification.index >= 1 && !a.moved())
+            .max_by(|a, b| a.energy.total_cmp(&b.energy))
+            .ok_or_else(|| {
+                let higher = if core::ptr::eq(self.lower(), &self.rotor_centred) {
+                    &self.spring_centred
+                } else {
+                    &self.rotor_centred
+                };
+                StaticsError::NotAnEquilibrium {
+                    requested: higher.requested,
+                    found: higher.centre,
+                    index: higher.classification.index,
+                    held: higher.held,
+                }
             })
-        }
+    }
+
+    fn pair(&self) -> impl Iterator<Item = &Antikink> {
+        [&self.rotor_centred, &self.spring_centred].into_iter()
     }
 
     /// The free minima of the landscape (index 0, nothing held, not moved).
