@@ -45,7 +45,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         "{:>8} | {:>7} | {:>7} | {:>20} | {:>10} | {:>8} | {:>10}",
         "", "centred", "centre", "class (held ends)", "V", "paper V", "ours/paper"
     );
-    for (label, a, paper) in [("minimum", pn.minimum(), paper_min), ("saddle", pn.saddle(), paper_saddle)] {
+    for (label, a, paper) in [("minimum", pn.minimum()?, paper_min), ("saddle", pn.saddle()?, paper_saddle)] {
         println!(
             "{label:>8} | {:>7} | {:>7.3} | {:>20} | {:>10.4} | {paper:>8.2} | {:>10.4}",
             centring(&pn, a),
@@ -66,25 +66,25 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     );
     println!(
         "Newton steps {} / {}, residual {:.1e} / {:.1e}, reaction at the held ends {:.1e} / {:.1e} (x ||K||)",
-        pn.minimum().newton_iterations,
-        pn.saddle().newton_iterations,
-        pn.minimum().residual,
-        pn.saddle().residual,
-        pn.minimum().edge_force,
-        pn.saddle().edge_force
+        pn.minimum()?.newton_iterations,
+        pn.saddle()?.newton_iterations,
+        pn.minimum()?.residual,
+        pn.saddle()?.residual,
+        pn.minimum()?.edge_force,
+        pn.saddle()?.edge_force
     );
 
     // Fig. fig:aktheta: the profile of the minimum against Eq. (eq:kinksolution), and the stretch of
     // each spring (symmetric about the centre, as force balance requires).
-    let profile = continuum(0.58)?.angle_profile(Charge::Antikink, 60, pn.minimum().centre)?;
+    let profile = continuum(0.58)?.angle_profile(Charge::Antikink, 60, pn.minimum()?.centre)?;
     let mut lengths = vec![0.0; 59];
-    Chain.spring_lengths_into(&pn.minimum().theta, &mut lengths);
+    Chain.spring_lengths_into(&pn.minimum()?.theta, &mut lengths);
     println!("\nProfile of the minimum (Fig. fig:aktheta): angles in rad, stretch l_p - lbar in a");
     println!("{:>5} | {:>10} | {:>10} | {:>16}", "rotor", "theta_i", "continuum", "stretch of p = i");
     for i in 24..=34 {
         println!(
             "{i:>5} | {:>+10.6} | {:>+10.6} | {:>+16.6e}",
-            pn.minimum().theta[i],
+            pn.minimum()?.theta[i],
             profile[i],
             lengths[i] - Chain.rest_length(i)
         );
@@ -144,7 +144,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     for theta_bar in grid.chain([0.58]) {
         let pn = peierls_nabarro(&chain(60, theta_bar)?, &options)?;
         let c = continuum(theta_bar)?;
-        let v = pn.minimum().energy / K;
+        let v = pn.minimum()?.energy / K;
         let w = c.width();
         println!(
             "{theta_bar:>5.2} | {w:>6.3} | {v:>9.6} | {:>9.6} | {:>6.4} | {:>10.3e} | {:>10.3e} | {:>10.3e} | {:>7}",
@@ -212,7 +212,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             let elapsed = clock.elapsed();
             println!(
                 "{n:>5} | {theta_bar:>5.2} | {:>12.8} | {:>10.3e} | {:>7} | {:>6} | {:>9.2?}",
-                pn.minimum().energy / K,
+                pn.minimum()?.energy / K,
                 pn.barrier / K,
                 indices(&pn),
                 format!("{}+{}", pn.rotor_centred.newton_iterations, pn.spring_centred.newton_iterations),
@@ -225,7 +225,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let build =
         |n: usize, theta_bar: f64, law: Law| RuntimeChain::builder(n, 0.8, K, theta_bar).law(law).build();
     let minimum = |theta_bar: f64| -> Result<f64, Box<dyn std::error::Error>> {
-        Ok(peierls_nabarro(&chain(60, theta_bar)?, &options)?.minimum().energy - paper_min)
+        Ok(peierls_nabarro(&chain(60, theta_bar)?, &options)?.minimum()?.energy - paper_min)
     };
     // Secant on theta_bar for V_min = 1359.15.
     let (mut t0, mut t1) = (0.57, 0.58);
@@ -263,8 +263,8 @@ What reproduces the paper's 1359.15 / 1359.75 / 0.60 (Sec. V)?"
         let pn = peierls_nabarro(model, opts)?;
         println!(
             "{label:>35} | {:>10.4} | {:>10.4} | {:>7.4} | {:>7}",
-            pn.minimum().energy,
-            pn.saddle().energy,
+            pn.minimum()?.energy,
+            pn.saddle()?.energy,
             pn.barrier,
             indices(&pn)
         );

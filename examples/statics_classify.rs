@@ -51,14 +51,14 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     row("kink at 29.5", &kink(&Chain, 29.5)?, false)?;
     row("kink at 10", &kink(&Chain, 10.0)?, false)?;
     let pn = peierls_nabarro(&Chain, &AntikinkOptions::default())?;
-    for (what, a) in [("antikink minimum (29)", pn.minimum()), ("antikink saddle (29.5)", pn.saddle())] {
+    for (what, a) in [("antikink minimum (29)", pn.minimum()?), ("antikink saddle (29.5)", pn.saddle()?)] {
         row(what, &a.theta, true)?;
         row(what, &a.theta, false)?;
     }
     println!(
         "\nthe antikink analysis's own classification (held ends): minimum {:?}, saddle {:?}",
-        pn.minimum().classification.kind,
-        pn.saddle().classification.kind
+        pn.minimum()?.classification.kind,
+        pn.saddle()?.classification.kind
     );
     Ok(())
 }

@@ -58,8 +58,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     row("kink at 10.25", &Chain, &kink(&Chain, 10.25)?)?;
     row("reflected kink at 29 (not eq.)", &Chain, &reflected_kink(&Chain, 29.0)?)?;
     let pn = peierls_nabarro(&Chain, &AntikinkOptions::default())?;
-    row("antikink minimum", &Chain, &pn.minimum().theta)?;
-    row("antikink saddle", &Chain, &pn.saddle().theta)?;
+    row("antikink minimum", &Chain, &pn.minimum()?.theta)?;
+    row("antikink saddle", &Chain, &pn.saddle()?.theta)?;
 
     // The spring-length impurity on the middle spring (paper Fig. fig:longbar).
     let l_critical = ContinuumChain::new(1.0, 0.8, 0.58, K, 1.0)?.l_critical();

@@ -60,8 +60,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         );
         let pn = peierls_nabarro(&model, &AntikinkOptions::default())?;
         print_modes(
-            &format!("antikink minimum at {:.3}, theta_bar = {theta_bar}, ends held:", pn.minimum().centre),
-            &modes(&model, &pn.minimum().theta, &held)?,
+            &format!("antikink minimum at {:.3}, theta_bar = {theta_bar}, ends held:", pn.minimum()?.centre),
+            &modes(&model, &pn.minimum()?.theta, &held)?,
         );
         println!();
     }
@@ -77,7 +77,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         let continuum = ContinuumChain::new(1.0, 0.8, theta_bar, K, 1.0)?.shape_mode_frequency();
         let k_modes = modes(&model, &kink(&model, 29.5)?, &lowest)?;
         let pn = peierls_nabarro(&model, &AntikinkOptions::default())?;
-        let a_modes = modes(&model, &pn.minimum().theta, &held)?;
+        let a_modes = modes(&model, &pn.minimum()?.theta, &held)?;
         let (ks, a_s) = (first(&k_modes, ModeKind::Shape), first(&a_modes, ModeKind::Shape));
         println!(
             "{theta_bar:>5.2} | {:>10.3e} | {ks:>10.4} | {:>10.3e} | {a_s:>10.4} | {continuum:>10.4} | {:>10.4} | {:>10.4}",

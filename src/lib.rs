@@ -50,7 +50,7 @@
 //!     assert!(Potential::energy(&Chain, &theta) < 1e-16);
 //!
 //!     let pn = peierls_nabarro(&Chain, &AntikinkOptions::default())?; // Sec. V
-//!     println!("antikink {:.4}, barrier {:.4}", pn.minimum().energy, pn.barrier);
+//!     println!("antikink {:.4}, barrier {:.4}", pn.minimum()?.energy, pn.barrier);
 //!     Ok(())
 //! }
 //! ```

@@ -78,7 +78,7 @@ fn antikink_energy_and_barrier_reproduce_the_paper() {
     let theta_bar = 0.575132;
     let pn = peierls_nabarro(&chain(60, theta_bar), &AntikinkOptions::default()).unwrap();
     assert!(pn.resolved, "{:?} / {:?}", pn.rotor_centred.classification, pn.spring_centred.classification);
-    let (min, saddle) = (pn.minimum(), pn.saddle());
+    let (min, saddle) = (pn.minimum().unwrap(), pn.saddle().unwrap());
     eprintln!(
         "theta_bar = {theta_bar}: V_min = {:.4}, V_saddle = {:.4}, barrier = {:.4}",
         min.energy, saddle.energy, pn.barrier
@@ -100,7 +100,7 @@ fn antikink_at_the_printed_angle_is_a_minimum_and_a_saddle_of_the_reference() {
     // two centrings are still exact equilibria of the independent model, of index 0 and 1.
     let pn = peierls_nabarro(&chain(60, 0.58), &AntikinkOptions::default()).unwrap();
     assert!(pn.resolved);
-    let (min, saddle) = (pn.minimum(), pn.saddle());
+    let (min, saddle) = (pn.minimum().unwrap(), pn.saddle().unwrap());
     assert_eq!(min.classification.index, 0, "the lower centring is a minimum");
     assert!(matches!(saddle.classification.kind, EquilibriumKind::Saddle { index: 1 }));
     let v_min = reference_equilibrium(0.58, &min.theta, 0, "minimum");
@@ -118,10 +118,10 @@ fn the_papers_relaxation_lands_in_the_minimum() {
     let relaxed = antikink_relaxed(&model, 29.0, &AntikinkOptions::default()).unwrap();
     let pn = peierls_nabarro(&model, &AntikinkOptions::default()).unwrap();
     assert!(
-        (relaxed.energy - pn.minimum().energy).abs() < 1e-6 * relaxed.energy,
+        (relaxed.energy - pn.minimum().unwrap().energy).abs() < 1e-6 * relaxed.energy,
         "{} vs {}",
         relaxed.energy,
-        pn.minimum().energy
+        pn.minimum().unwrap().energy
     );
     assert_eq!(relaxed.classification.index, 0);
 }
@@ -138,10 +138,10 @@ fn the_relaxed_construction_returns_the_minimum_from_any_start() {
         assert_eq!(relaxed.classification.index, 0, "theta_bar {theta_bar}, start {start}");
         assert_eq!(relaxed.held, 0);
         assert!(
-            (relaxed.energy - pn.minimum().energy).abs() < 1e-9 * relaxed.energy,
+            (relaxed.energy - pn.minimum().unwrap().energy).abs() < 1e-9 * relaxed.energy,
             "{} vs {}",
             relaxed.energy,
-            pn.minimum().energy
+            pn.minimum().unwrap().energy
         );
     }
 }
@@ -151,7 +151,7 @@ fn antikink_energy_approaches_the_continuum_at_small_theta_bar() {
     let mut previous = f64::INFINITY;
     for theta_bar in [0.1, 0.2, 0.3, 0.4, 0.5, 0.58, 0.65] {
         let pn = peierls_nabarro(&chain(60, theta_bar), &AntikinkOptions::default()).unwrap();
-        let ratio = pn.minimum().energy / (K * continuum_antikink_energy(theta_bar));
+        let ratio = pn.minimum().unwrap().energy / (K * continuum_antikink_energy(theta_bar));
         eprintln!("theta_bar = {theta_bar}: V / V_continuum = {ratio:.5}");
         if theta_bar == 0.1 {
             assert!((0.98..=1.0).contains(&ratio), "ratio {ratio} at 0.1");
@@ -170,8 +170,8 @@ fn peierls_nabarro_barrier_falls_exponentially_with_the_width() {
         assert!(pn.resolved, "theta_bar = {theta_bar}");
         // Each barrier is the energy difference of a minimum and a saddle of the independent model.
         let what = format!("theta_bar = {theta_bar}");
-        let v_min = reference_equilibrium(theta_bar, &pn.minimum().theta, 0, &what);
-        let v_saddle = reference_equilibrium(theta_bar, &pn.saddle().theta, 1, &what);
+        let v_min = reference_equilibrium(theta_bar, &pn.minimum().unwrap().theta, 0, &what);
+        let v_saddle = reference_equilibrium(theta_bar, &pn.saddle().unwrap().theta, 1, &what);
         assert_close(pn.barrier, v_saddle - v_min, 1e-7, &what);
         let w = 1.0 / (2.0 * 0.8 * f64::sin(theta_bar));
         points.push((w, (pn.barrier / K).ln()));
@@ -196,7 +196,7 @@ fn shape_modes_match_the_continuum_at_small_theta_bar() {
     let shape = kink_modes.iter().find(|m| m.kind == ModeKind::Shape).expect("a kink shape mode");
     assert!((shape.frequency / expected - 1.0).abs() < 0.02, "kink shape {} vs {expected}", shape.frequency);
     let pn = peierls_nabarro(&model, &AntikinkOptions::default()).unwrap();
-    let ak_modes = modes(&model, &pn.minimum().theta, &opts).unwrap();
+    let ak_modes = modes(&model, &pn.minimum().unwrap().theta, &opts).unwrap();
     let shape = ak_modes.iter().find(|m| m.kind == ModeKind::Shape).expect("an antikink shape mode");
     assert!(
         (shape.frequency / expected - 1.0).abs() < 0.02,
@@ -209,8 +209,12 @@ fn shape_modes_match_the_continuum_at_small_theta_bar() {
 fn antikink_translation_is_soft_but_not_zero_and_separate_from_edge_modes() {
     let model = chain(60, 0.58);
     let pn = peierls_nabarro(&model, &AntikinkOptions::default()).unwrap();
-    let all = modes(&model, &pn.minimum().theta, &ModeOptions { count: Some(8), ..ModeOptions::default() })
-        .unwrap();
+    let all = modes(
+        &model,
+        &pn.minimum().unwrap().theta,
+        &ModeOptions { count: Some(8), ..ModeOptions::default() },
+    )
+    .unwrap();
     let t = all.iter().find(|m| m.kind == ModeKind::Translation).expect("a translation mode");
     let s = all.iter().find(|m| m.kind == ModeKind::Shape).expect("a shape mode");
     assert!(
@@ -220,10 +224,10 @@ fn antikink_translation_is_soft_but_not_zero_and_separate_from_edge_modes() {
         s.frequency
     );
     assert!(
-        (t.position - pn.minimum().centre).abs() < 3.0,
+        (t.position - pn.minimum().unwrap().centre).abs() < 3.0,
         "translation mode at {} vs antikink at {}",
         t.position,
-        pn.minimum().centre
+        pn.minimum().unwrap().centre
     );
     let edges = all.iter().filter(|m| matches!(m.kind, ModeKind::Edge { .. })).count();
     assert!(edges >= 1, "edge modes found: {all:#?}");
@@ -250,9 +254,12 @@ fn kink_translation_is_a_zero_mode_at_every_position() {
 fn maxwell_calladine_index_is_one_everywhere_and_l_critical_has_a_self_stress() {
     let model = chain(60, 0.58);
     let pn = peierls_nabarro(&model, &AntikinkOptions::default()).unwrap();
-    for theta in
-        [kink(&model, 20.3).unwrap(), pn.minimum().theta.clone(), pn.saddle().theta.clone(), vec![0.58; 60]]
-    {
+    for theta in [
+        kink(&model, 20.3).unwrap(),
+        pn.minimum().unwrap().theta.clone(),
+        pn.saddle().unwrap().theta.clone(),
+        vec![0.58; 60],
+    ] {
         let c = maxwell_calladine(&model, &theta, None).unwrap();
         assert_eq!(
             c.index(),
@@ -444,10 +451,15 @@ fn antikink_at_solves_centrings_only_and_says_when_it_held_the_translation() {
         assert_eq!(a.held, 0, "{centre}");
         assert!(interior_force(&a.theta) < 1e-6, "{centre}: {}", interior_force(&a.theta));
     }
-    // At the last spring the ends' pull wins: the translation is held, and a force remains.
-    let a = antikink_at(&model, 58.5, &options).unwrap();
-    assert!(a.held > 0, "held {}", a.held);
-    assert!(interior_force(&a.theta) > 1e-3, "{}", interior_force(&a.theta));
+    // At the last spring the ends' pull wins: the antikink slides inward (the translation held
+    // on the way), and antikink_at reports where it went instead of an equilibrium at 58.5.
+    match antikink_at(&model, 58.5, &options) {
+        Err(StaticsError::NotAnEquilibrium { requested, found, held, .. }) => {
+            assert_eq!(requested, 58.5);
+            assert!(found < 58.25 && held > 0, "{found}, held {held}");
+        }
+        other => panic!("{:?}", other.map(|a| a.centre)),
+    }
 }
 
 #[test]
@@ -492,14 +504,28 @@ fn finite_size_effects_on_the_barrier_decay_with_the_chain_length() {
 
 #[test]
 fn antikinks_are_found_across_the_required_range() {
+    use rotor_chain::statics::StaticsError;
     // The range: theta_bar in [0.1, 0.65], n in [16, 2000]; both centrings converge and hold
     // exactly one antikink (walls are counted inside the analysis).
     for n in [16, 2000] {
         for theta_bar in [0.1, 0.3, 0.65] {
             let pn = peierls_nabarro(&chain(n, theta_bar), &AntikinkOptions::default())
                 .unwrap_or_else(|e| panic!("n = {n}, theta_bar = {theta_bar}: {e}"));
-            assert!(pn.minimum().residual <= 1e-11 && pn.saddle().residual <= 1e-11);
-            assert!(pn.minimum().energy > 0.0 && pn.barrier >= 0.0);
+            assert!(pn.minimum().unwrap().residual <= 1e-11);
+            // At n = 16 the held ends confine a wide antikink: at theta_bar = 0.1 the rotor centring
+            // slides onto the middle spring, at 0.3 both centrings are minima. No saddle there, and
+            // `saddle()` says so instead of naming one.
+            match pn.saddle() {
+                Ok(saddle) => assert!(saddle.residual <= 1e-11 && pn.resolved),
+                Err(StaticsError::NotAnEquilibrium { index, found, requested, .. }) => {
+                    assert!(
+                        !pn.resolved && (index == 0 || (found - requested).abs() > 0.25),
+                        "n = {n}, {theta_bar}"
+                    )
+                }
+                Err(e) => panic!("n = {n}, theta_bar = {theta_bar}: {e}"),
+            }
+            assert!(pn.minimum().unwrap().energy > 0.0 && pn.barrier >= 0.0);
         }
     }
 }
@@ -520,8 +546,11 @@ fn long_chains_barriers_agree_to_the_rounding_floor_the_paper_assumes() {
     for k in [1.0, 3.7, K] {
         let build = |n: usize| RuntimeChain::builder(n, 0.8, k, 0.40).build();
         let barriers = barrier_vs_size(&sizes, build, &AntikinkOptions::default()).unwrap();
-        let v_min =
-            peierls_nabarro(&build(60).unwrap(), &AntikinkOptions::default()).unwrap().minimum().energy;
+        let v_min = peierls_nabarro(&build(60).unwrap(), &AntikinkOptions::default())
+            .unwrap()
+            .minimum()
+            .unwrap()
+            .energy;
         let (_, reference) = barriers[barriers.len() - 1];
         scaled.extend(
             barriers[..barriers.len() - 1].iter().map(|(_, b)| (b - reference) / (f64::EPSILON * v_min)),

@@ -563,7 +563,10 @@ fn peierls_nabarro_barrier_and_antikinks_scale_as_energy() {
             let got = peierls_nabarro(&scaled, &options).unwrap();
             assert!(got.resolved, "{}", what("resolved"));
             assert_scaled1(&what("barrier"), got.barrier, pn.barrier, u.energy(), NEWTON);
-            for (a, a0) in [(got.minimum(), pn.minimum()), (got.saddle(), pn.saddle())] {
+            for (a, a0) in [
+                (got.minimum().unwrap(), pn.minimum().unwrap()),
+                (got.saddle().unwrap(), pn.saddle().unwrap()),
+            ] {
                 assert_scaled1(&what("energy"), a.energy, a0.energy, u.energy(), NEWTON);
                 assert_scaled(&what("angles"), &a.theta, &a0.theta, 1.0, NEWTON);
                 assert_scaled1(&what("centre"), a.centre, a0.centre, 1.0, NEWTON);

@@ -171,16 +171,16 @@ class Antikink:
     def is_saddle(self) -> bool: ...
 
 class PeierlsNabarro:
-    minimum: Antikink
-    saddle: Antikink
+    minimum: Optional[Antikink]
+    saddle: Optional[Antikink]
     rotor_centred: Antikink
     spring_centred: Antikink
     barrier: float
     resolved: bool
     @property
-    def minimum_energy(self) -> float: ...
+    def minimum_energy(self) -> Optional[float]: ...
     @property
-    def saddle_energy(self) -> float: ...
+    def saddle_energy(self) -> Optional[float]: ...
 
 class Modes:
     frequencies: Array

@@ -411,7 +411,8 @@ impl Chain {
     /// ``relaxed=False``, the equilibrium centred exactly at ``centre`` (an integer: on a rotor; a
     /// half-integer: on a spring; any other centre is a ``StaticsError``), minimum or saddle, or
     /// with ``held > 0`` the equilibrium at that fixed centring.
-    /// ``centre`` defaults to the middle rotor; ``ends`` is ``"held"`` (end rotors held at
+    /// ``centre`` defaults to the rotor farthest from both ends and from every impurity spring
+    /// (the middle rotor of a uniform chain; Rust ``statics::landscape::default_centre``); ``ends`` is ``"held"`` (end rotors held at
     /// ``-theta_bar``, ``+theta_bar``, the default) or ``"free"``.
     ///
     /// Raises:

@@ -218,6 +218,18 @@ pub fn statics(py: Python<'_>, e: &StaticsError) -> PyErr {
         &StaticsError::TooLarge { what, value, max } => {
             Details { variant: "TooLarge", ..d }.f("what", what).f("value", value).f("max", max)
         }
+        &StaticsError::NotAnEquilibrium { requested, found, index, held } => {
+            Details { variant: "NotAnEquilibrium", ..d }
+                .f("requested", requested)
+                .f("found", found)
+                .f("index", index)
+                .f("held", held)
+        }
+        &StaticsError::NoMinimum { near, found, index, held } => Details { variant: "NoMinimum", ..d }
+            .f("near", near)
+            .f("found", found)
+            .f("index", index)
+            .f("held", held),
         _ => Details { variant: "Other", ..d },
     };
     d.raise("StaticsError", e.to_string())

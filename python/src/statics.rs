@@ -125,7 +125,7 @@ pub fn antikink(
     ends_name: &str,
 ) -> PyResult<Antikink> {
     let options = AntikinkOptions { ends: ends(ends_name)?, ..AntikinkOptions::default() };
-    let centre = centre.unwrap_or(((chain.n() - 1) / 2) as f64);
+    let centre = centre.unwrap_or_else(|| rotor_chain::statics::landscape::default_centre(&chain.chain));
     let result = py.detach(|| {
         if relaxed {
             ak::antikink_relaxed(&chain.chain, centre, &options)
@@ -141,10 +141,13 @@ pub fn antikink(
 /// ``k a^2``).
 #[pyclass(frozen, get_all, module = "rotor_chain._native")]
 pub struct PeierlsNabarro {
-    /// The lower-energy equilibrium.
-    minimum: Py<Antikink>,
-    /// The higher-energy equilibrium (the top of the barrier).
-    saddle: Py<Antikink>,
+    /// The lower-energy centring if it is a minimum (Morse index 0, stayed at its centring);
+    /// ``None`` when it is not (a saddle, or an antikink that slid away, as next to a stiff
+    /// impurity): there is no minimum at the middle.
+    minimum: Option<Py<Antikink>>,
+    /// The higher-energy centring if it is a saddle (index at least 1, stayed at its centring),
+    /// else ``None``.
+    saddle: Option<Py<Antikink>>,
     /// The antikink centred on the middle rotor ``(n - 1) // 2``.
     rotor_centred: Py<Antikink>,
     /// The antikink centred on the spring to its right.
@@ -158,23 +161,23 @@ pub struct PeierlsNabarro {
 
 #[pymethods]
 impl PeierlsNabarro {
-    /// ``minimum.energy``.
+    /// ``minimum.energy`` (``None`` without a minimum).
     #[getter]
-    fn minimum_energy(&self) -> f64 {
-        self.minimum.get().energy
+    fn minimum_energy(&self) -> Option<f64> {
+        self.minimum.as_ref().map(|a| a.get().energy)
     }
 
-    /// ``saddle.energy``.
+    /// ``saddle.energy`` (``None`` without a saddle).
     #[getter]
-    fn saddle_energy(&self) -> f64 {
-        self.saddle.get().energy
+    fn saddle_energy(&self) -> Option<f64> {
+        self.saddle.as_ref().map(|a| a.get().energy)
     }
 
     fn __repr__(&self) -> String {
         format!(
             "PeierlsNabarro(minimum_energy={:?}, saddle_energy={:?}, barrier={:?}, resolved={})",
-            self.minimum.get().energy,
-            self.saddle.get().energy,
+            PyOption(self.minimum_energy()),
+            PyOption(self.saddle_energy()),
             self.barrier,
             if self.resolved { "True" } else { "False" }
         )
@@ -193,12 +196,12 @@ pub fn peierls_nabarro(chain: &Chain, py: Python<'_>, ends_name: &str) -> PyResu
         py.detach(|| ak::peierls_nabarro(&chain.chain, &options)).map_err(|e| errors::statics(py, &e))?;
     let rotor = Py::new(py, antikink_of(py, &pn.rotor_centred))?;
     let spring = Py::new(py, antikink_of(py, &pn.spring_centred))?;
-    let rotor_is_minimum = pn.rotor_centred.energy <= pn.spring_centred.energy;
-    let (minimum, saddle) = if rotor_is_minimum {
-        (rotor.clone_ref(py), spring.clone_ref(py))
-    } else {
-        (spring.clone_ref(py), rotor.clone_ref(py))
+    let pick = |a: Result<&ak::Antikink, _>| {
+        a.ok().map(|a| {
+            if core::ptr::eq(a, &pn.rotor_centred) { rotor.clone_ref(py) } else { spring.clone_ref(py) }
+        })
     };
+    let (minimum, saddle) = (pick(pn.minimum()), pick(pn.saddle()));
     Ok(PeierlsNabarro {
         minimum,
         saddle,
@@ -209,11 +212,25 @@ pub fn peierls_nabarro(chain: &Chain, py: Python<'_>, ends_name: &str) -> PyResu
     })
 }
 
+/// An optional number as Python prints it: the number, or `None`.
+struct PyOption(Option<f64>);
+
+impl core::fmt::Debug for PyOption {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match self.0 {
+            Some(x) => write!(f, "{x:?}"),
+            None => f.write_str("None"),
+        }
+    }
+}
+
 /// Vibrational modes about an equilibrium, ascending in ``omega^2`` (paper Sec. IV):
 /// ``K v = omega^2 I v`` with ``I = diag(M r_i^2)``.
 #[pyclass(frozen, get_all, module = "rotor_chain._native")]
 pub struct Modes {
-    /// ``omega`` (``1/t``; 0 for a negative ``omega^2``, an unstable direction).
+    /// Signed frequencies ``sign(omega^2) sqrt(|omega^2|)`` (``1/t``): negative for a negative
+    /// ``omega^2``, an unstable direction (its imaginary frequency ``i sqrt(-omega^2)`` written
+    /// with a minus sign), never 0 for one.
     frequencies: Py<PyArray1<f64>>,
     /// The eigenvalues ``omega^2`` (``1/t^2``).
     omega_squared: Py<PyArray1<f64>>,

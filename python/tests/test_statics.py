@@ -110,10 +110,14 @@ def test_an_antikink_at_a_fixed_centre_says_what_it_is():
     # A centring in the middle is a free equilibrium: nothing held, no interior force.
     free = c.antikink(29.5, relaxed=False)
     assert free.held == 0 and np.max(np.abs(c.gradient(free.theta)[1:-1])) < 1e-6
-    # At the last spring the ends' pull wins: the translation is held, the force shows.
-    held = c.antikink(58.5, relaxed=False)
-    assert held.held > 0 and np.max(np.abs(c.gradient(held.theta)[1:-1])) > 1e-3
-    assert f"held={held.held}" in repr(held) and "held" not in repr(free)
+    # At the last spring the ends' pull wins: no equilibrium there, and the error says where the
+    # antikink went (inward) instead of returning it as if it were at 58.5.
+    with pytest.raises(rc.StaticsError) as info:
+        c.antikink(58.5, relaxed=False)
+    e = info.value
+    assert (e.variant, e.requested) == ("NotAnEquilibrium", 58.5)
+    assert e.found < 58.25 and e.held > 0
+    assert "held" not in repr(free)
 
 
 def test_statics_results_pickle_field_by_field():

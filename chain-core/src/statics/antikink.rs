@@ -35,8 +35,8 @@
 
 use alloc::vec::Vec;
 
-use super::classify::{Classification, EquilibriumKind, classify};
-use super::equilibrium::{NewtonOptions, RelaxOptions, newton, relax};
+use super::classify::{Classification, EquilibriumKind, classify, rounding_tolerance};
+use super::equilibrium::{NewtonOptions, RelaxOptions, newton, polish, relax};
 use super::error::StaticsError;
 use super::kink::reflected_kink;
 use super::walls::{Charge, domain_walls};
@@ -61,7 +61,9 @@ pub struct AntikinkOptions {
     pub newton: NewtonOptions,
     /// Settings of the dissipative relaxation.
     pub relax: RelaxOptions,
-    /// Relative tolerance for counting eigenvalues as zero ([`classify`]); default below.
+    /// Relative tolerance for counting eigenvalues as zero ([`classify`]). Default `None`: the
+    /// rounding error of the computation, [`rounding_tolerance`]`(n)` (`64 n eps`), so that a
+    /// resolved soft curvature (the translation at small `theta_bar`) is never called zero.
     pub zero_tolerance: Option<f64>,
     /// How the chain's ends are treated. Default [`Ends::Held`].
     pub ends: Ends,
@@ -93,13 +95,18 @@ fn initial_guess<M: ChainModel + ?Sized>(
     Ok(guess)
 }
 
-const DEFAULT_ZERO_TOLERANCE: f64 = 1e-10;
+/// A found centre farther than this (in sites) from the centring asked for is not an
+/// equilibrium there: half the distance between neighbouring centrings.
+pub const MOVED: f64 = 0.25;
 
 /// An antikink equilibrium.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Antikink {
     /// The angles, radians, one per rotor.
     pub theta: Vec<f64>,
+    /// The centring asked for (an integer or a half-integer; for [`antikink_relaxed`], the
+    /// centring it ended at). [`Antikink::moved`] compares it with `centre`.
+    pub requested: f64,
     /// Potential energy `V`.
     pub energy: f64,
     /// The antikink's position (Appendix C wall coordinate).
@@ -125,6 +132,7 @@ pub struct Antikink {
 impl Antikink {
     fn from_solution<M: ChainModel + ?Sized>(
         model: &M,
+        requested: f64,
         solution: super::equilibrium::Solution,
         relax_steps: usize,
         options: &AntikinkOptions,
@@ -144,9 +152,11 @@ impl Antikink {
         // With held ends the stability is that of the moving rotors.
         let k = SymmetricMatrix::tangent_stiffness(model, &theta)?;
         let k = k.principal(super::equilibrium::moving(theta.len(), options.hold()));
-        let classification = classify(&k, options.zero_tolerance.unwrap_or(DEFAULT_ZERO_TOLERANCE))?;
+        let relative = options.zero_tolerance.unwrap_or_else(|| rounding_tolerance(k.dim()));
+        let classification = classify(&k, relative)?;
         Ok(Self {
             energy: model.energy(&theta),
+            requested,
             centre: antikinks[0],
             theta,
             classification,
@@ -162,15 +172,58 @@ impl Antikink {
     pub fn is_saddle(&self) -> bool {
         matches!(self.classification.kind, EquilibriumKind::Saddle { .. })
     }
+
+    /// Whether the antikink found is centred more than [`MOVED`] from the centring asked for:
+    /// there is no equilibrium at that centring.
+    pub fn moved(&self) -> bool {
+        let distance = (self.centre - self.requested).abs();
+        distance.is_nan() || distance > MOVED
+    }
+
+    /// A free equilibrium (nothing held) at the centring asked for.
+    pub fn is_free(&self) -> bool {
+        self.held == 0 && !self.moved()
+    }
+
+    /// A Peierls-Nabarro minimum: a free equilibrium of Morse index 0.
+    pub fn is_free_minimum(&self) -> bool {
+        self.is_free() && self.classification.index == 0
+    }
 }
 
 /// The antikink equilibrium centred at `centre` (an integer: on a rotor; a half-integer: on a
-/// spring), by Newton's method from the symmetric reflected kink. Minimum or saddle, as the
-/// classification says. Where the translation had to be held (`held > 0`: the ends' pull on a
-/// wide antikink beats the Peierls-Nabarro force there) the result is the equilibrium at fixed
-/// centring, a point of the adiabatic trajectory, with `edge_force` the force that takes. Any
-/// other centre is an error (`InvalidValue`): no equilibrium sits between the two centrings.
+/// spring), by Newton's method from the symmetric reflected kink, polished to rounding
+/// ([`polish`]). Minimum or saddle, as the classification says. Where the translation had to be
+/// held (`held > 0`: the ends' pull on a wide antikink beats the Peierls-Nabarro force there) the
+/// result is the equilibrium at fixed centring, a point of the adiabatic trajectory, with
+/// `edge_force` the force that takes. Any other centre is an error (`InvalidValue`): no
+/// equilibrium sits between the two centrings.
+///
+/// # Errors
+/// [`StaticsError::NotAnEquilibrium`] when the antikink found is centred more than [`MOVED`] from
+/// `centre` (requested and found centre, index and held directions): no equilibrium there, as
+/// next to an impurity whose force beats the Peierls-Nabarro pinning
+/// ([`peierls_nabarro`]'s landscape lists the equilibria near it).
 pub fn antikink_at<M: ChainModel + ?Sized>(
+    model: &M,
+    centre: f64,
+    options: &AntikinkOptions,
+) -> Result<Antikink, StaticsError> {
+    let found = solve_centring(model, centre, options)?;
+    if found.moved() {
+        return Err(StaticsError::NotAnEquilibrium {
+            requested: centre,
+            found: found.centre,
+            index: found.classification.index,
+            held: found.held,
+        });
+    }
+    Ok(found)
+}
+
+/// [`antikink_at`] without the check that the antikink stayed at `centre` (the landscape scan
+/// records where it went).
+pub(crate) fn solve_centring<M: ChainModel + ?Sized>(
     model: &M,
     centre: f64,
     options: &AntikinkOptions,
@@ -184,24 +237,31 @@ pub fn antikink_at<M: ChainModel + ?Sized>(
     }
     let guess = initial_guess(model, centre, options)?;
     let newton_options = NewtonOptions { hold_ends: options.hold(), ..options.newton };
-    let solution = newton(model, &guess, &newton_options)?;
-    Antikink::from_solution(model, solution, 0, options)
+    let solution = polish(model, newton(model, &guess, &newton_options)?, &newton_options)?;
+    Antikink::from_solution(model, centre, solution, 0, options)
 }
 
 /// The paper's construction: the reflected kink centred at `centre`, relaxed by dissipative
 /// Newtonian dynamics, then polished by Newton's method; the result is a Peierls-Nabarro
-/// **minimum**.
+/// **minimum** (a free equilibrium of Morse index 0), or an error that says what was found.
 ///
 /// The relaxation slides the antikink into a minimum only where the Peierls-Nabarro force beats
 /// the relaxation's tolerance (measured: `theta_bar >= 0.45` at n = 60); a wider antikink, or one
 /// started on a saddle, stops where it is, and the polish then returns the saddle or a
 /// fixed-centring point. In those cases both centrings next to where the relaxation stopped are
-/// solved ([`antikink_at`]) and the lower one is returned: the minimum in the middle of a chain.
-/// Near an end, the ends' pull on a wide antikink can beat the Peierls-Nabarro barrier, so that
-/// neither centring is a free minimum; the lower one is then a fixed-centring point (`held > 0`)
-/// or a saddle, as `held` and the classification say (an independent audit found 2 - 4 such
-/// starts among those from 8 to 51 at `theta_bar` 0.25 - 0.3, n = 60, none elsewhere). The
-/// scattering launches start from this state (docs/dynamics.md).
+/// solved ([`antikink_at`]), and from the lower one the search walks downhill along the centrings
+/// (half a site at a time, each solved at fixed centring) until it reaches a minimum: in a
+/// uniform chain the neighbouring centring; next to an impurity that repels the antikink, the
+/// first minimum where the Peierls-Nabarro pinning beats the repulsion (docs/statics.md §5).
+///
+/// With [`Ends::Free`] there is no walk: the near-null edge modes of the two domains are held and
+/// counted in the index, so the lower of the two centrings is returned as it is.
+///
+/// # Errors
+/// [`StaticsError::NoMinimum`] when the walk ends without a minimum (near an end, the ends' pull
+/// on a wide antikink can beat the barrier everywhere on the way: an independent audit found such
+/// starts at `theta_bar` 0.25 - 0.3, n = 60), with the centre, index and held directions of where
+/// it ended; the errors of the relaxation and of Newton's method.
 /// # Example
 ///
 /// ```
@@ -211,7 +271,7 @@ pub fn antikink_at<M: ChainModel + ?Sized>(
 /// # fn main() -> Result<(), Box<dyn std::error::Error>> {
 /// let chain = RuntimeChain::builder(60, 0.8, 1.0e4, 0.58).build()?;
 /// let antikink = antikink_relaxed(&chain, 29.5, &AntikinkOptions::default())?; // starts on the saddle
-/// assert!(!antikink.is_saddle());
+/// assert!(antikink.is_free_minimum());
 /// assert!((antikink.centre - antikink.centre.round()).abs() < 1e-9); // ends rotor-centred
 /// # Ok(())
 /// # }
@@ -221,41 +281,161 @@ pub fn antikink_relaxed<M: ChainModel + ?Sized>(
     centre: f64,
     options: &AntikinkOptions,
 ) -> Result<Antikink, StaticsError> {
+    let start = relaxed_nearest(model, centre, options)?;
+    // With free ends the domains' edge modes are held and enter the index (at `theta_bar = 0.5`
+    // they can be slightly negative), so "a free minimum" is not defined: the lower centring is
+    // returned, as its `held` and classification say.
+    if start.is_free_minimum() || options.ends == Ends::Free {
+        return Ok(start);
+    }
+    let steps = start.relax_steps;
+    let mut best = start;
+    // Each step moves half a site downhill, so a walk longer than the chain has looped.
+    for _ in 0..2 * model.rotor_count() {
+        let here = best.requested;
+        let mut next: Option<Antikink> = None;
+        for c in [here - 0.5, here + 0.5] {
+            if !(c >= 1.0 && c <= model.rotor_count() as f64 - 2.0) {
+                continue;
+            }
+            // A centring that loses the antikink (annihilated at an end) is not a way down.
+            let Ok(a) = solve_centring(model, c, options) else { continue };
+            if !a.moved() && a.energy < next.as_ref().map_or(best.energy, |n| n.energy) {
+                next = Some(a);
+            }
+        }
+        match next {
+            Some(a) => best = a,
+            None => break,
+        }
+        if best.is_free_minimum() {
+            best.relax_steps = steps;
+            return Ok(best);
+        }
+    }
+    Err(StaticsError::NoMinimum {
+        near: centre,
+        found: best.centre,
+        index: best.classification.index,
+        held: best.held,
+    })
+}
+
+/// The relaxation and polish of [`antikink_relaxed`], and where that is not a free minimum the
+/// lower of the two centrings next to it, whatever it is: the launches' static antikink
+/// (`dynamics::launch`), which near an end may be a fixed-centring point or a saddle, as `held`
+/// and the classification say (docs/dynamics.md §2).
+pub(crate) fn relaxed_nearest<M: ChainModel + ?Sized>(
+    model: &M,
+    centre: f64,
+    options: &AntikinkOptions,
+) -> Result<Antikink, StaticsError> {
     let guess = initial_guess(model, centre, options)?;
     let (relaxed, steps) =
         relax(model, &guess, &RelaxOptions { hold_ends: options.hold(), ..options.relax })?;
-    let solution = newton(model, &relaxed, &NewtonOptions { hold_ends: options.hold(), ..options.newton })?;
-    let polished = Antikink::from_solution(model, solution, steps, options)?;
-    if polished.classification.index == 0 && polished.held == 0 {
+    let newton_options = NewtonOptions { hold_ends: options.hold(), ..options.newton };
+    let solution = polish(model, newton(model, &relaxed, &newton_options)?, &newton_options)?;
+    let mut polished = Antikink::from_solution(model, f64::NAN, solution, steps, options)?;
+    // What the relaxation reached is its own centring.
+    polished.requested = libm::round(2.0 * polished.centre) / 2.0;
+    if polished.classification.index == 0 && polished.is_free() {
         return Ok(polished);
     }
     let n = model.rotor_count() as f64;
     let rotor = libm::round(polished.centre).clamp(1.0, (n - 2.0).max(1.0));
     let spring = if polished.centre >= rotor { rotor + 0.5 } else { rotor - 0.5 };
-    let (a, b) = (antikink_at(model, rotor, options)?, antikink_at(model, spring, options)?);
+    let (a, b) = (solve_centring(model, rotor, options)?, solve_centring(model, spring, options)?);
     let mut best = if a.energy <= b.energy { a } else { b };
     best.relax_steps = steps;
     Ok(best)
 }
 
-/// Both antikink equilibria in the middle of the chain and the barrier between them.
+/// The antikink near a requested place: the two centrings there and, on a chain with impurities
+/// or where those two are not a minimum and a saddle, the landscape around them
+/// ([`super::landscape`]).
 #[derive(Clone, Debug, PartialEq)]
 pub struct PeierlsNabarro {
-    /// The antikink centred on the middle rotor (`(n - 1) / 2` rounded down).
+    /// The antikink solved at the rotor centring (`(n - 1) / 2` rounded down for
+    /// [`peierls_nabarro`]); it may have moved (`moved()`): no equilibrium there.
     pub rotor_centred: Antikink,
-    /// The antikink centred on the neighbouring spring.
+    /// The antikink solved at the neighbouring spring centring.
     pub spring_centred: Antikink,
-    /// The Peierls-Nabarro barrier `V_saddle - V_minimum` (`|V_rotor - V_spring|`).
+    /// The Peierls-Nabarro barrier `V_saddle - V_minimum` (`|V_rotor - V_spring|`), meaningful
+    /// when `resolved`.
     pub barrier: f64,
-    /// Whether the spectra identified exactly one minimum (index 0) and one saddle (index 1).
-    /// For very wide antikinks the barrier is below what double precision resolves and both may
-    /// look alike; the barrier is then an upper estimate.
+    /// Whether the two centrings stayed where they were asked for (neither `moved()`), exactly
+    /// one a minimum (index 0) and one a saddle (index 1). For very wide antikinks the barrier is below
+    /// what double precision resolves and both may look alike; the barrier is then an upper
+    /// estimate. On a chain with impurities the two centrings may not be equilibria at all.
     pub resolved: bool,
+    /// Every centring within [`super::landscape::LANDSCAPE_REACH`] sites of the requested place,
+    /// solved at fixed centring, in order of centring: the free equilibria among them
+    /// ([`Antikink::is_free`]) with their Morse index, and the fixed-centring points between
+    /// (the energy along the adiabatic path). Only the two centrings when the chain is uniform
+    /// and they are `resolved`.
+    pub landscape: Vec<Antikink>,
+    /// The pinning (negative) or repulsion (positive) energy of each impurity spring within the
+    /// landscape ([`super::landscape::ImpurityEnergy`]).
+    pub impurities: Vec<super::landscape::ImpurityEnergy>,
 }
 
 impl PeierlsNabarro {
-    /// The lower-energy (minimum) configuration.
-    pub fn minimum(&self) -> &Antikink {
+    /// The Peierls-Nabarro minimum at the requested place: of the two centrings, those with Morse
+    /// index 0 that stayed where they were asked for, the lower (with `held > 0`, at small
+    /// `theta_bar` in a short chain, it is the minimum at fixed centring, as `held` says; where the
+    /// held ends confine a very wide antikink, both centrings slide to the middle and the one
+    /// that is there is the minimum).
+    ///
+    /// # Errors
+    /// [`StaticsError::NoMinimum`] when neither is (a saddle, a held point, an antikink that moved
+    /// away, as next to a stiff impurity): the landscape lists the minima nearby.
+    pub fn minimum(&self) -> Result<&Antikink, StaticsError> {
+        self.pair()
+            .filter(|a| a.classification.index == 0 && !a.moved())
+            .min_by(|a, b| a.energy.total_cmp(&b.energy))
+            .ok_or_else(|| self.no(self.lower()))
+    }
+
+    /// The saddle at the requested place: of the two centrings, those of index at least 1 that
+    /// stayed where they were asked for, the higher.
+    ///
+    /// # Errors
+    /// [`StaticsError::NotAnEquilibrium`] otherwise (the higher centring, where the antikink went,
+    /// its index and held directions).
+    pub fn saddle(&self) -> Result<&Antikink, StaticsError> {
+        self.pair()
+            .filter(|a| a.classification.index >= 1 && !a.moved())
+            .max_by(|a, b| a.energy.total_cmp(&b.energy))
+            .ok_or_else(|| {
+                let higher = if core::ptr::eq(self.lower(), &self.rotor_centred) {
+                    &self.spring_centred
+                } else {
+                    &self.rotor_centred
+                };
+                StaticsError::NotAnEquilibrium {
+                    requested: higher.requested,
+                    found: higher.centre,
+                    index: higher.classification.index,
+                    held: higher.held,
+                }
+            })
+    }
+
+    fn pair(&self) -> impl Iterator<Item = &Antikink> {
+        [&self.rotor_centred, &self.spring_centred].into_iter()
+    }
+
+    /// The free minima of the landscape (index 0, nothing held, not moved).
+    pub fn minima(&self) -> impl Iterator<Item = &Antikink> {
+        self.landscape.iter().filter(|a| a.is_free_minimum())
+    }
+
+    /// The free saddles of the landscape (index at least 1, nothing held, not moved).
+    pub fn saddles(&self) -> impl Iterator<Item = &Antikink> {
+        self.landscape.iter().filter(|a| a.is_free() && a.classification.index >= 1)
+    }
+
+    fn lower(&self) -> &Antikink {
         if self.rotor_centred.energy <= self.spring_centred.energy {
             &self.rotor_centred
         } else {
@@ -263,12 +443,12 @@ impl PeierlsNabarro {
         }
     }
 
-    /// The higher-energy (saddle) configuration.
-    pub fn saddle(&self) -> &Antikink {
-        if self.rotor_centred.energy <= self.spring_centred.energy {
-            &self.spring_centred
-        } else {
-            &self.rotor_centred
+    fn no(&self, found: &Antikink) -> StaticsError {
+        StaticsError::NoMinimum {
+            near: self.rotor_centred.requested,
+            found: found.centre,
+            index: found.classification.index,
+            held: found.held,
         }
     }
 }
@@ -279,7 +459,9 @@ impl PeierlsNabarro {
 pub const PEIERLS_NABARRO_MIN_ROTORS: usize = 4;
 
 /// The Peierls-Nabarro barrier of `model` (paper Sec. V): the antikink centred on the middle
-/// rotor and on the neighbouring spring, and their energy difference.
+/// rotor and on the neighbouring spring, and their energy difference; on a chain with impurities
+/// (or where those two are not a minimum and a saddle) also the landscape around them and the
+/// impurities' pinning or repulsion energies ([`peierls_nabarro_near`]).
 /// # Example
 ///
 /// ```
@@ -292,9 +474,9 @@ pub const PEIERLS_NABARRO_MIN_ROTORS: usize = 4;
 /// # fn main() -> Result<(), Box<dyn std::error::Error>> {
 /// let pn = peierls_nabarro(&Chain, &AntikinkOptions::default())?;
 /// assert!(pn.resolved);
-/// assert_eq!(pn.minimum().classification.index, 0);  // rotor-centred: the minimum
-/// assert_eq!(pn.saddle().classification.index, 1);   // spring-centred: the saddle
-/// assert!((pn.barrier - (pn.saddle().energy - pn.minimum().energy)).abs() < 1e-12);
+/// assert_eq!(pn.minimum()?.classification.index, 0);  // rotor-centred: the minimum
+/// assert_eq!(pn.saddle()?.classification.index, 1);   // spring-centred: the saddle
+/// assert!((pn.barrier - (pn.saddle()?.energy - pn.minimum()?.energy)).abs() < 1e-12);
 /// # Ok(())
 /// # }
 /// ```
@@ -311,13 +493,41 @@ pub fn peierls_nabarro<M: ChainModel + ?Sized>(
                        antikink state, so no barrier)",
         });
     }
-    let middle = ((n - 1) / 2) as f64;
-    let rotor_centred = antikink_at(model, middle, options)?;
-    let spring_centred = antikink_at(model, middle + 0.5, options)?;
+    peierls_nabarro_near(model, ((n - 1) / 2) as f64, options)
+}
+
+/// [`peierls_nabarro`] at the rotor centring `rotor` (an integer) and the spring to its right.
+///
+/// # Errors
+/// `rotor` not an integer in `[1, n - 3]`; the errors of [`antikink_at`] other than
+/// [`StaticsError::NotAnEquilibrium`] (a centring that moved is part of the landscape).
+pub fn peierls_nabarro_near<M: ChainModel + ?Sized>(
+    model: &M,
+    rotor: f64,
+    options: &AntikinkOptions,
+) -> Result<PeierlsNabarro, StaticsError> {
+    let n = model.rotor_count();
+    let max = n.saturating_sub(3).max(1) as f64;
+    if !(rotor >= 1.0 && rotor <= max && rotor == libm::round(rotor)) {
+        return Err(StaticsError::InvalidValue {
+            what: "rotor",
+            value: rotor,
+            expected: "an integer rotor index in [1, n - 3]",
+        });
+    }
+    let rotor_centred = solve_centring(model, rotor, options)?;
+    let spring_centred = solve_centring(model, rotor + 0.5, options)?;
     let barrier = (rotor_centred.energy - spring_centred.energy).abs();
     let (a, b) = (rotor_centred.classification.index, spring_centred.classification.index);
-    let resolved = (a == 0 && b == 1) || (a == 1 && b == 0);
-    Ok(PeierlsNabarro { rotor_centred, spring_centred, barrier, resolved })
+    let stayed = !rotor_centred.moved() && !spring_centred.moved();
+    let resolved = stayed && ((a == 0 && b == 1) || (a == 1 && b == 0));
+    let impurity_springs = super::landscape::impurity_springs(model);
+    let (landscape, impurities) = if resolved && impurity_springs.is_empty() {
+        (alloc::vec![rotor_centred.clone(), spring_centred.clone()], Vec::new())
+    } else {
+        super::landscape::scan(model, rotor + 0.25, &impurity_springs, options)?
+    };
+    Ok(PeierlsNabarro { rotor_centred, spring_centred, barrier, resolved, landscape, impurities })
 }
 
 /// The finite-size study of the barrier (Fig. `fig:logvpn-size`): the barrier of the chain that

@@ -39,10 +39,29 @@ pub struct Classification {
     pub kind: EquilibriumKind,
 }
 
+/// The factor `C` of [`rounding_tolerance`]: the tolerance is `C n eps` relative to `||K||`.
+///
+/// Why 64: each entry of a chain's tangent stiffness is a sum of a few spring terms, each computed
+/// to a few ulps of `||K||`; a Sturm count perturbs the eigenvalues by at most `n eps ||K||` more
+/// (backward stability of the LDL^T recurrence). 64 covers both with a margin of about ten, and
+/// stays far below the smallest physical curvature the analyses resolve (the antikink's
+/// translation at `theta_bar = 0.2`, n = 60, held ends: `4e-7 = 6e-11 ||K||` against
+/// `64 n eps = 8e-13`).
+pub const ROUNDING_FACTOR: f64 = 64.0;
+
+/// The relative zero tolerance of an `n x n` tangent stiffness computed in double precision:
+/// [`ROUNDING_FACTOR`]` n eps`, an estimate of the rounding error of the stiffness evaluation and
+/// of the Sturm count (absolute: times `||K||`). Eigenvalues within it of zero cannot be told from
+/// zero; anything above it is resolved.
+pub fn rounding_tolerance(n: usize) -> f64 {
+    ROUNDING_FACTOR * n.max(1) as f64 * f64::EPSILON
+}
+
 /// Classifies the tangent stiffness `k` (of any model, [`SymmetricMatrix::tangent_stiffness`]):
-/// eigenvalues within `relative * ||K||` of zero count as zero. A relative tolerance of `1e-10`
-/// separates rounding (`~1e-16`) and exponentially soft edge modes from physical soft modes.
-/// The counts are Sturm counts for a chain's tridiagonal `K` (O(n)).
+/// eigenvalues within `relative * ||K||` of zero count as zero. [`rounding_tolerance`]`(n)` (the
+/// antikink analyses' default) separates rounding from every resolved curvature; a larger
+/// `relative` also calls exponentially soft edge modes zero. The counts are Sturm counts for a
+/// chain's tridiagonal `K` (O(n)).
 ///
 /// # Errors
 /// A non-finite entry ([`StaticsError::Linalg`]), or a `relative` tolerance that is not finite

@@ -89,6 +89,39 @@ pub enum StaticsError {
         /// The longest.
         max: f64,
     },
+    /// No antikink equilibrium at the centring asked for: Newton's method from the symmetric guess
+    /// there went to an antikink centred at `found` (for example next to an impurity that repels
+    /// it, whose force beats the Peierls-Nabarro pinning), or had to hold the translation.
+    #[error(
+        "no antikink equilibrium centred at {requested}: Newton's method went to {found} (index \
+         {index}, {held} direction(s) held); see peierls_nabarro's landscape for the equilibria near it"
+    )]
+    NotAnEquilibrium {
+        /// The centring asked for.
+        requested: f64,
+        /// Where the antikink found is centred (Appendix C wall coordinate).
+        found: f64,
+        /// The Morse index of what was found.
+        index: usize,
+        /// The directions Newton's method held ([`super::equilibrium::Solution::held`]).
+        held: usize,
+    },
+    /// No Peierls-Nabarro minimum (a free equilibrium of Morse index 0) where one was asked for:
+    /// `found` is what the search ended at, with its index and held directions.
+    #[error(
+        "no antikink minimum near {near}: the search ended at an antikink centred at {found} of index \
+         {index} with {held} direction(s) held"
+    )]
+    NoMinimum {
+        /// Where the minimum was looked for.
+        near: f64,
+        /// The centre of the lowest equilibrium found.
+        found: f64,
+        /// Its Morse index.
+        index: usize,
+        /// Its held directions (above 0: a fixed-centring point, not a free equilibrium).
+        held: usize,
+    },
     /// A slice with the wrong length for the chain.
     #[error("{what} has {}, the chain needs {expected}", chain_geometry::Counted(*len, "value"))]
     WrongLength {

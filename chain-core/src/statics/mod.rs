@@ -13,6 +13,8 @@
 //! - [`equilibrium`]: dissipative relaxation and Newton's method on the gradient;
 //! - [`classify`]: minimum, saddle (index) or degenerate, from the tangent stiffness spectrum;
 //! - [`antikink`]: the antikink, its minimum and saddle, the Peierls-Nabarro barrier (Secs. II, V);
+//! - [`landscape`]: the antikink's equilibria near a place on a non-uniform chain, impurity
+//!   pinning and repulsion energies, the default placement;
 //! - [`modes`]: eigenmodes and frequencies, classified as translation, shape, edge, extended (Sec. IV);
 //! - [`counting`]: Maxwell-Calladine counting, zero modes, states of self-stress, tensional modes;
 //! - [`impurity`]: a spring-length impurity, its two-kink state, soft modes, `l_critical` (Sec. VII-A);
@@ -41,6 +43,8 @@ pub mod error;
 #[cfg(feature = "alloc")]
 pub mod impurity;
 pub mod kink;
+#[cfg(feature = "alloc")]
+pub mod landscape;
 #[cfg(feature = "alloc")]
 pub mod linkage;
 #[cfg(feature = "alloc")]

@@ -54,7 +54,10 @@ pub enum ModeKind {
 pub struct Mode {
     /// Eigenvalue `omega^2` of `I^{-1/2} K I^{-1/2}` (for equal rotors, `lambda(K) / (M r^2)`).
     pub omega_squared: f64,
-    /// `omega = sqrt(omega^2)` (0 for a negative `omega^2`, i.e. an unstable direction).
+    /// The signed frequency [`signed_frequency`]`(omega^2)`: `sqrt(omega^2)` for a stable
+    /// direction, `-sqrt(-omega^2)` for an unstable one (`omega^2 < 0`, the imaginary frequency
+    /// `i sqrt(-omega^2)` written with a minus sign), so an unstable direction never reads as a
+    /// zero mode.
     pub frequency: f64,
     /// The angular displacement pattern `v` (`K v = omega^2 I v`), normalised so `sum_i I_i v_i^2 = 1`.
     pub shape: Vec<f64>,
@@ -200,7 +203,7 @@ pub fn normal_modes<M: Stiffness + ?Sized>(
             let shape: Vec<f64> = u.iter().zip(&root).map(|(x, r)| x / r).collect();
             Mode {
                 omega_squared: value,
-                frequency: math::sqrt(value.max(0.0)),
+                frequency: signed_frequency(value),
                 shape,
                 position,
                 participation,
@@ -208,6 +211,18 @@ pub fn normal_modes<M: Stiffness + ?Sized>(
             }
         })
         .collect())
+}
+
+/// The signed frequency of an eigenvalue `omega^2`: `sign(omega^2) sqrt(|omega^2|)`.
+///
+/// A negative `omega^2` (an unstable direction, such as the translation of an antikink on its
+/// Peierls-Nabarro saddle) has the imaginary frequency `i sqrt(-omega^2)`: its small oscillations
+/// grow as `exp(sqrt(-omega^2) t)`. Written with a minus sign it keeps its size and says that it is
+/// unstable, where `sqrt(max(omega^2, 0))` would show it as a zero mode. Every frequency the
+/// library returns, prints or plots is this one ([`Mode::frequency`], Python `Modes.frequencies`,
+/// the paper's figures).
+pub fn signed_frequency(omega_squared: f64) -> f64 {
+    math::sqrt(omega_squared.abs()).copysign(omega_squared)
 }
 
 /// Labels the kinds of a chain's modes (the module doc): edges first, then walls; at each wall the

@@ -234,12 +234,12 @@ fn compute(case: &Case) -> Result<Value, String> {
         Op::PeierlsNabarro => {
             let pn = peierls_nabarro(&c, &AntikinkOptions::default()).map_err(|e| s(&e))?;
             json!({
-                "minimum_energy": pn.minimum().energy,
-                "saddle_energy": pn.saddle().energy,
+                "minimum_energy": pn.minimum().map_err(|e| s(&e))?.energy,
+                "saddle_energy": pn.saddle().map_err(|e| s(&e))?.energy,
                 "barrier": pn.barrier,
                 "resolved": pn.resolved,
-                "minimum_theta": pn.minimum().theta,
-                "saddle_theta": pn.saddle().theta,
+                "minimum_theta": pn.minimum().map_err(|e| s(&e))?.theta,
+                "saddle_theta": pn.saddle().map_err(|e| s(&e))?.theta,
             })
         }
         Op::Modes { theta, count } => {

@@ -9,7 +9,7 @@ use nalgebra::DMatrix;
 use crate::dynamics::DynamicsError;
 use crate::integrate::State;
 use crate::model::ChainModel;
-use crate::statics::antikink::{AntikinkOptions, antikink_relaxed};
+use crate::statics::antikink::{AntikinkOptions, relaxed_nearest};
 use crate::statics::kink::kink;
 use crate::statics::modes::{ModeOptions, modes};
 use crate::statics::walls::{Charge, domain_walls};
@@ -62,7 +62,8 @@ pub fn near_null_count(charge: Charge) -> usize {
 }
 
 /// The static defect of `charge` at `position`: the kink centred there, or the antikink relaxed
-/// from there ([`antikink_relaxed`]): in the middle of a chain the Peierls-Nabarro minimum nearest
+/// from there (as [`antikink_relaxed`](crate::statics::antikink::antikink_relaxed) before its walk
+/// downhill): in the middle of a chain the Peierls-Nabarro minimum nearest
 /// to it; near an end the ends push a wide antikink inward, possibly far (docs/dynamics.md §2), so
 /// the launch's `position` is the centre actually used.
 pub fn static_defect<M: ChainModel + ?Sized>(
@@ -72,7 +73,7 @@ pub fn static_defect<M: ChainModel + ?Sized>(
 ) -> Result<Vec<f64>, DynamicsError> {
     Ok(match charge {
         Charge::Kink => kink(model, position)?,
-        Charge::Antikink => antikink_relaxed(model, position, &AntikinkOptions::default())?.theta,
+        Charge::Antikink => relaxed_nearest(model, position, &AntikinkOptions::default())?.theta,
     })
 }
 

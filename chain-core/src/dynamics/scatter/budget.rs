@@ -196,3 +196,79 @@ pub fn scatter_within_budget<M: ChainModel + ?Sized>(
     let energy_error = error_of(&scattering);
     Ok(Budgeted { scattering, energy_error, integrator, recomputed })
 }
+
+/// Why a point's label would change with the integrator ([`cross_checked`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
+pub enum Unresolved {
+    /// Verlet and DOP853, each within the energy budget, decided different outcomes.
+    IntegratorsDisagree {
+        /// Verlet's outcome and when it was decided.
+        verlet: (super::Outcome, f64),
+        /// DOP853's outcome and when it was decided.
+        dop853: (super::Outcome, f64),
+    },
+}
+
+impl fmt::Display for Unresolved {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Unresolved::IntegratorsDisagree { verlet, dop853 } => write!(
+                f,
+                "the integrators disagree: verlet {:?} at t = {}, dop853 {:?} at t = {}",
+                verlet.0, verlet.1, dop853.0, dop853.1
+            ),
+        }
+    }
+}
+
+/// A point labelled only if a second integrator would give it the same label.
+#[derive(Clone, Debug, PartialEq)]
+pub enum CrossChecked {
+    /// Both integrators decided this outcome; the run kept is Verlet's (or its recomputation).
+    Resolved(Box<Budgeted>),
+    /// The outcome is not robust: no label, the reason instead, and both runs.
+    Unresolved {
+        /// Why.
+        reason: Unresolved,
+        /// The Verlet run (within budget, or its DOP853 recomputation).
+        verlet: Box<Budgeted>,
+        /// The DOP853 run.
+        dop853: Box<Budgeted>,
+    },
+}
+
+/// [`scatter_within_budget`] with Verlet and again with DOP853 (default tolerances): the point is
+/// [`CrossChecked::Resolved`] when both decide the same outcome, else
+/// [`CrossChecked::Unresolved`] with both outcomes and decision times. Twice the cost of one run;
+/// the phase diagrams' honest label where a collision is chaotic (docs/dynamics.md §6: at
+/// `k_i/k ~ 0.01`, `v0 ~ 1` a pair nucleates at the impurity before the antikink arrives, and the
+/// integrators' rounding decides what it becomes).
+///
+/// # Errors
+/// The [`BudgetError`] of either run.
+pub fn cross_checked<M: ChainModel + ?Sized>(
+    model: &M,
+    setup: &ScatterSetup,
+    budget: &EnergyBudget,
+) -> Result<CrossChecked, BudgetError> {
+    let with = |method: Method| {
+        let mut setup = *setup;
+        setup.run.method = method;
+        scatter_within_budget(model, &setup, budget)
+    };
+    let verlet = with(Method::Verlet)?;
+    let dop853 = with(Method::dop853())?;
+    let (a, b) = (&verlet.scattering, &dop853.scattering);
+    if a.outcome == b.outcome {
+        return Ok(CrossChecked::Resolved(Box::new(verlet)));
+    }
+    Ok(CrossChecked::Unresolved {
+        reason: Unresolved::IntegratorsDisagree {
+            verlet: (a.outcome, a.decided_at),
+            dop853: (b.outcome, b.decided_at),
+        },
+        verlet: Box::new(verlet),
+        dop853: Box::new(dop853),
+    })
+}

@@ -28,7 +28,9 @@ use super::track::Snapshot;
 use crate::model::ChainModel;
 use crate::statics::walls::Charge;
 
-pub use budget::{BudgetError, Budgeted, EnergyBudget, scatter_within_budget};
+pub use budget::{
+    BudgetError, Budgeted, CrossChecked, EnergyBudget, Unresolved, cross_checked, scatter_within_budget,
+};
 pub use follow::{Followed, Follower, Origin, Vanished};
 
 /// What the impurity did to the incoming defect.

@@ -34,7 +34,7 @@ pub fn akenergy(p: &Params, q: Quality) -> Result<Figure, FigureError> {
     let fail = |t: f64| move |e: rotor_chain::statics::StaticsError| FigureError::new(LABEL, e).at("θ̄", t);
     let lattice = thetas
         .iter()
-        .map(|&t| Ok((t, pn(p, p.n, t).map_err(fail(t))?.minimum().energy / ka2(p))))
+        .map(|&t| Ok((t, pn(p, p.n, t).map_err(fail(t))?.minimum().map_err(fail(t))?.energy / ka2(p))))
         .collect::<Result<Vec<_>, FigureError>>()?;
     let (lo, hi) = (thetas[0], thetas[thetas.len() - 1]);
     let curve = grid(lo, hi, q.pick(121, 31))
@@ -42,7 +42,7 @@ pub fn akenergy(p: &Params, q: Quality) -> Result<Figure, FigureError> {
         .map(|t| Ok((t, continuum(p, t).map_err(FigureError::on(LABEL))?.antikink_energy() / ka2(p))))
         .collect::<Result<Vec<_>, FigureError>>()?;
     let theta_bar = p.barrier.theta_bar;
-    let ours = pn(p, p.n, theta_bar).map_err(fail(theta_bar))?.minimum().energy;
+    let ours = pn(p, p.n, theta_bar).map_err(fail(theta_bar))?.minimum().map_err(fail(theta_bar))?.energy;
     let theory = continuum(p, theta_bar).map_err(FigureError::on(LABEL))?.antikink_energy();
     Ok(Figure {
         label: LABEL,
@@ -78,7 +78,8 @@ pub fn akenergy(p: &Params, q: Quality) -> Result<Figure, FigureError> {
 /// iteration from [`Barrier::theta_bar`](super::Barrier::theta_bar) (the paper's 0.58).
 fn fit_theta_bar(p: &Params, target: f64, label: &'static str) -> Result<f64, FigureError> {
     let f = |t: f64| -> Result<f64, FigureError> {
-        Ok(pn(p, p.n, t).map_err(|e| FigureError::new(label, e).at("θ̄", t))?.minimum().energy - target)
+        let at = |e| FigureError::new(label, e).at("θ̄", t);
+        Ok(pn(p, p.n, t).map_err(at)?.minimum().map_err(at)?.energy - target)
     };
     let (mut t0, mut t1) = (p.barrier.theta_bar - 0.01, p.barrier.theta_bar);
     let (mut f0, mut f1) = (f(t0)?, f(t1)?);
@@ -102,7 +103,8 @@ pub fn akconfigpn(p: &Params, _q: Quality) -> Result<Figure, FigureError> {
     let theta_bar = p.barrier.theta_bar;
     let model = chain(p, p.n, theta_bar).map_err(FigureError::on(LABEL))?;
     let barrier = pn(p, p.n, theta_bar).map_err(FigureError::on(LABEL))?;
-    let (minimum, saddle) = (barrier.minimum(), barrier.saddle());
+    let minimum = barrier.minimum().map_err(FigureError::on(LABEL))?;
+    let saddle = barrier.saddle().map_err(FigureError::on(LABEL))?;
     let theory = continuum(p, theta_bar).map_err(FigureError::on(LABEL))?;
     let paper_minimum: f64 = PAPER_MINIMUM.parse().unwrap_or(f64::NAN);
     let fitted = fit_theta_bar(p, paper_minimum, LABEL)?;
@@ -167,7 +169,7 @@ pub fn akconfigpn(p: &Params, _q: Quality) -> Result<Figure, FigureError> {
                     "continuum: our peak-to-peak derivation (Eq. PNB2 as printed gives half, {:.4}){resolved}; \
                      θ̄ = {fitted:.7}, fitted to V_min = {PAPER_MINIMUM}, gives saddle {:.4} and barrier {:.4}",
                     theory.pn_barrier_as_printed(),
-                    refit.saddle().energy,
+                    refit.saddle().map_err(FigureError::on(LABEL))?.energy,
                     refit.barrier
                 ),
             ),
@@ -296,7 +298,11 @@ pub fn logvpn_size(p: &Params, q: Quality) -> Result<Figure, FigureError> {
     let barriers =
         barrier_vs_size(&sizes, build, &AntikinkOptions::default()).map_err(FigureError::on(LABEL))?;
     let (_, reference) = barriers[barriers.len() - 1];
-    let energy = pn(p, p.n, size_theta_bar).map_err(FigureError::on(LABEL))?.minimum().energy;
+    let energy = pn(p, p.n, size_theta_bar)
+        .map_err(FigureError::on(LABEL))?
+        .minimum()
+        .map_err(FigureError::on(LABEL))?
+        .energy;
     // Differences below this are rounding in the two energies of each barrier (measured: from
     // n = 27 on they scatter between 2 and 8 eps V_min instead of falling further).
     let floor = 20.0 * f64::EPSILON * energy / ka2(p);

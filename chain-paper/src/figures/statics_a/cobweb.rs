@@ -123,6 +123,7 @@ fn cobweb_antikink(p: &Params, label: &'static str) -> Result<(RuntimeChain, Ant
     let minimum = peierls_nabarro(&model, &AntikinkOptions::default())
         .map_err(FigureError::on(label))?
         .minimum()
+        .map_err(FigureError::on(label))?
         .clone();
     Ok((model, minimum))
 }

@@ -121,10 +121,15 @@ fn frequency_resolution(model: &RuntimeChain, theta: &[f64], params: &Params) ->
     10.0 * (f64::EPSILON * norm / (params.mass * params.r * params.r)).sqrt()
 }
 
-/// `"0.8936 (r/a)√(k/M)"`, or `"0 (rounding)"` below the resolution `floor` (both in `1/t`).
+/// `"0.8936 (r/a)√(k/M)"`, `"0 (rounding)"` within the resolution `floor` of zero, or for a
+/// signed frequency below `-floor` (an unstable direction, `omega^2 < 0`,
+/// [`signed_frequency`](rotor_chain::statics::modes::signed_frequency)) `"0.8936i (r/a)√(k/M), unstable"`
+/// (all in `1/t`).
 fn frequency_label(omega: f64, floor: f64, unit: f64) -> String {
-    if omega <= floor {
+    if omega.abs() <= floor {
         "0 (rounding)".to_owned()
+    } else if omega < 0.0 {
+        format!("{}i (r/a)√(k/M), unstable", format_number(-omega / unit))
     } else {
         format!("{} (r/a)√(k/M)", format_number(omega / unit))
     }

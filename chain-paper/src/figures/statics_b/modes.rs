@@ -47,7 +47,7 @@ fn defect_modes(model: &RuntimeChain, n: usize) -> Result<DefectModes, Cause> {
         ..AntikinkOptions::default()
     };
     let pn = peierls_nabarro(model, &options)?;
-    let antikink_theta = pn.minimum().theta.clone();
+    let antikink_theta = pn.minimum()?.theta.clone();
     let held = ModeOptions { hold_ends: true, ..lowest };
     let antikink_modes = modes(model, &antikink_theta, &held)?;
     Ok(DefectModes { kink_theta, kink_modes, antikink_theta, antikink_modes })

@@ -1,0 +1,136 @@
+//! The antikink's energy landscape on a chain that is not uniform (paper Sec. V, VI): which
+//! centrings are equilibria near a place, of which Morse index, and how strongly each impurity
+//! pins or repels the antikink.
+//!
+//! On a uniform chain the antikink's equilibria alternate between rotor and spring centrings,
+//! minimum and saddle, a Peierls-Nabarro barrier apart. An impurity spring (a stiffness or rest
+//! length other than the chain's) adds a potential of its own, as wide as the antikink: a stiffer
+//! spring repels it, a softer one pins it. Where that potential's force beats the
+//! Peierls-Nabarro force no centring is an equilibrium: Newton's method from the symmetric guess
+//! slides away (n = 40, `theta_bar = 0.4`, the middle spring at `2k`: every centring from 15 to 24
+//! except the impurity's own, a saddle of index 1). [`scan`] solves every centring within
+//! [`LANDSCAPE_REACH`] sites at fixed centring and keeps them all: the free equilibria with their
+//! index, and the points in between with the translation held (the energy along the adiabatic
+//! path). [`ImpurityEnergy`] is the antikink's energy centred on an impurity spring minus its
+//! energy at the spring centring farthest from the ends and every impurity.
+//!
+//! [`default_centre`] places an antikink where nothing disturbs it: the rotor farthest from both
+//! ends and from every impurity.
+
+use alloc::vec::Vec;
+
+use super::antikink::{Antikink, AntikinkOptions, solve_centring};
+use super::error::StaticsError;
+use crate::model::ChainModel;
+
+/// How far (in sites, either side) [`scan`] looks from the requested place. Why 8: an antikink
+/// at `theta_bar >= 0.3` is at most 3 sites wide (`a^2 / (2 r sin theta_bar)`), and an impurity's
+/// force decays over that width, so 8 sites reaches past it to the first Peierls-Nabarro minima
+/// (at 5 - 10 sites from a spring at `2k`, n = 40, `theta_bar = 0.4`) at the cost of 33 Newton
+/// solves.
+pub const LANDSCAPE_REACH: f64 = 8.0;
+
+/// One impurity spring's pinning or repulsion energy.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ImpurityEnergy {
+    /// The impurity spring `p` (between rotors `p` and `p + 1`).
+    pub spring: usize,
+    /// `V(antikink centred on the spring) - V(antikink at the reference centring)`: negative, the
+    /// impurity pins the antikink (a soft or long spring); positive, it repels it.
+    pub energy: f64,
+    /// The reference centring: the spring centring farthest from the ends and every impurity.
+    pub reference: f64,
+}
+
+/// The springs whose stiffness or rest length differs from the chain's (the value most springs
+/// share), ascending.
+pub fn impurity_springs<M: ChainModel + ?Sized>(model: &M) -> Vec<usize> {
+    let m = model.spring_count();
+    let key = |p: usize| (model.spring_constant(p).to_bits(), model.rest_length(p).to_bits());
+    let mut keys: Vec<(u64, u64)> = (0..m).map(key).collect();
+    keys.sort_unstable();
+    // The most common (stiffness, rest length): the chain's own.
+    let (mut best, mut best_count, mut i) = (None, 0, 0);
+    while i < keys.len() {
+        let j = i + keys[i..].iter().take_while(|k| **k == keys[i]).count();
+        if j - i > best_count {
+            (best, best_count) = (Some(keys[i]), j - i);
+        }
+        i = j;
+    }
+    (0..m).filter(|&p| Some(key(p)) != best).collect()
+}
+
+/// The centring (rotor centrings if `offset` is 0, spring centrings if 0.5) farthest from both
+/// ends and from every impurity spring's centre `p + 1/2`; ties go to the one nearer the middle,
+/// then to the left.
+fn farthest_centring(n: usize, impurities: &[usize], offset: f64) -> f64 {
+    let last = (n - 1) as f64;
+    let clearance =
+        |c: f64| impurities.iter().map(|&p| (c - (p as f64 + 0.5)).abs()).fold(c.min(last - c), f64::min);
+    let middle = last / 2.0;
+    (0..n)
+        .map(|i| i as f64 + offset)
+        .filter(|&c| c <= last)
+        .fold(None::<f64>, |best, c| match best {
+            Some(b)
+                if clearance(b) > clearance(c)
+                    || (clearance(b) == clearance(c) && (b - middle).abs() <= (c - middle).abs()) =>
+            {
+                Some(b)
+            }
+            _ => Some(c),
+        })
+        .unwrap_or(middle)
+}
+
+/// Where an antikink is placed when no centre is given (Python's `Chain.antikink()`): the rotor
+/// farthest from both ends and from every impurity spring ([`impurity_springs`]); on a uniform
+/// chain the middle rotor `(n - 1) / 2` rounded down.
+pub fn default_centre<M: ChainModel + ?Sized>(model: &M) -> f64 {
+    farthest_centring(model.rotor_count(), &impurity_springs(model), 0.0)
+}
+
+/// Every centring within [`LANDSCAPE_REACH`] of `place` (kept in `[1, n - 2]`), solved at fixed
+/// centring, and the energies of the impurity springs among them ([`ImpurityEnergy`]).
+///
+/// # Errors
+/// Those of Newton's method at a centring (a centring whose antikink is lost at an end is left
+/// out instead).
+pub fn scan<M: ChainModel + ?Sized>(
+    model: &M,
+    place: f64,
+    impurities: &[usize],
+    options: &AntikinkOptions,
+) -> Result<(Vec<Antikink>, Vec<ImpurityEnergy>), StaticsError> {
+    let n = model.rotor_count();
+    let last = n as f64 - 2.0;
+    let lo = libm::ceil(2.0 * (place - LANDSCAPE_REACH).max(1.0)) as i64;
+    let hi = libm::floor(2.0 * (place + LANDSCAPE_REACH).min(last)) as i64;
+    let mut landscape = Vec::new();
+    for twice in lo..=hi {
+        match solve_centring(model, twice as f64 / 2.0, options) {
+            Ok(a) => landscape.push(a),
+            Err(StaticsError::DefectLost { .. }) => {}
+            Err(e) => return Err(e),
+        }
+    }
+    let mut energies = Vec::new();
+    let near: Vec<usize> = impurities
+        .iter()
+        .copied()
+        .filter(|&p| ((p as f64 + 0.5) - place).abs() <= LANDSCAPE_REACH && p >= 1 && p + 2 < n)
+        .collect();
+    if !near.is_empty() {
+        let reference = farthest_centring(n, impurities, 0.5);
+        let far = solve_centring(model, reference, options)?.energy;
+        for p in near {
+            let on = landscape.iter().find(|a| a.requested == p as f64 + 0.5).map_or_else(
+                || solve_centring(model, p as f64 + 0.5, options).map(|a| a.energy),
+                |a| Ok(a.energy),
+            )?;
+            energies.push(ImpurityEnergy { spring: p, energy: on - far, reference });
+        }
+    }
+    Ok((landscape, energies))
+}
