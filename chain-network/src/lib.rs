@@ -21,6 +21,7 @@
 //! | [`winding`] | winding numbers of `det Q(k)`, the cell dipole `r0`, the polarization `R_T` |
 //! | [`strip`] | strips periodic along one lattice vector: zero modes per edge |
 //! | [`guest`] | Guest modes: macroscopic strains at no cost |
+//! | [`kernel`] | the generated per-bond kernels (energy, gradient, Hessian block, ...) |
 //! | [`linalg`] | the decompositions used (faer), with the rank rule |
 #![deny(missing_docs)]
 
@@ -30,6 +31,7 @@ pub mod compatibility;
 pub mod counts;
 pub mod error;
 pub mod guest;
+pub mod kernel;
 pub mod linalg;
 pub mod patch;
 pub mod strip;
