@@ -22,6 +22,7 @@
 //! | [`strip`] | strips periodic along one lattice vector: zero modes per edge |
 //! | [`guest`] | Guest modes: macroscopic strains at no cost |
 //! | [`kernel`] | the generated per-bond kernels (energy, gradient, Hessian block, ...) |
+//! | [`model`] | the nonlinear mechanics of a patch: the capability ladder on a network |
 //! | [`linalg`] | the decompositions used (faer), with the rank rule |
 #![deny(missing_docs)]
 
@@ -33,6 +34,7 @@ pub mod error;
 pub mod guest;
 pub mod kernel;
 pub mod linalg;
+pub mod model;
 pub mod patch;
 pub mod strip;
 pub mod winding;
@@ -42,3 +44,4 @@ pub use error::{CellError, Location, NetworkError};
 /// The linear-algebra crate whose matrices the API returns.
 pub use faer;
 pub use faer::c64;
+pub use model::{ChainView, NetworkModel, NetworkModelBuilder};
