@@ -3,8 +3,8 @@
 //! time per step (docs/benchmarks.md, "Networks in motion"). `cargo run --release -p
 //! chain-network --example large_patch [cells]`.
 
-use chain_core::{Potential, SpringNetwork};
 use chain_core::integrate::{Phase, Verlet};
+use chain_core::{Potential, SpringNetwork};
 use chain_network::NetworkModel;
 use chain_network::cell::ready;
 use chain_network::patch::{Boundary, Patch};

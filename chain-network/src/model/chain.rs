@@ -110,7 +110,10 @@ impl ChainView {
 
     /// The chain's angles `theta` of the network's angles `phi`.
     pub fn to_chain(&self, phi: &[f64]) -> Vec<f64> {
-        phi.iter().enumerate().map(|(i, p)| if i.is_multiple_of(2) { FRAC_PI_2 - p } else { p + FRAC_PI_2 }).collect()
+        phi.iter()
+            .enumerate()
+            .map(|(i, p)| if i.is_multiple_of(2) { FRAC_PI_2 - p } else { p + FRAC_PI_2 })
+            .collect()
     }
 
     /// Multiplies the values of a tridiagonal layout by `s_i s_j`.

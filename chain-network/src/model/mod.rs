@@ -18,11 +18,14 @@
 //! Bonds are grouped by type (joint-joint, joint-rotor, rotor-rotor; a rotor-joint bond is read
 //! from its joint end) into structs of arrays, and each group is evaluated with the generated
 //! kernels of [`crate::kernel`] (`bonds.rs`); every rotor's `sin_cos` is taken once per call.
+//! The energy and gradient (every step of a run or a relaxation) evaluate several bonds at once
+//! in vector lanes at the level chain-core's `simd` detects (`lanes.rs`).
 //! Spring `p` of the model is bond `p` of the patch (`Patch::bonds`).
 
 mod bonds;
 mod build;
 mod chain;
+mod lanes;
 mod traits;
 
 pub use build::NetworkModelBuilder;

@@ -100,28 +100,13 @@ impl Potential for NetworkModel {
     #[track_caller]
     fn gradient_into(&self, x: &[f64], out: &mut [f64]) {
         self.check(x.len(), &[("gradient", out.len(), x.len())]);
-        let trig = self.trig(x);
-        out.fill(0.0);
-        each_bond!(self, x, &trig, Gradient, [4, 3, 2], |g, i, v| {
-            for (&dof, &gi) in g.bond_dofs(i).iter().zip(v) {
-                out[dof] += gi;
-            }
-        });
+        self.gradient_lanes::<false>(x, out);
     }
 
     #[track_caller]
     fn energy_and_gradient_into(&self, x: &[f64], out: &mut [f64]) -> f64 {
         self.check(x.len(), &[("gradient", out.len(), x.len())]);
-        let trig = self.trig(x);
-        out.fill(0.0);
-        let mut energy = 0.0;
-        each_bond!(self, x, &trig, EnergyGradient, [5, 4, 3], |g, i, v| {
-            energy += v[0];
-            for (&dof, &gi) in g.bond_dofs(i).iter().zip(&v[1..]) {
-                out[dof] += gi;
-            }
-        });
-        energy
+        self.gradient_lanes::<true>(x, out)
     }
 
     /// `1e-12 k_max s^2` with `s` the cell's length scale: the energy of the stiffest bond
