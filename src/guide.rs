@@ -7,7 +7,8 @@
 //!
 //! | module | guide | what it covers |
 //! |---|---|---|
-//! | [`readme`] | `README.md` | set-up, the two commands, what is where, measured numbers |
+//! | [`readme`] | `README.md` | what it is, set-up, the two commands, five measured numbers, where to go next |
+//! | [`first_hour`] | `docs/first-hour.md` | from the dependency line to a phase diagram and its picture, in Rust and Python |
 //! | [`theory`] | `docs/theory.md` | the model, sign conventions, which wall is the kink, the branch solve |
 //! | [`macros`] | `docs/macro.md` | every key of `#[rotor_chain]`, every generated item, every compile error |
 //! | [`models`] | `docs/models.md` | the model ladder, and a model of your own (a Frenkel–Kontorova chain) through every analysis |
@@ -18,6 +19,7 @@
 //! | [`benchmarks`] | `docs/benchmarks.md` | how the speed figures were measured |
 //! | [`embedded`] | `docs/embedded.md` | a chain on a Cortex-M4F under QEMU, `no_std` without `alloc` |
 //! | [`scaling`] | `docs/scaling.md` | the Python package, Dask and SLURM sweeps |
+//! | [`publishing`] | `docs/publishing.md` | the crates and the wheel as they would be published, and CI's dry runs |
 //! | [`network`] | `docs/network.md` | periodic networks: cells, counts, Bloch bands, windings and polarization, strips, Guest modes |
 //!
 //! Links between the guides point at the markdown files of the repository, where they also read
@@ -25,6 +27,9 @@
 
 #[doc = include_str!("../README.md")]
 pub mod readme {}
+
+#[doc = include_str!("../docs/first-hour.md")]
+pub mod first_hour {}
 
 #[doc = include_str!("../docs/theory.md")]
 pub mod theory {}
@@ -56,6 +61,8 @@ pub mod embedded {}
 #[doc = include_str!("../docs/scaling.md")]
 pub mod scaling {}
 
+#[doc = include_str!("../docs/publishing.md")]
+pub mod publishing {}
 #[doc = include_str!("../docs/network.md")]
 #[cfg(feature = "network")]
 pub mod network {}

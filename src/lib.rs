@@ -19,8 +19,10 @@
 //!   forms.
 //! - **Dynamics** ([`dynamics`]): velocity Verlet and DOP853, launching a defect along its
 //!   translation mode, wall tracking, scattering on a stiffness impurity.
-//! - **Sweeps** (crate `chain-sweep`, command `phase-diagram`): resumable parallel phase
-//!   diagrams; the paper's figures (crate `chain-paper`, command `paper`).
+//! - **Sweeps and figures** (features `sweep` and `figures`, see [Features](#features)):
+//!   `rotor_chain::sweep`, resumable parallel phase diagrams (command `phase-diagram`);
+//!   `rotor_chain::paper`, the paper's figures for any chain and pictures of your own sweeps
+//!   (command `paper`).
 //!
 //! Units are the paper's (Appendix B): lattice spacing $a$, tip mass $M$, an arbitrary time unit
 //! $t$; stiffness in $M/t^2$, energies in $M a^2/t^2$, angles in radians measured from the
@@ -91,6 +93,7 @@
 //! | guide | for |
 //! |---|---|
 //! | [`guide::readme`] | set-up, the two commands, measured numbers |
+//! | [`guide::first_hour`] | the first hour: a chain, its kink and antikink, a scattering run, a phase diagram and its picture, in Rust and Python |
 //! | [`guide::theory`] | the model and its sign conventions, equation by equation |
 //! | [`guide::macros`] | every key, generated item and compile error of the attribute |
 //! | [`guide::statics`] | each static analysis: what it computes, the API, numbers against the paper |
@@ -98,6 +101,7 @@
 //! | [`guide::paper`] | the reproduction of every figure of the paper |
 //! | [`guide::guarantees`] | what each layer promises for hostile inputs |
 //! | [`guide::benchmarks`], [`guide::embedded`], [`guide::scaling`] | speed, microcontrollers, Python and clusters |
+//! | [`guide::publishing`] | the crates and the wheel as they would be published |
 //! | `guide::network` | periodic networks, from a cell file to counts, polarization, strips and figures |
 //!
 //! Every Rust block of the guides is a doctest (`cargo test --doc`). Math renders with KaTeX on
@@ -105,9 +109,60 @@
 //!
 //! ## Features
 //!
-//! `std` (default) uses the platform's maths and adds `alloc`; `alloc` adds [`RuntimeChain`],
-//! the analyses and dense matrices. With default features off the crate is `#![no_std]` without
-//! allocation (maths from `libm`), and so is the code the attribute generates.
+//! | feature | default | adds | brings |
+//! |---|---|---|---|
+//! | `std` | yes | the platform's maths, `alloc` | |
+//! | `alloc` | with `std` | [`RuntimeChain`], the analyses, dense matrices | |
+//! | `sweep` | no | `rotor_chain::sweep` (crate rotor-chain-sweep): resumable parallel phase diagrams, results files, shards | rayon, clap, indicatif, signal-hook |
+//! | `figures` | no | `rotor_chain::paper` (crate rotor-chain-paper): every figure of the paper for any chain, outcome grids of your own sweeps, PNG/SVG/CSV; implies `sweep` | plotters, image, ab_glyph, an embedded font |
+//!
+//! With default features off the crate is `#![no_std]` without allocation (maths from `libm`),
+//! and so is the code the attribute generates. `sweep` and `figures` are off by default because
+//! of what they bring: the first debug build of a small program declaring a chain took 30 s
+//! (41 s of CPU) on this 2-core machine, and 42 s (69 s of CPU) with `figures` (cargo's registry
+//! cache warm, a new target folder, `/usr/bin/time cargo build`).
+//!
+//! ```toml
+//! [dependencies]
+//! rotor-chain = { version = "0.1", features = ["sweep", "figures"] }
+//! # or, from a clone of the repository: { path = "../rotor-chain", features = [...] }
+//! ```
+//!
+//! A phase diagram of your own chain and its picture, with both features:
+//!
+//! ```
+//! # #[cfg(not(feature = "figures"))] fn main() {}
+//! # #[cfg(feature = "figures")]
+//! # fn main() -> Result<(), Box<dyn std::error::Error>> {
+//! use rotor_chain::paper::outcomes::OutcomeGrid;
+//! use rotor_chain::paper::{Chart, Figure, render};
+//! use rotor_chain::sweep::scattering::{Defect, PhaseDiagram};
+//! use rotor_chain::sweep::{Axis, Grid, compute_grid};
+//!
+//! # let dir = std::env::temp_dir().join(format!("rotor-chain-front-page-{}", std::process::id()));
+//! // n = 40 rotors, r = 0.7 a, k = 1e4 M/t^2, theta_bar = 0.3; an antikink on the middle spring's
+//! // impurity, k_i/k from 0.05 to 2 (log-spaced) by v0 from 1 to 8 a/t.
+//! let diagram = PhaseDiagram::new(40, 0.7, 1.0e4, 0.3, Defect::Antikink)?;
+//! let grid = Grid::new(Axis::geomspace(0.05, 2.0, 5)?, Axis::linspace(1.0, 8.0, 4)?)?;
+//! let points = compute_grid(&grid, |ki, v0| diagram.compute_point(ki, v0), None)?;
+//! let outcomes = OutcomeGrid::new(&grid, &points)?;
+//!
+//! let figure = Figure {
+//!     label: "fig:my-chain",
+//!     caption: "Antikink scattering, n = 40, r/a = 0.7, θ̄ = 0.3".to_owned(),
+//!     panels: vec![Chart::Heat(outcomes.heatmap("antikink, θ̄ = 0.3"))],
+//!     rows: Vec::new(),
+//! };
+//! # std::fs::create_dir_all(&dir)?;
+//! render::render(&figure, &dir)?;                      // my-chain.png and my-chain.svg
+//! # assert!(dir.join("my-chain.png").exists());
+//! # std::fs::remove_dir_all(&dir)?;
+//! # Ok(())
+//! # }
+//! ```
+//!
+//! Every figure of the paper is a function of `rotor_chain::paper::figures::Params`, whose
+//! default is the paper's chain and choices; change a field to draw it for another chain.
 #![deny(missing_docs)]
 #![cfg_attr(not(feature = "std"), no_std)]
 
@@ -135,6 +190,16 @@ pub use chain_network as network;
 #[doc = include_str!("attribute.md")]
 #[doc(inline)]
 pub use chain_macros::rotor_chain;
+/// The paper's figures as functions of any chain's parameters, outcome grids of your own sweeps,
+/// and their PNG, SVG and CSV output (feature `figures`; the crate rotor-chain-paper).
+#[cfg(feature = "figures")]
+#[doc(inline)]
+pub use chain_paper as paper;
+/// Resumable parallel sweeps and the scattering phase diagram (feature `sweep`; the crate
+/// rotor-chain-sweep, whose command is `phase-diagram`).
+#[cfg(feature = "sweep")]
+#[doc(inline)]
+pub use chain_sweep as sweep;
 /// The linear-algebra crate of the matrices this crate returns, re-exported so versions match.
 pub use nalgebra;
 

@@ -3,7 +3,7 @@
 //! per range given):
 //!
 //! ```sh
-//! cargo run --release -p chain-core --example sin_cos_ulp -- [points-per-range]
+//! cargo run --release -p rotor-chain-core --example sin_cos_ulp -- [points-per-range]
 //! ```
 //!
 //! The reference (dashu-float, arbitrary precision) dominates the run time: computed once per

@@ -14,9 +14,9 @@
 //!   overrides, laws, raw identifiers, stray tokens) on random items go through
 //!   [`expand::expand`]: no panic, and the output is well-formed Rust items.
 //!
-//! `cargo test -p chain-macros fuzz` runs the CI size (2000 laws, 200 attributes, about 15 s in
+//! `cargo test -p rotor-chain-macros fuzz` runs the CI size (2000 laws, 200 attributes, about 15 s in
 //! debug). The long run multiplies both:
-//! `ROTOR_CHAIN_FUZZ_CASES=100000 cargo test --release -p chain-macros fuzz -- --nocapture`.
+//! `ROTOR_CHAIN_FUZZ_CASES=100000 cargo test --release -p rotor-chain-macros fuzz -- --nocapture`.
 
 use chain_symbolic::chain::Kernel;
 use chain_symbolic::diff::diff;

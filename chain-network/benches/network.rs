@@ -1,7 +1,7 @@
 //! Speed of the network analyses (issue 33), side by side in one run: periodic counts through
 //! Bloch blocks (the 100 x 100 kagome patch, 60 000 degrees of freedom), free counts by one
 //! dense SVD (kagome 10 x 10 and 20 x 20; the 40 x 40 patch is timed once by the `network`
-//! command, docs/benchmarks.md), a winding number, a strip. `cargo bench -p chain-network`;
+//! command, docs/benchmarks.md), a winding number, a strip. `cargo bench -p rotor-chain-network`;
 //! results and the CPU in docs/benchmarks.md. Threads: the free-patch SVD uses 2.
 
 use chain_network::cell::ready;

@@ -9,7 +9,8 @@
 //! ```
 //!
 //! A heat map is written one row per cell, `x,y,value`, with a fourth column `category` (the
-//! name of the value) when the map is categorical. A drawing of the chain is written one row per
+//! name of the value) when the map is categorical; `x` as the map holds it (`log10(k_i/k)` on a
+//! phase diagram's logarithmic axis, [`Heatmap::log_x`]). A drawing of the chain is written one row per
 //! drawn part, `part,index,x0,y0,x1,y1,value`: each rotor from pivot to tip (value `θ_i`), each
 //! spring from tip to tip (value its stretch `(l − l0)/a`; `impurity` for an impurity spring), each
 //! mode arrow (value its length) and tension bar (value its amplitude). Numbers are Rust's shortest round-trip form,
@@ -157,6 +158,8 @@ mod tests {
             values: vec![vec![1.0, 7.0]],
             categories: vec!["reflected".into(), "transmitted".into()],
             value_label: String::new(),
+            log_x: false,
+            colour_limit: None,
         };
         assert_eq!(panel_csv(&Chart::Heat(map)), "x,y,value,category\n0.5,3,1,transmitted\n1,3,7,\n");
     }

@@ -34,6 +34,9 @@ pub struct ChainDrawing {
     pub arrows: Vec<(f64, f64)>,
     /// Per spring, a tensional mode's amplitude `|t_j|`, the largest 1 (empty: no bars).
     pub tensions: Vec<f64>,
+    /// The limit of the stretch colour scale, in `a`, when it is shared with other drawings
+    /// ([`ChainDrawing::share_stretch_scale`]); `None`: this drawing's largest `|stretch|`.
+    pub stretch_scale: Option<f64>,
 }
 
 /// Why a drawing could not be made.
@@ -124,7 +127,23 @@ impl ChainDrawing {
             impurities,
             arrows: Vec::new(),
             tensions: Vec::new(),
+            stretch_scale: None,
         })
+    }
+
+    /// Whether every spring drawn is at rest (its stretch below the rounding of the spring
+    /// lengths, drawn as zero): the drawing then has no colour scale to show.
+    pub fn at_rest(&self) -> bool {
+        self.stretch.iter().all(|&s| s == 0.0)
+    }
+
+    /// One stretch colour scale for all of `drawings` (their largest `|stretch|`), so that
+    /// panels shown side by side compare by colour.
+    pub fn share_stretch_scale(drawings: &mut [ChainDrawing]) {
+        let largest = drawings.iter().flat_map(|d| &d.stretch).map(|s| s.abs()).fold(0.0, f64::max);
+        for d in drawings {
+            d.stretch_scale = (largest > 0.0).then_some(largest);
+        }
     }
 
     /// With a mode `shape` (`δθ_i` of every rotor of the chain) drawn as the displacement of each
@@ -209,6 +228,23 @@ mod tests {
         let err = ChainDrawing::new("t", &model, &theta[..3], 0..4).unwrap_err();
         assert!(matches!(err, DrawingError::WrongLength { len: 3, expected: 4, .. }));
         assert!(ChainDrawing::new("t", &model, &theta, 3..9).is_err());
+    }
+
+    #[test]
+    fn drawings_know_when_every_spring_is_at_rest_and_can_share_one_scale() {
+        let model = RuntimeChain::builder(4, 0.8, 1.0, 0.5).build().unwrap();
+        let uniform = ChainDrawing::new("t", &model, &[0.5; 4], 0..4).unwrap();
+        assert!(uniform.at_rest());
+        let bent = ChainDrawing::new("t", &model, &[0.5, 0.5, 0.2, -0.4], 0..4).unwrap();
+        assert!(!bent.at_rest());
+        let largest = bent.stretch.iter().map(|s| s.abs()).fold(0.0, f64::max);
+        let mut both = [uniform, bent];
+        ChainDrawing::share_stretch_scale(&mut both);
+        assert_eq!(both.map(|d| d.stretch_scale), [Some(largest); 2]);
+        // Nothing stretched anywhere: no shared scale, each drawing says "at rest".
+        let mut rest = [ChainDrawing::new("t", &model, &[0.5; 4], 0..4).unwrap()];
+        ChainDrawing::share_stretch_scale(&mut rest);
+        assert_eq!(rest[0].stretch_scale, None);
     }
 
     #[test]

@@ -38,6 +38,9 @@ pub enum Style {
     OpenPoints,
     /// A line with dots at the points.
     LinePoints,
+    /// Unfilled circles a little larger than [`Style::LinePoints`]'s dots: a series that lies on
+    /// another (a starting guess under its converged result) stays visible around its dots.
+    Rings,
 }
 
 /// One curve or set of points of a panel. Its colour is its quantity's
@@ -116,6 +119,13 @@ pub struct Heatmap {
     pub categories: Vec<String>,
     /// Label of the colour bar for a continuous map, with units.
     pub value_label: String,
+    /// The `x` values are `log10` of the quantity `x_label` names; the axis is labelled with the
+    /// quantity's own values (0.01, 0.1, 1, ...) at their logarithms. The data file keeps `x`.
+    pub log_x: bool,
+    /// The limit of a continuous map's diverging colour scale, `[-limit, limit]`, fixed by the
+    /// figure (a physical scale, such as the two domains' `±θ̄`); values beyond it take its end
+    /// colours and the colour bar's ends are pointed. `None`: the renderer's rule from the values.
+    pub colour_limit: Option<f64>,
 }
 
 /// One panel of a figure.

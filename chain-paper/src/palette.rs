@@ -81,6 +81,10 @@ pub enum Quantity {
     PairCreation,
     /// Outcome: undecided.
     Undecided,
+    /// Outcome: unresolved, a label that changes with the integrator or the rounding (the
+    /// physics issue's class; its colour is kept ready so that the phase diagrams show it as soon
+    /// as `Outcome::ALL` has it).
+    Unresolved,
     /// A sweep point that failed (energy budget, unreadable walls): shown, never hidden.
     Failed,
     /// Member `index` of a family of `of` curves that differ in one parameter (e.g. the launch
@@ -130,6 +134,7 @@ impl Quantity {
             Quantity::Disintegrated => RGBColor(230, 190, 90),
             Quantity::PairCreation => RGBColor(240, 170, 210),
             Quantity::Undecided => RGBColor(205, 205, 205),
+            Quantity::Unresolved => RGBColor(120, 205, 205),
             Quantity::Failed => BLACK,
             // Up to 0.85 of viridis: its last shades are too light for a line on white.
             Quantity::Parameter { index, of } => {
@@ -154,6 +159,7 @@ impl Quantity {
             "disintegrated" => Quantity::Disintegrated,
             "pair-creation" => Quantity::PairCreation,
             "undecided" => Quantity::Undecided,
+            "unresolved" => Quantity::Unresolved,
             "failed" => Quantity::Failed,
             "annulus" => Quantity::Annulus,
             "disk" => Quantity::Disk,

@@ -52,6 +52,12 @@ fn every_dynamics_figure_is_listed() {
 fn kinetic_energy_figure() {
     let figure = quick("ketimeplot", ketimeplot);
     assert_eq!(figure.label, "fig:ketimeplot");
+    // (b) is the start of (a), point for point.
+    let [Chart::Lines(whole), Chart::Lines(start)] = &figure.panels[..] else { panic!("two line panels") };
+    for (all, early) in whole.series.iter().zip(&start.series) {
+        assert!(early.points.len() > 10 && early.points.len() < all.points.len());
+        assert_eq!(early.points[..], all.points[..early.points.len()]);
+    }
     assert_eq!(figure.rows[0].paper, "nearly constant");
 }
 
@@ -84,12 +90,25 @@ fn scattering_figures_reproduce_the_papers_outcomes() {
 #[test]
 fn phase_diagram_figure() {
     let figure = quick("phasediagram", phasediagram);
-    assert_eq!(figure.panels.len(), 3);
+    // Kink, antikink, and the antikink's walls and their time in a perfect chain: one quantity
+    // per axis, no empty place in the 2 x 2 layout.
+    assert_eq!(figure.panels.len(), 4);
     for chart in &figure.panels[..2] {
         let Chart::Heat(h) = chart else { panic!("phase diagrams are heat maps") };
         // Every outcome, and "failed".
         assert_eq!(h.categories.len(), 9);
         assert!(h.values.iter().flatten().all(|&v| v >= 0.0 && (v as usize) < h.categories.len()));
+        // k_i/k from 0.01 to 3 on a logarithmic axis: the data are log10(k_i/k).
+        assert!(h.log_x && h.x_label == "k_i / k");
+        assert!(
+            (h.x[0] + 2.0).abs() < 1e-12 && (h.x[h.x.len() - 1] - 3f64.log10()).abs() < 1e-12,
+            "{:?}",
+            h.x
+        );
+    }
+    for chart in &figure.panels[2..] {
+        let Chart::Lines(p) = chart else { panic!("the stability panels are line panels") };
+        assert_eq!(p.series.len(), 1, "{}: one quantity", p.title);
     }
     // The kink is never trapped or reflected (paper Sec. VI).
     assert!(figure.rows[0].ours.starts_with("0 of"), "{}", figure.rows[0].ours);

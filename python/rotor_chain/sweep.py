@@ -436,7 +436,10 @@ def _run_dask(
                     sink(record)
             else:
                 error = future.exception()
-                if not isinstance(error, KilledWorker):
+                # None: the chunk had finished, but its result was lost with its worker between
+                # as_completed's report and this look (seen with a release build, whose chunks
+                # finish sooner): it is submitted again like a chunk whose worker died.
+                if error is not None and not isinstance(error, KilledWorker):
                     raise error
                 if attempts[c] < max_resubmits:
                     attempts[c] += 1
@@ -447,7 +450,8 @@ def _run_dask(
                     continue
                 message = (
                     f"dask: the worker computing this point's chunk died each time it ran "
-                    f"({max_resubmits + 1} submissions): {type(error).__name__}: {error}"
+                    f"({max_resubmits + 1} submissions): "
+                    + (f"{type(error).__name__}: {error}" if error is not None else "its result was lost with it")
                 )
                 for i, j, x, y in chunks[c]:
                     sink(_failed(i, j, x, y, message))

@@ -27,7 +27,7 @@ def _binary(env: str, name: str) -> Path:
     path = Path(os.environ.get(env, REPO / "target" / "debug" / name))
     if not path.is_file():
         pytest.fail(
-            f"{path} does not exist: build it with `cargo build -p rotor-chain-reference -p chain-sweep --bins` "
+            f"{path} does not exist: build it with `cargo build -p rotor-chain-reference -p rotor-chain-sweep --bins` "
             f"(or run the whole suite with `cargo xtask test`), or set {env}"
         )
     return path

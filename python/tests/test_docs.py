@@ -1,4 +1,4 @@
-"""The Python examples of docs/scaling.md and python/README.md: every script keeps its work under
+"""The Python examples of docs/scaling.md, docs/first-hour.md and python/README.md: every script keeps its work under
 ``if __name__ == "__main__":`` (a Dask LocalCluster's workers import the script again), the
 scripts run as written (their grids made small), and both pages describe ``Chain``'s arguments
 in the same words."""
@@ -13,7 +13,11 @@ from pathlib import Path
 import pytest
 
 ROOT = Path(__file__).resolve().parents[2]
-PAGES = {"scaling": ROOT / "docs" / "scaling.md", "readme": ROOT / "python" / "README.md"}
+PAGES = {
+    "scaling": ROOT / "docs" / "scaling.md",
+    "readme": ROOT / "python" / "README.md",
+    "first-hour": ROOT / "docs" / "first-hour.md",
+}
 
 
 def blocks(page):
@@ -37,7 +41,7 @@ def test_every_script_keeps_its_work_under_the_main_guard():
             for line in top:
                 assert re.match(r"(import |from |def |if __name__ ==|#|\))", line), (page, line)
             found += 1
-    assert found == 4  # scaling.md §1, §2, §3 and the README's
+    assert found == 5  # scaling.md §1, §2, §3, the README's and the first hour's
 
 
 def small(block):
@@ -73,6 +77,19 @@ def test_the_readmes_script_runs(tmp_path):
     assert (round(minimum, 2), round(barrier, 3)) == (1392.03, 0.668)  # the README's table
     assert saddle == pytest.approx(minimum + barrier, abs=1e-9)
     assert (tmp_path / "antikink-20x20.png").is_file()
+
+
+def test_the_first_hours_script_runs(tmp_path):
+    (block,) = scripts("first-hour")
+    lines = run(block, tmp_path).splitlines()
+    assert len(lines) == 3, lines
+    kink = float(lines[0].removeprefix("kink energy "))
+    assert 0.0 <= kink < 1e-16  # a kink costs no energy (the page's Rust example asserts the same)
+    # The page's numbers at theta_bar = 0.58 (docs/paper.md: 1392.03 and 0.668 there).
+    assert lines[1] == "antikink 1392.03, barrier 0.668"
+    assert lines[2] == "scattering: trapped"  # the paper's outcome at (v0, k_i/k) = (4.0, 0.7)
+    assert (tmp_path / "antikink-12x12.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    assert (tmp_path / "antikink-12x12.csv").read_text().count("\n") == 2 + 16
 
 
 def test_both_pages_describe_chains_arguments_in_the_same_words():

@@ -236,7 +236,7 @@ fn python_only(pytest_args: &[OsString]) -> Step {
             "--package",
             "rotor-chain-reference",
             "--package",
-            "chain-sweep",
+            "rotor-chain-sweep",
             "--bins",
         ]),
         None,

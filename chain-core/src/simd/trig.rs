@@ -46,7 +46,7 @@
 //! Horner's rule with fused multiply-adds.
 //!
 //! **Measured** against correctly rounded `sin` and `cos` (`dashu-float`, Ziv's method):
-//! `cargo run --release -p chain-core --example sin_cos_ulp` (1.02e7 points over three ranges;
+//! `cargo run --release -p rotor-chain-core --example sin_cos_ulp` (1.02e7 points over three ranges;
 //! numbers in `docs/benchmarks.md`); `chain-core/tests/sin_cos.rs` repeats it on 1e5 points.
 
 use super::Vector;

@@ -15,6 +15,8 @@ const MAX_LANES: usize = 8;
 /// Energy (when `ENERGY`, the kernel's first output) and gradient of every bond of `g`, the
 /// gradient added into `out`.
 #[inline(always)]
+// The lane loops transpose bonds into lanes and back: they index two arrays by the lane.
+#[allow(clippy::needless_range_loop)]
 fn group<V: Vector, const A: usize, const M: usize, K: BondFn<A, M>, const ENERGY: bool>(
     g: &Group,
     x: &[f64],

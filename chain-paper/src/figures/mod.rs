@@ -3,10 +3,10 @@
 
 use rotor_chain::RuntimeChain;
 use rotor_chain::dynamics::DynamicsError;
-use rotor_chain::prelude::{BranchError, ParameterError};
 use rotor_chain::statics::StaticsError;
 use rotor_chain::statics::continuum::{ContinuumChain, ContinuumError};
 use rotor_chain::statics::linkage::LinkageError;
+use rotor_chain::{BranchError, ParameterError};
 
 use crate::drawing::DrawingError;
 use crate::model::{Figure, Quality};
@@ -16,8 +16,27 @@ pub mod resolution;
 pub mod statics_a;
 pub mod statics_b;
 
-/// The chain of the paper's figures (Appendix B: `a = 1`, `M = 1`, `k = 1e4`, `r/a = 0.8`).
-#[derive(Clone, Copy, Debug, PartialEq)]
+/// Everything a figure is computed from: the chain (`n`, `r`, `k`, `mass`; Appendix B) and, per
+/// family of figures, the angles, speeds, impurities and ranges the paper chose. The default is the
+/// paper's everywhere, so `figure(&Params::default(), Quality::Full)` reproduces the paper; change
+/// any field to recompute a figure for another chain:
+///
+/// ```
+/// use chain_paper::Quality;
+/// use chain_paper::figures::{Params, statics_a};
+///
+/// # fn main() -> Result<(), Box<dyn std::error::Error>> {
+/// // Fig. akconfigpn for a 40-rotor chain of shorter rotors at another angle.
+/// let mut params = Params { n: 40, r: 0.7, ..Params::default() };
+/// params.barrier.theta_bar = 0.5;
+/// let figure = statics_a::akconfigpn(&params, Quality::Quick)?;
+/// assert!(figure.caption.contains("n = 40, r/a = 0.7, θ̄ = 0.5"));
+/// # Ok(())
+/// # }
+/// ```
+///
+/// Units are the paper's: `a = 1`, so lengths are in lattice spacings, stiffness in `M/t^2`.
+#[derive(Clone, Debug, PartialEq)]
 pub struct Params {
     /// Rotors.
     pub n: usize,
@@ -27,11 +46,39 @@ pub struct Params {
     pub k: f64,
     /// Tip mass `M`.
     pub mass: f64,
+    /// The kink and antikink pictures and cobweb plots (Sec. II).
+    pub cobweb: statics_a::Cobweb,
+    /// The antikink's energy and Peierls-Nabarro barrier (Secs. III, V).
+    pub barrier: statics_a::Barrier,
+    /// The localised modes (Sec. IV).
+    pub modes: statics_b::Modes,
+    /// The long middle spring (Sec. VII-A).
+    pub long_bar: statics_b::LongBar,
+    /// The linkage limit (Sec. VII-B).
+    pub linkage: statics_b::Linkage,
+    /// Moving kinks and antikinks in a perfect chain (Sec. V).
+    pub propagation: dynamics::Propagation,
+    /// Scattering on a stiffness impurity and the phase diagrams (Sec. VI).
+    pub scattering: dynamics::Scattering,
 }
 
 impl Default for Params {
+    /// The paper's chain (Appendix B: `n = 60`, `r/a = 0.8`, `k = 1e4 M/t^2`, `M = 1`) and the
+    /// paper's choices for every figure.
     fn default() -> Self {
-        Self { n: 60, r: 0.8, k: 1.0e4, mass: 1.0 }
+        Self {
+            n: 60,
+            r: 0.8,
+            k: 1.0e4,
+            mass: 1.0,
+            cobweb: statics_a::Cobweb::default(),
+            barrier: statics_a::Barrier::default(),
+            modes: statics_b::Modes::default(),
+            long_bar: statics_b::LongBar::default(),
+            linkage: statics_b::Linkage::default(),
+            propagation: dynamics::Propagation::default(),
+            scattering: dynamics::Scattering::default(),
+        }
     }
 }
 
@@ -91,6 +138,9 @@ pub enum Cause {
     /// The sweep machinery (thread pool).
     #[error(transparent)]
     Sweep(#[from] chain_sweep::SweepError),
+    /// The points of a sweep do not fit its grid.
+    #[error(transparent)]
+    OutcomeGrid(#[from] crate::outcomes::OutcomeGridError),
     /// A fit or a figure needs more resolved points than the computation gave.
     #[error("{what}: {found} resolved, at least {needed} needed")]
     TooFewPoints {

@@ -3,7 +3,7 @@
 //! Sec. VI leaves "for future studies", and of the whole plane of Fig. `fig:phasediagram`.
 //!
 //! Run only with `paper --resolution` (never in the default or `--quick` runs): 2 x 400 x 400
-//! scattering runs, each chain-sweep's [`PhaseDiagram::compute_point`](chain_sweep::scattering::PhaseDiagram::compute_point) (the same point as the
+//! scattering runs, each chain-sweep's `PhaseDiagram::compute_point` (the same point as the
 //! `phase-diagram` tool and `fig:phasediagram`: the scattering issue's clean launch and lasting
 //! outcomes, the energy budget with its DOP853 recomputation).
 
@@ -11,9 +11,10 @@ use chain_sweep::scattering::Defect;
 use chain_sweep::{Axis, Grid};
 use rotor_chain::dynamics::scatter::Outcome;
 
-use super::dynamics::{THETA_BAR_SCATTERING, category, label_counts, outcome_categories, phase_diagram};
+use super::dynamics::{label_counts, phase_diagram};
 use super::{Cause, FigureError, FigureFn, Params};
-use crate::model::{Chart, Figure, Heatmap, Quality, Row};
+use crate::model::{Chart, Figure, Quality, Row};
+use crate::outcomes::OutcomeGrid;
 
 /// This module's figures (`paper --resolution`).
 pub fn figures() -> Vec<(&'static str, FigureFn)> {
@@ -21,11 +22,9 @@ pub fn figures() -> Vec<(&'static str, FigureFn)> {
 }
 
 const LABEL: &str = "fig:phasediagram-resolution";
-/// The equilibrium angle of the paper's scattering runs (Sec. VI).
-const THETA_BAR: f64 = THETA_BAR_SCATTERING;
 
-/// The antikink's outcome at every point of `grid` (x: `k_i/k`, y: `v0`): `labels[j][i]`.
-fn antikink_diagram(params: &Params, grid: &Grid) -> Result<Vec<Vec<Option<Outcome>>>, Cause> {
+/// The antikink's outcome at every point of `grid` (x: `k_i/k`, y: `v0`).
+fn antikink_diagram(params: &Params, grid: &Grid) -> Result<OutcomeGrid, Cause> {
     phase_diagram(params, Defect::Antikink, grid)
 }
 
@@ -48,71 +47,59 @@ fn alternations(labels: &[Vec<Option<Outcome>>], xs: &[f64], ki: f64) -> (f64, u
 
 /// The antikink's phase diagram, 400 x 400 (quick: 8 x 8), of the alternating window
 /// (`k_i/k` 0.6 .. 0.9, `v0` 2.5 .. 5) and of the whole plane (`k_i/k` 0.01 .. 3 log-spaced,
-/// `v0` 0.5 .. 12), `theta_bar = 0.28` (paper Sec. VI, Fig. `fig:phasediagram`).
+/// `v0` 0.5 .. 12), `theta_bar = 0.28` (paper Sec. VI, Fig. `fig:phasediagram`); the ranges
+/// are [`Scattering`](super::dynamics::Scattering)'s `resolution`, `ki_range` and `v0_range`.
 pub fn phasediagram_resolution(params: &Params, quality: Quality) -> Result<Figure, FigureError> {
-    let size = quality.pick(400, 8);
+    let s = &params.scattering;
+    let theta_bar = s.theta_bar;
+    let ((wk_from, wk_to), (wv_from, wv_to), points) = s.resolution;
+    let size = quality.pick(points, points.min(8));
     let on = FigureError::on(LABEL);
-    let window =
-        Grid::new(Axis::linspace(0.6, 0.9, size).map_err(&on)?, Axis::linspace(2.5, 5.0, size).map_err(&on)?)
-            .map_err(&on)?;
-    let plane = Grid::new(
-        Axis::geomspace(0.01, 3.0, size).map_err(&on)?,
-        Axis::linspace(0.5, 12.0, size).map_err(&on)?,
+    let window = Grid::new(
+        Axis::linspace(wk_from, wk_to, size).map_err(&on)?,
+        Axis::linspace(wv_from, wv_to, size).map_err(&on)?,
     )
     .map_err(&on)?;
-    let categories = outcome_categories();
-    let window_labels = antikink_diagram(params, &window).map_err(FigureError::on(LABEL))?;
-    let plane_labels = antikink_diagram(params, &plane).map_err(FigureError::on(LABEL))?;
-    let heat = |title: String, x_label: &str, x: Vec<f64>, grid: &Grid, labels: &[Vec<Option<Outcome>>]| {
-        Chart::Heat(Heatmap {
-            title,
-            x_label: x_label.to_owned(),
-            y_label: "v0 (a/t)".to_owned(),
-            x,
-            y: grid.ys().to_vec(),
-            values: labels.iter().map(|row| row.iter().map(|&o| category(o)).collect()).collect(),
-            categories: categories.clone(),
-            value_label: "outcome".to_owned(),
-        })
-    };
+    let plane = Grid::new(
+        Axis::geomspace(s.ki_range.0, s.ki_range.1, size).map_err(&on)?,
+        Axis::linspace(s.v0_range.0, s.v0_range.1, size).map_err(&on)?,
+    )
+    .map_err(&on)?;
+    let window_outcomes = antikink_diagram(params, &window).map_err(FigureError::on(LABEL))?;
+    let plane_outcomes = antikink_diagram(params, &plane).map_err(FigureError::on(LABEL))?;
     let panels = vec![
-        heat(
-            format!("antikink, θ̄ = {THETA_BAR}: window k_i/k 0.6-0.9, v0 2.5-5 ({size} x {size})"),
-            "k_i / k",
-            window.xs().to_vec(),
-            &window,
-            &window_labels,
-        ),
-        heat(
-            format!("antikink, θ̄ = {THETA_BAR}: whole plane ({size} x {size})"),
-            "log₁₀(k_i / k)",
-            plane.xs().iter().map(|x| x.log10()).collect(),
-            &plane,
-            &plane_labels,
-        ),
+        Chart::Heat(window_outcomes.heatmap(format!(
+            "antikink, θ̄ = {theta_bar}: window k_i/k {wk_from}-{wk_to}, v0 {wv_from}-{wv_to} ({size} x {size})"
+        ))),
+        Chart::Heat(plane_outcomes.heatmap(format!("antikink, θ̄ = {theta_bar}: whole plane ({size} x {size})"))),
     ];
-    let (ki, changes) = alternations(&window_labels, window.xs(), 0.75);
+    let (window_labels, plane_labels) = (window_outcomes.labels(), plane_outcomes.labels());
+    let (ki, changes) = alternations(&window_labels, window.xs(), s.window.0);
     let rows = vec![
         Row::words(
-            format!("antikink window near k_i/k = 0.75, v0 = 3.6 ({size} x {size})"),
+            format!("antikink window near k_i/k = {}, v0 = 3.6 ({size} x {size})", s.window.0),
             "alternating transmitted / trapped regimes (left for future studies)",
             &counts(&window_labels),
             format!(
-                "k_i/k 0.6..0.9, v0 2.5..5; transmitted <-> trapped changes along v0 at k_i/k = {ki:.3}: {changes}"
+                "k_i/k {wk_from}..{wk_to}, v0 {wv_from}..{wv_to}; transmitted <-> trapped changes along v0 at k_i/k = \
+                 {ki:.3}: {changes}"
             ),
         ),
         Row::words(
             format!("antikink phase diagram, whole plane ({size} x {size})"),
             "reflected (soft), trapped, transmitted, reflected (stiff)",
             &counts(&plane_labels),
-            "k_i/k 0.01..3 log-spaced, v0 0.5..12; free ends".to_owned(),
+            format!(
+                "k_i/k {}..{} log-spaced, v0 {}..{}; free ends",
+                s.ki_range.0, s.ki_range.1, s.v0_range.0, s.v0_range.1
+            ),
         ),
     ];
     Ok(Figure {
         label: LABEL,
         caption: format!(
             "Antikink scattering phase diagram at {size} x {size}: the alternating window near k_i/k = 0.75, v0 = 3.6, \
-             and the whole plane; θ̄ = {THETA_BAR}, n = {}, r/a = {}, k = {}, free ends",
+             and the whole plane; θ̄ = {theta_bar}, n = {}, r/a = {}, k = {}, free ends",
             params.n, params.r, params.k
         ),
         panels,
@@ -133,7 +120,8 @@ mod tests {
         assert_eq!((figure.label, figure.panels.len(), figure.rows.len()), (LABEL, 2, 2));
         let Chart::Heat(window) = &figure.panels[0] else { panic!("the window is a heat map") };
         assert_eq!((window.x.len(), window.y.len(), window.values.len()), (8, 8, 8));
-        let (trapped, transmitted) = (category(Some(Outcome::Trapped)), category(Some(Outcome::Transmitted)));
+        let category = |o| crate::outcomes::category(&crate::outcomes::Cell::Outcome(o));
+        let (trapped, transmitted) = (category(Outcome::Trapped), category(Outcome::Transmitted));
         for row in &window.values {
             assert_eq!(row[0], trapped, "k_i/k = 0.6: {row:?}");
             assert_eq!(row[7], transmitted, "k_i/k = 0.9: {row:?}");

@@ -4,16 +4,16 @@
 //! `--merge` through chain-sweep's shards and checked merge, as for the scattering diagrams),
 //! drawn with the lines where the gap closes.
 //!
-//! Each point records the windings and `R_T` ([`rotor_chain::network::winding::winding`]), or
+//! Each point records the windings and `R_T` ([`chain_network::winding::winding`]), or
 //! why they are undefined (`gapless`: `det Q` vanishes on every path, the critical lines
 //! `x_p = 0` of straight bonds; `weyl`: point zeros between the paths), and the zone's smallest
 //! relative gap `min_k sigma_min(Q(k)) / sigma_max(Q(k))` on a grid of the zone without `k = 0`.
 
+use chain_network::cell::ready;
+use chain_network::winding::{WindingOptions, winding};
+use chain_network::{NetworkError, bloch, linalg};
 use chain_sweep::record::{ParseError, Record, expect_fields, format_f64, parse_field};
 use chain_sweep::{Grid, ResultRow};
-use rotor_chain::network::cell::ready;
-use rotor_chain::network::winding::{WindingOptions, winding};
-use rotor_chain::network::{NetworkError, bloch, linalg};
 
 use crate::model::{Chart, Figure, Heatmap};
 
@@ -188,6 +188,8 @@ pub fn diagram_figure(params: &DiagramParams, grid: &Grid, rows: &[ResultRow<Pol
         values: Vec::new(),
         categories: Vec::new(),
         value_label: String::new(),
+        log_x: false,
+        colour_limit: None,
     };
     let polar = Heatmap { values: classes, categories: names, ..base("topological polarization R_T") };
     let gap = Heatmap {

@@ -2,14 +2,14 @@
 
 use std::f64::consts::{PI, TAU};
 
-use rotor_chain::network::bloch::{self, PathPoint};
-use rotor_chain::network::counts::null_spaces;
-use rotor_chain::network::faer::Mat;
-use rotor_chain::network::linalg::hermitian_eigen;
-use rotor_chain::network::patch::{Boundary, Patch};
-use rotor_chain::network::strip::{DEFAULT_Q, Strip, strip_frequencies, strip_modes};
-use rotor_chain::network::winding::determinant;
-use rotor_chain::network::{Cell, NetworkError};
+use chain_network::bloch::{self, PathPoint};
+use chain_network::counts::null_spaces;
+use chain_network::faer::Mat;
+use chain_network::linalg::hermitian_eigen;
+use chain_network::patch::{Boundary, Patch};
+use chain_network::strip::{DEFAULT_Q, Strip, strip_frequencies, strip_modes};
+use chain_network::winding::determinant;
+use chain_network::{Cell, NetworkError};
 
 use super::NetworkDrawing;
 use crate::model::{Chart, Figure, Heatmap, Panel, Quantity, Series, Style};
@@ -158,6 +158,9 @@ fn zone_panel(cell: &Cell) -> Result<Chart, NetworkError> {
         values,
         categories: Vec::new(),
         value_label: if square { "arg det Q (rad)".into() } else { "ω".into() },
+        log_x: false,
+        // A phase lives on [-π, π]: the scale is fixed there, not by the values drawn.
+        colour_limit: square.then_some(std::f64::consts::PI),
     }))
 }
 

@@ -11,8 +11,8 @@ pub use figures::{bands_figure, cell_figure};
 
 use std::fmt::Write as _;
 
-use rotor_chain::network::patch::Patch;
-use rotor_chain::network::{Cell, NodeKind};
+use chain_network::patch::Patch;
+use chain_network::{Cell, NodeKind};
 
 /// A patch of a network, ready to draw. Lengths in the cell's units.
 #[derive(Clone, Debug, PartialEq, Default)]

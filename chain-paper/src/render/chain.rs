@@ -1,5 +1,7 @@
 //! Drawings of the chain ([`ChainDrawing`]) at equal scale in x and y: springs as tubes coloured
-//! by their stretch on the diverging map centred on zero (white: at rest) with a colour bar,
+//! by their stretch on the diverging map centred on zero (white: at rest) with a colour bar (or,
+//! when every spring is at rest, the words "springs at rest" in its place: a scale would span
+//! only the rounding of the lengths),
 //! impurity springs outlined in their colour, black rotor arms from pivot crosses to blue tips,
 //! green arrows for a mode's displacements, green bars for a tensional mode, and the rotor
 //! indices along the bottom.
@@ -16,9 +18,6 @@ use crate::model::{ChainDrawing, Quantity};
 const ARROW: f64 = 0.9;
 /// Width of the colour bar's column.
 const BAR: u32 = 120;
-/// The colour limit when every spring is at rest: rounding ([`crate::drawing`] draws stretches
-/// below 1e-9 l0 as zero).
-const AT_REST: f64 = 1e-9;
 
 /// Draw `d` into `area`: its title on top, the chain in the middle, the stretch colour bar right.
 pub fn draw<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, d: &ChainDrawing) -> Drawn
@@ -57,7 +56,9 @@ where
     };
 
     let largest = d.stretch.iter().map(|s| s.abs()).fold(0.0, f64::max);
-    let colours = Scale::Diverging { limit: if largest > 0.0 { largest } else { AT_REST }, clipped: false };
+    // At rest every spring is white whatever the limit.
+    let limit = d.stretch_scale.unwrap_or(largest);
+    let colours = Scale::Diverging { limit: if limit > 0.0 { limit } else { 1.0 }, clipped: false };
     let tube = (0.11 * scale).clamp(4.0, 12.0) as u32;
     for (j, pair) in d.tips.windows(2).enumerate() {
         let ends = vec![px(pair[0]), px(pair[1])];
@@ -104,7 +105,20 @@ where
             body.draw(&Text::new(format!("{i}"), (px(*pivot).0, label_y), style.clone()))?;
         }
     }
-    colour_bar(&side.margin(0, label_room as i32, 0, 0), "stretch l − l₀ (a)", &colours)
+    let side = side.margin(0, label_room as i32, 0, 0);
+    if d.at_rest() && d.stretch_scale.is_none() {
+        let (w, h) = side.dim_in_pixel();
+        let style = font(TICK_FONT, FontStyle::Normal)
+            .into_text_style(&side)
+            .pos(Pos::new(HPos::Center, VPos::Center));
+        for (k, line) in ["springs", "at rest"].iter().enumerate() {
+            let y = h as i32 / 2 + (2 * k as i32 - 1) * 10;
+            side.draw(&Text::new(*line, (w as i32 / 2, y), style.clone()))?;
+        }
+        Ok(())
+    } else {
+        colour_bar(&side, "stretch l − l₀ (a)", &colours)
+    }
 }
 
 /// A green arrow from `from` to `to` (pixels) with a filled head.

@@ -1,11 +1,16 @@
 //! Heat maps and colour bars.
 //!
 //! A categorical map has one colour per category ([`crate::palette::category_colour`]) and
-//! their names beside it. A continuous map of values of both signs (a space-time image of the
-//! angles) uses the diverging map centred on zero, symmetric, its limit the 99th percentile of
-//! `|value|`: a few extreme cells (a rotor of a trapped antikink swinging far) then cannot wash
-//! out the two domains, and the colour bar marks the clipped ends. Other continuous maps use
-//! viridis from their least to their largest value.
+//! beside it the names of the categories that occur in it (a legend of what the reader sees; a
+//! category's colour never depends on which others occur). A continuous map of values of both
+//! signs (a space-time image of the angles) uses the diverging map centred on zero, symmetric:
+//! its limit is the figure's physical scale when it gives one ([`Heatmap::colour_limit`]),
+//! otherwise the 99th percentile of `|value|`; a few extreme cells (a rotor of a trapped
+//! antikink swinging far) then cannot wash out the two domains, and the colour bar marks the
+//! clipped ends. Other continuous maps use viridis from their least to their largest value.
+//!
+//! An axis of `log10` values ([`Heatmap::log_x`]) is labelled with the values themselves
+//! (`log_axis`).
 
 use std::ops::Range;
 
@@ -13,7 +18,10 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 
+use plotters::coord::ranged1d::{AsRangedCoord, ValueFormatter};
+
 use super::lines::{extent, linear_ticks};
+use super::log_axis::{Ticked, log_tick, log_ticks};
 use super::{Drawn, LABEL_FONT, TICK_FONT, font, text_width, title_font};
 use crate::data::category_index;
 use crate::model::Heatmap;
@@ -39,6 +47,18 @@ pub enum Scale {
 }
 
 impl Scale {
+    /// The scale of `map`: its fixed limit if it has one, otherwise [`Scale::of`] its values.
+    pub fn of_map(map: &Heatmap) -> Scale {
+        let values: Vec<f64> = map.values.iter().flatten().copied().collect();
+        match map.colour_limit {
+            Some(limit) if limit > 0.0 && limit.is_finite() => {
+                let clipped = values.iter().any(|v| v.abs() > limit);
+                Scale::Diverging { limit, clipped }
+            }
+            _ => Scale::of(&values),
+        }
+    }
+
     /// The scale of `values` (finite ones), by the rule of the module.
     pub fn of(values: &[f64]) -> Scale {
         let finite: Vec<f64> = values.iter().copied().filter(|v| v.is_finite()).collect();
@@ -135,22 +155,73 @@ where
     DB::ErrorType: 'static,
 {
     let categorical = !map.categories.is_empty();
+    let present = present_categories(map);
     let side_width = if categorical {
-        let widest = map.categories.iter().map(|c| text_width(c, TICK_FONT)).fold(0.0, f64::max);
+        let widest = present.iter().map(|&i| text_width(&map.categories[i], TICK_FONT)).fold(0.0, f64::max);
         (widest as u32 + 60).clamp(120, 300)
     } else {
         130
     };
     let (main, side) = area.split_horizontally(area.dim_in_pixel().0.saturating_sub(side_width));
-    let (xe, ye) = (&edges(&map.x), &edges(&map.y));
-    let (x, y) = (cell_range(xe), cell_range(ye));
-    let (x_ticks, y_ticks) = (linear_ticks(&x), linear_ticks(&y));
-    let mut chart = ChartBuilder::on(&main)
+    let xe = edges(&map.x);
+    let x = cell_range(&xe);
+    let plot_y = if map.log_x {
+        let ticks = log_ticks(&x);
+        cells(&main, map, &xe, Ticked { axis: x.into(), ticks }, &log_tick)?
+    } else {
+        let ticks = linear_ticks(&x);
+        cells(&main, map, &xe, x, &ticks)?
+    };
+
+    // The side panel lines up with the plot area of the map.
+    let side_top = side.get_base_pixel().1;
+    let top = (plot_y.start - side_top).max(0);
+    let bottom = (side.dim_in_pixel().1 as i32 - (plot_y.end - side_top)).max(0);
+    let side = side.margin(top, bottom, 8, 10);
+    if categorical {
+        let missing = map.values.iter().flatten().any(|&v| category_index(v, map.categories.len()).is_none());
+        category_legend(&side, &map.categories, &present, missing)
+    } else {
+        colour_bar(&side, &map.value_label, &Scale::of_map(map))
+    }
+}
+
+/// The indices of the categories that occur in `map`'s cells, in order.
+fn present_categories(map: &Heatmap) -> Vec<usize> {
+    let mut present = vec![false; map.categories.len()];
+    for &v in map.values.iter().flatten() {
+        if let Some(i) = category_index(v, map.categories.len()) {
+            present[i] = true;
+        }
+    }
+    (0..present.len()).filter(|&i| present[i]).collect()
+}
+
+/// The map's axes, labels and cells in `main`, the x axis `x_axis` (cell edges `xe`) labelled
+/// by `x_ticks`. Returns the plot area's pixel rows.
+fn cells<DB, X>(
+    main: &DrawingArea<DB, Shift>,
+    map: &Heatmap,
+    xe: &[f64],
+    x_axis: X,
+    x_ticks: &dyn Fn(&f64) -> String,
+) -> Result<Range<i32>, Box<dyn std::error::Error>>
+where
+    DB: DrawingBackend,
+    DB::ErrorType: 'static,
+    X: AsRangedCoord<Value = f64>,
+    X::CoordDescType: ValueFormatter<f64>,
+{
+    let categorical = !map.categories.is_empty();
+    let ye = &edges(&map.y);
+    let y = cell_range(ye);
+    let y_ticks = linear_ticks(&y);
+    let mut chart = ChartBuilder::on(main)
         .caption(&map.title, title_font(&map.title, main.dim_in_pixel().0))
         .margin(12)
         .x_label_area_size(55)
         .y_label_area_size(80)
-        .build_cartesian_2d(x, y)?;
+        .build_cartesian_2d(x_axis, y)?;
     chart
         .configure_mesh()
         .disable_mesh()
@@ -158,12 +229,11 @@ where
         .y_desc(map.y_label.as_str())
         .axis_desc_style(font(LABEL_FONT, FontStyle::Normal))
         .label_style(font(TICK_FONT, FontStyle::Normal))
-        .x_label_formatter(&x_ticks)
+        .x_label_formatter(x_ticks)
         .y_label_formatter(&y_ticks)
         .draw()?;
 
-    let values: Vec<f64> = map.values.iter().flatten().copied().collect();
-    let scale = Scale::of(&values);
+    let scale = Scale::of_map(map);
     let colour = |v: f64| -> RGBColor {
         if categorical {
             category_index(v, map.categories.len())
@@ -182,18 +252,7 @@ where
             },
         )
     }))?;
-
-    // The side panel lines up with the plot area of the map.
-    let (_, plot_y) = chart.plotting_area().get_pixel_range();
-    let side_top = side.get_base_pixel().1;
-    let top = (plot_y.start - side_top).max(0);
-    let bottom = (side.dim_in_pixel().1 as i32 - (plot_y.end - side_top)).max(0);
-    let side = side.margin(top, bottom, 8, 10);
-    if categorical {
-        category_legend(&side, &map.categories)
-    } else {
-        colour_bar(&side, &map.value_label, &scale)
-    }
+    Ok(chart.plotting_area().get_pixel_range().1)
 }
 
 /// A vertical colour bar of `scale` with ticks, and `label` beside them reading upwards (as the
@@ -246,17 +305,30 @@ where
     Ok(())
 }
 
-/// One coloured square and name per category, top to bottom.
-fn category_legend<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, categories: &[String]) -> Drawn
+/// The legend entry of cells without a category (a sweep's points not computed yet).
+const MISSING_NAME: &str = "not computed";
+
+/// One coloured square and name per category of `present` (indices into `categories`), top to
+/// bottom, and one for cells without a category if there are any (`missing`).
+fn category_legend<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    categories: &[String],
+    present: &[usize],
+    missing: bool,
+) -> Drawn
 where
     DB::ErrorType: 'static,
 {
-    for (i, name) in categories.iter().enumerate() {
-        let top = 4 + 26 * i as i32;
+    let entries = present
+        .iter()
+        .map(|&i| (categories[i].as_str(), palette::category_colour(&categories[i], i)))
+        .chain(missing.then_some((MISSING_NAME, MISSING)));
+    for (row, (name, colour)) in entries.enumerate() {
+        let top = 4 + 26 * row as i32;
         let swatch = [(0, top), (18, top + 18)];
-        area.draw(&Rectangle::new(swatch, palette::category_colour(name, i).filled()))?;
+        area.draw(&Rectangle::new(swatch, colour.filled()))?;
         area.draw(&Rectangle::new(swatch, BLACK.mix(0.5).stroke_width(1)))?;
-        area.draw(&Text::new(name.as_str(), (26, top + 1), font(TICK_FONT, FontStyle::Normal)))?;
+        area.draw(&Text::new(name, (26, top + 1), font(TICK_FONT, FontStyle::Normal)))?;
     }
     Ok(())
 }
@@ -275,6 +347,32 @@ mod tests {
         let (a, b) = (RGBColor(1, 2, 3), RGBColor(4, 5, 6));
         let merged = merge_runs([(0..1, a), (1..2, a), (2..4, b), (4..5, a)].into_iter());
         assert_eq!(merged, vec![(0..2, a), (2..4, b), (4..5, a)]);
+    }
+
+    #[test]
+    fn legends_name_the_categories_present_and_a_figure_may_fix_the_colour_scale() {
+        let map = Heatmap {
+            title: String::new(),
+            x_label: String::new(),
+            y_label: String::new(),
+            x: vec![0.0, 1.0],
+            y: vec![0.0, 1.0],
+            values: vec![vec![2.0, 0.0], vec![2.0, f64::NAN]],
+            categories: vec!["transmitted".into(), "reflected".into(), "trapped".into()],
+            value_label: String::new(),
+            log_x: false,
+            colour_limit: None,
+        };
+        assert_eq!(present_categories(&map), vec![0, 2]);
+        // Two domains at -+0.28 and one rotor far out: the figure's scale, clipped.
+        let image = Heatmap {
+            values: vec![vec![0.28, -0.28], vec![-1.1, 0.28]],
+            categories: Vec::new(),
+            colour_limit: Some(0.35),
+            ..map
+        };
+        assert_eq!(Scale::of_map(&image), Scale::Diverging { limit: 0.35, clipped: true });
+        assert_eq!(Scale::of_map(&Heatmap { colour_limit: None, ..image }).range(), -1.1..1.1);
     }
 
     #[test]

@@ -18,6 +18,8 @@ pub struct Entry {
 const PADDING: f64 = 8.0;
 /// Width of an entry's sample.
 const MARK: f64 = 24.0;
+/// Radius of [`Style::Rings`]' circles, pixels: clear of a line-and-dots series' dots (radius 3).
+pub const RINGS: u32 = 6;
 /// Distance of the box from the plot's edges.
 pub const GAP: f64 = 6.0;
 
@@ -119,7 +121,7 @@ where
     let segments: &[(i32, i32)] = match entry.style {
         Style::Line | Style::LinePoints => &[(0, m)],
         Style::Dashed => &[(0, 9), (15, m)],
-        Style::Points | Style::OpenPoints => &[],
+        Style::Points | Style::OpenPoints | Style::Rings => &[],
     };
     for &(from, to) in segments {
         area.draw(&PathElement::new(vec![(x + from, y), (x + to, y)], line))?;
@@ -132,6 +134,7 @@ where
             area.draw(&Circle::new((x + m / 2, y), 4, WHITE.filled()))?;
             area.draw(&Circle::new((x + m / 2, y), 4, entry.colour.stroke_width(2)))?;
         }
+        Style::Rings => area.draw(&Circle::new((x + m / 2, y), RINGS, entry.colour.stroke_width(2)))?,
         Style::Line | Style::Dashed => {}
     }
     Ok(())

@@ -140,7 +140,8 @@ where
         .iter()
         .zip(&panel.series)
         .flat_map(|(runs, s)| {
-            runs.iter().map(move |run| (run, !matches!(s.style, Style::Points | Style::OpenPoints)))
+            runs.iter()
+                .map(move |run| (run, !matches!(s.style, Style::Points | Style::OpenPoints | Style::Rings)))
         })
         .map(|(run, line)| {
             let y = |v: f64| if panel.log_y { v.log10() } else { v };
@@ -189,7 +190,7 @@ where
             Style::Dashed => {
                 chart.draw_series(runs.iter().map(|r| DashedPathElement::new(r.clone(), 9, 6, line)))?;
             }
-            Style::Points | Style::OpenPoints => {}
+            Style::Points | Style::OpenPoints | Style::Rings => {}
         }
         match s.style {
             Style::Points | Style::LinePoints => {
@@ -198,6 +199,9 @@ where
             Style::OpenPoints => {
                 chart.draw_series(dots.clone().map(|&p| Circle::new(p, 4, WHITE.filled())))?;
                 chart.draw_series(dots.map(|&p| Circle::new(p, 4, colour.stroke_width(2))))?;
+            }
+            Style::Rings => {
+                chart.draw_series(dots.map(|&p| Circle::new(p, legend::RINGS, colour.stroke_width(2))))?;
             }
             Style::Line | Style::Dashed => {}
         }

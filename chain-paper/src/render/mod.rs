@@ -8,6 +8,7 @@
 //!   non-negative quantity that does not start at zero marked broken);
 //! - `legend`: legends where the data leave room, outside the plot otherwise;
 //! - `heatmap`: heat maps (diverging colours centred on zero for signed values) and colour bars;
+//!   `log_axis`: their axis of `log10` values, labelled with the values;
 //! - `chain`: drawings of the chain;
 //! - `network`: drawings of a network's patch (equal scales, like the chain's);
 //! - `text`: text drawn glyph by glyph, combining marks (`θ̄`, `l̄`) placed over their letter.
@@ -28,6 +29,7 @@ mod chain;
 mod heatmap;
 mod legend;
 mod lines;
+mod log_axis;
 mod network;
 mod text;
 
@@ -264,6 +266,8 @@ mod tests {
                 values: vec![vec![0.0]],
                 categories: Vec::new(),
                 value_label: String::new(),
+                log_x: false,
+                colour_limit: None,
             }),
         ]);
         assert_eq!(l.size, (2 * CELL.0, CHAIN_ROW + CELL.1));

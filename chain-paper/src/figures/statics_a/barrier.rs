@@ -6,7 +6,7 @@ use rotor_chain::RuntimeChain;
 use rotor_chain::statics::antikink::{Antikink, AntikinkOptions, barrier_vs_size};
 use rotor_chain::statics::continuum::PN_ASYMPTOTIC_LOG_SLOPE;
 
-use super::{THETA_BAR, ka2, pn, profile, uniform_levels};
+use super::{ka2, pn, profile, uniform_levels};
 use crate::drawing::window;
 use crate::figures::{Cause, FigureError, Params, chain, continuum, grid};
 use crate::model::{ChainDrawing, Chart, Figure, Panel, Quality, Quantity, Row, Series, Style};
@@ -18,19 +18,19 @@ const PAPER_SADDLE: &str = "1359.75";
 const PAPER_BARRIER: &str = "0.60";
 /// The paper's fitted slope of `ln V_PNB` against `w/a` (Fig. `fig:logvpn-theta`).
 const PAPER_LOG_SLOPE: &str = "-10.6";
-/// The equilibrium angle of the finite-size study (Fig. `fig:logvpn-size`).
-const SIZE_THETA_BAR: f64 = 0.40;
 /// Rotors drawn either side of the antikink's centre in Fig. `fig:akconfigpn`.
 const DRAWN: usize = 7;
 
-/// Fig. `fig:akenergy`: the antikink's energy (the Peierls-Nabarro minimum) against `theta_bar`,
-/// `n = params.n`, with Eq. (`eq:akenergy`).
+/// Fig. `fig:akenergy`: the antikink's energy (the Peierls-Nabarro minimum) against `theta_bar`
+/// over [`Barrier::energy_range`], `n = params.n`, with Eq. (`eq:akenergy`); the summary row at
+/// [`Barrier::theta_bar`].
+///
+/// [`Barrier::energy_range`]: super::Barrier::energy_range
+/// [`Barrier::theta_bar`]: super::Barrier::theta_bar
 pub fn akenergy(p: &Params, q: Quality) -> Result<Figure, FigureError> {
     const LABEL: &str = "fig:akenergy";
-    let thetas = match q {
-        Quality::Full => grid(0.05, 0.65, 25),
-        Quality::Quick => vec![0.1, 0.3, 0.5, 0.65],
-    };
+    let (from, to) = p.barrier.energy_range;
+    let thetas = grid(from, to, q.pick(25, 4));
     let fail = |t: f64| move |e: rotor_chain::statics::StaticsError| FigureError::new(LABEL, e).at("θ̄", t);
     let lattice = thetas
         .iter()
@@ -41,8 +41,9 @@ pub fn akenergy(p: &Params, q: Quality) -> Result<Figure, FigureError> {
         .into_iter()
         .map(|t| Ok((t, continuum(p, t).map_err(FigureError::on(LABEL))?.antikink_energy() / ka2(p))))
         .collect::<Result<Vec<_>, FigureError>>()?;
-    let ours = pn(p, p.n, THETA_BAR).map_err(fail(THETA_BAR))?.minimum().energy;
-    let theory = continuum(p, THETA_BAR).map_err(FigureError::on(LABEL))?.antikink_energy();
+    let theta_bar = p.barrier.theta_bar;
+    let ours = pn(p, p.n, theta_bar).map_err(fail(theta_bar))?.minimum().energy;
+    let theory = continuum(p, theta_bar).map_err(FigureError::on(LABEL))?.antikink_energy();
     Ok(Figure {
         label: LABEL,
         caption: format!(
@@ -63,7 +64,7 @@ pub fn akenergy(p: &Params, q: Quality) -> Result<Figure, FigureError> {
             .into(),
         ],
         rows: vec![Row::number(
-            format!("antikink energy (M a²/t²), θ̄ = {THETA_BAR}, n = {}, k = {}", p.n, p.k),
+            format!("antikink energy (M a²/t²), θ̄ = {theta_bar}, n = {}, k = {}", p.n, p.k),
             PAPER_MINIMUM,
             ours,
             Some(theory),
@@ -74,12 +75,12 @@ pub fn akenergy(p: &Params, q: Quality) -> Result<Figure, FigureError> {
 }
 
 /// `theta_bar` at which the Peierls-Nabarro minimum of `n` rotors has energy `target`, by secant
-/// iteration from the paper's 0.58.
+/// iteration from [`Barrier::theta_bar`](super::Barrier::theta_bar) (the paper's 0.58).
 fn fit_theta_bar(p: &Params, target: f64, label: &'static str) -> Result<f64, FigureError> {
     let f = |t: f64| -> Result<f64, FigureError> {
         Ok(pn(p, p.n, t).map_err(|e| FigureError::new(label, e).at("θ̄", t))?.minimum().energy - target)
     };
-    let (mut t0, mut t1) = (THETA_BAR - 0.01, THETA_BAR);
+    let (mut t0, mut t1) = (p.barrier.theta_bar - 0.01, p.barrier.theta_bar);
     let (mut f0, mut f1) = (f(t0)?, f(t1)?);
     for _ in 0..20 {
         if f1.abs() < 1e-9 * target.abs() || f1 == f0 {
@@ -94,65 +95,71 @@ fn fit_theta_bar(p: &Params, target: f64, label: &'static str) -> Result<f64, Fi
 }
 
 /// Fig. `fig:akconfigpn`: the two Peierls-Nabarro equilibria of the antikink, (a) the minimum
-/// (rotor-centred) and (b) the saddle (spring-centred), `n = params.n`, `theta_bar = 0.58`.
+/// (rotor-centred) and (b) the saddle (spring-centred), `n = params.n`, at
+/// [`Barrier::theta_bar`](super::Barrier::theta_bar) (0.58).
 pub fn akconfigpn(p: &Params, _q: Quality) -> Result<Figure, FigureError> {
     const LABEL: &str = "fig:akconfigpn";
-    let model = chain(p, p.n, THETA_BAR).map_err(FigureError::on(LABEL))?;
-    let barrier = pn(p, p.n, THETA_BAR).map_err(FigureError::on(LABEL))?;
+    let theta_bar = p.barrier.theta_bar;
+    let model = chain(p, p.n, theta_bar).map_err(FigureError::on(LABEL))?;
+    let barrier = pn(p, p.n, theta_bar).map_err(FigureError::on(LABEL))?;
     let (minimum, saddle) = (barrier.minimum(), barrier.saddle());
-    let theory = continuum(p, THETA_BAR).map_err(FigureError::on(LABEL))?;
+    let theory = continuum(p, theta_bar).map_err(FigureError::on(LABEL))?;
     let paper_minimum: f64 = PAPER_MINIMUM.parse().unwrap_or(f64::NAN);
     let fitted = fit_theta_bar(p, paper_minimum, LABEL)?;
     let refit = pn(p, p.n, fitted).map_err(|e| FigureError::new(LABEL, e).at("θ̄", fitted))?;
     let title = |tag: &str, a: &Antikink| {
         format!("{tag}, index {}, centre {:.2}, V = {:.4}", a.classification.index, a.centre, a.energy)
     };
-    let drawing = |tag: &str, a: &Antikink| -> Result<Chart, FigureError> {
+    let drawing = |tag: &str, a: &Antikink| -> Result<ChainDrawing, FigureError> {
         let rotors = window(a.centre, DRAWN, model.rotor_count());
-        let d = ChainDrawing::new(
+        ChainDrawing::new(
             format!("{} (rotors {}–{})", title(tag, a), rotors.start, rotors.end - 1),
             &model,
             &a.theta,
             rotors,
-        );
-        Ok(d.map_err(FigureError::on(LABEL))?.into())
+        )
+        .map_err(FigureError::on(LABEL))
     };
+    // One stretch scale for both, so that the two equilibria compare by colour.
+    let mut drawings = [drawing("(a) minimum", minimum)?, drawing("(b) saddle", saddle)?];
+    ChainDrawing::share_stretch_scale(&mut drawings);
+    let [minimum_drawing, saddle_drawing] = drawings;
     let panel = |tag: &str, a: &Antikink, name: &str| -> Chart {
         let mut series = vec![Series::new(Quantity::Rotor, name, profile(&a.theta), Style::LinePoints)];
-        series.extend(uniform_levels(p.n, THETA_BAR));
+        series.extend(uniform_levels(p.n, theta_bar));
         Panel::new(title(tag, a), "rotor index i", "θ_i (rad)", series).into()
     };
     let resolved = if barrier.resolved { "" } else { " (NOT resolved: no index-0/index-1 pair)" };
     Ok(Figure {
         label: LABEL,
         caption: format!(
-            "Antikink equilibria, minimum (a, c) and saddle (b, d), drawn and as profiles: n = {}, r/a = {}, θ̄ = {THETA_BAR}, k = {}, M = {}, \
+            "Antikink equilibria, minimum (a, c) and saddle (b, d), drawn and as profiles: n = {}, r/a = {}, θ̄ = {theta_bar}, k = {}, M = {}, \
              ends held",
             p.n, p.r, p.k, p.mass
         ),
         panels: vec![
-            drawing("(a) minimum", minimum)?,
-            drawing("(b) saddle", saddle)?,
+            minimum_drawing.into(),
+            saddle_drawing.into(),
             panel("(c) minimum", minimum, "minimum"),
             panel("(d) saddle", saddle, "saddle"),
         ],
         rows: vec![
             Row::number(
-                format!("antikink PN minimum energy (M a²/t²), θ̄ = {THETA_BAR}, n = {}", p.n),
+                format!("antikink PN minimum energy (M a²/t²), θ̄ = {theta_bar}, n = {}", p.n),
                 PAPER_MINIMUM,
                 minimum.energy,
                 Some(theory.antikink_energy()),
                 "continuum: Eq. (akenergy); ours is the rotor-centred equilibrium, index 0",
             ),
             Row::number(
-                format!("antikink PN saddle energy (M a²/t²), θ̄ = {THETA_BAR}, n = {}", p.n),
+                format!("antikink PN saddle energy (M a²/t²), θ̄ = {theta_bar}, n = {}", p.n),
                 PAPER_SADDLE,
                 saddle.energy,
                 None,
                 format!("spring-centred equilibrium, index {}", saddle.classification.index),
             ),
             Row::number(
-                format!("PN barrier V_saddle − V_min (M a²/t²), θ̄ = {THETA_BAR}, n = {}", p.n),
+                format!("PN barrier V_saddle − V_min (M a²/t²), θ̄ = {theta_bar}, n = {}", p.n),
                 PAPER_BARRIER,
                 barrier.barrier,
                 Some(theory.pn_barrier()),
@@ -186,16 +193,14 @@ fn fit_line(points: &[(f64, f64)], (slope, intercept): (f64, f64)) -> Vec<(f64, 
     vec![(lo, slope * lo + intercept), (hi, slope * hi + intercept)]
 }
 
-/// Fig. `fig:logvpn-theta`: `ln(V_PNB / (k a^2))` against `w/a` for `theta_bar` in 0.35..0.65
-/// (where the barrier is resolved at `n = 60`), with its fitted line and the continuum barrier,
-/// derived and as printed (Eq. `eq:PNB2`).
+/// Fig. `fig:logvpn-theta`: `ln(V_PNB / (k a^2))` against `w/a` for `theta_bar` over
+/// [`Barrier::width_range`](super::Barrier::width_range) (0.35..0.65, where the barrier is
+/// resolved at `n = 60`), with its fitted line and the continuum barrier, derived and as printed
+/// (Eq. `eq:PNB2`).
 pub fn logvpn_theta(p: &Params, q: Quality) -> Result<Figure, FigureError> {
     const LABEL: &str = "fig:logvpn-theta";
-    let (lo, hi) = (0.35, 0.65);
-    let thetas = match q {
-        Quality::Full => grid(lo, hi, 13),
-        Quality::Quick => vec![0.35, 0.45, 0.55, 0.65],
-    };
+    let (lo, hi) = p.barrier.width_range;
+    let thetas = grid(lo, hi, q.pick(13, 4));
     let mut lattice = Vec::new();
     let mut ratios = Vec::new();
     let mut unresolved = Vec::new();
@@ -273,21 +278,25 @@ pub fn logvpn_theta(p: &Params, q: Quality) -> Result<Figure, FigureError> {
     })
 }
 
-/// Fig. `fig:logvpn-size`: `ln|Delta V_PNB|` against the number of rotors at `theta_bar = 0.40`,
-/// `Delta V_PNB = V_PNB(n) - V_PNB(params.n)`, with the fitted decay and the rate `ln F'(0.40)`
-/// expected from the tails reaching the ends.
+/// Fig. `fig:logvpn-size`: `ln|Delta V_PNB|` against the number of rotors at
+/// [`Barrier::size_theta_bar`](super::Barrier::size_theta_bar) (0.40), `Delta V_PNB = V_PNB(n) -
+/// V_PNB(params.n)` for `n` over [`Barrier::sizes`](super::Barrier::sizes), with the fitted decay
+/// and the rate `ln F'(theta_bar)` expected from the tails reaching the ends.
 pub fn logvpn_size(p: &Params, q: Quality) -> Result<Figure, FigureError> {
     const LABEL: &str = "fig:logvpn-size";
+    let size_theta_bar = p.barrier.size_theta_bar;
+    let (first, last) = p.barrier.sizes;
+    // Quick: every other length of the first nine.
     let mut sizes: Vec<usize> = match q {
-        Quality::Full => (16..=36).collect(),
-        Quality::Quick => vec![16, 18, 20, 22, 24],
+        Quality::Full => (first..=last).collect(),
+        Quality::Quick => (first..=last.min(first + 8)).step_by(2).collect(),
     };
     sizes.push(p.n);
-    let build = |n: usize| RuntimeChain::builder(n, p.r, p.k, SIZE_THETA_BAR).mass(p.mass).build();
+    let build = |n: usize| RuntimeChain::builder(n, p.r, p.k, size_theta_bar).mass(p.mass).build();
     let barriers =
         barrier_vs_size(&sizes, build, &AntikinkOptions::default()).map_err(FigureError::on(LABEL))?;
     let (_, reference) = barriers[barriers.len() - 1];
-    let energy = pn(p, p.n, SIZE_THETA_BAR).map_err(FigureError::on(LABEL))?.minimum().energy;
+    let energy = pn(p, p.n, size_theta_bar).map_err(FigureError::on(LABEL))?.minimum().energy;
     // Differences below this are rounding in the two energies of each barrier (measured: from
     // n = 27 on they scatter between 2 and 8 eps V_min instead of falling further).
     let floor = 20.0 * f64::EPSILON * energy / ka2(p);
@@ -309,7 +318,7 @@ pub fn logvpn_size(p: &Params, q: Quality) -> Result<Figure, FigureError> {
     }
     let fit = least_squares(&resolved);
     let (first, last) = (resolved[0].0, resolved[resolved.len() - 1].0);
-    let rate = continuum(p, SIZE_THETA_BAR).map_err(FigureError::on(LABEL))?.cobweb_slope().ln();
+    let rate = continuum(p, size_theta_bar).map_err(FigureError::on(LABEL))?.cobweb_slope().ln();
     // The rate ln F' drawn through the centroid of the resolved points.
     let (mx, my) = (
         resolved.iter().map(|q| q.0).sum::<f64>() / resolved.len() as f64,
@@ -325,7 +334,7 @@ pub fn logvpn_size(p: &Params, q: Quality) -> Result<Figure, FigureError> {
         series.push(Series::new(Quantity::Rounding, "rounding level", rounding, Style::Points));
     }
     let row = Row::words(
-        format!("finite-size decay of ΔV_PNB, θ̄ = {SIZE_THETA_BAR}, n = {first}–{last} (above rounding)"),
+        format!("finite-size decay of ΔV_PNB, θ̄ = {size_theta_bar}, n = {first}–{last} (above rounding)"),
         "exponential",
         &format!("exponential, {:.3} per rotor", -fit.0),
         format!(
@@ -338,7 +347,7 @@ pub fn logvpn_size(p: &Params, q: Quality) -> Result<Figure, FigureError> {
     Ok(Figure {
         label: LABEL,
         caption: format!(
-            "Finite-size correction ΔV_PNB = V_PNB(n) − V_PNB({}) against n: r/a = {}, θ̄ = {SIZE_THETA_BAR}, \
+            "Finite-size correction ΔV_PNB = V_PNB(n) − V_PNB({}) against n: r/a = {}, θ̄ = {size_theta_bar}, \
              ends held",
             p.n, p.r
         ),

@@ -9,14 +9,12 @@ use rotor_chain::statics::kink::{kink, reflected_kink};
 use rotor_chain::statics::walls::Charge;
 use rotor_chain::{ChainModel, RuntimeChain};
 
-use super::{THETA_BAR, profile, uniform_levels};
+use super::{profile, uniform_levels};
 use crate::figures::{FigureError, Params, chain, continuum, grid};
 use crate::model::{ChainDrawing, Chart, Figure, Panel, Quality, Quantity, Series, Style};
 use rotor_chain::ChainGeometry;
 use rotor_chain::SpringNetwork;
 
-/// The chain of the cobweb pictures: the paper's core "rotors 8 and 9", "8th spring" (Sec. II).
-const COBWEB_ROTORS: usize = 16;
 /// Half-width of the cobweb plot's window (rad): wide enough to show the constraint curve turning
 /// back beyond `+-theta_bar` (its vertical tangent is at `theta_{i+1} = 0.70`).
 const COBWEB_RANGE: f64 = 0.8;
@@ -82,19 +80,22 @@ fn cobweb_panel<M: ChainModel>(
 }
 
 /// The panel of a profile `theta_i` with the levels `+-theta_bar`.
-fn profile_panel(title: &str, name: &str, theta: &[f64], extra: Vec<Series>) -> Chart {
+fn profile_panel(title: &str, name: &str, theta: &[f64], theta_bar: f64, extra: Vec<Series>) -> Chart {
     let mut series = vec![Series::new(Quantity::Rotor, name, profile(theta), Style::LinePoints)];
     series.extend(extra);
-    series.extend(uniform_levels(theta.len(), THETA_BAR));
+    series.extend(uniform_levels(theta.len(), theta_bar));
     Panel::new(title, "rotor index i", "θ_i (rad)", series).into()
 }
 
-/// Fig. `fig:kcobweb`: the zero-energy kink centred in a 16-rotor chain (on its middle spring),
-/// drawn (`fig:kconfig`), its profile, and its cobweb plot on that spring's constraint curve.
+/// Fig. `fig:kcobweb`: the zero-energy kink centred in a chain of [`Cobweb::rotors`] (16; on its
+/// middle spring), drawn (`fig:kconfig`), its profile, and its cobweb plot on that spring's
+/// constraint curve.
+///
+/// [`Cobweb::rotors`]: super::Cobweb::rotors
 pub fn kcobweb(p: &Params, q: Quality) -> Result<Figure, FigureError> {
     const LABEL: &str = "fig:kcobweb";
-    let n = COBWEB_ROTORS;
-    let model = chain(p, n, THETA_BAR).map_err(FigureError::on(LABEL))?;
+    let (n, theta_bar) = (p.cobweb.rotors, p.cobweb.theta_bar);
+    let model = chain(p, n, theta_bar).map_err(FigureError::on(LABEL))?;
     let centre = (n - 1) as f64 / 2.0;
     let theta = kink(&model, centre).map_err(FigureError::on(LABEL))?;
     let drawing = ChainDrawing::new("(a) kink: springs at rest", &model, &theta, 0..n)
@@ -103,12 +104,12 @@ pub fn kcobweb(p: &Params, q: Quality) -> Result<Figure, FigureError> {
         label: LABEL,
         caption: format!(
             "Kink configuration (a), its profile (b) and cobweb plot (c), springs at rest: n = {n}, r/a = {}, \
-             θ̄ = {THETA_BAR}, centre {centre}",
+             θ̄ = {theta_bar}, centre {centre}",
             p.r
         ),
         panels: vec![
             drawing.into(),
-            profile_panel("(b) kink profile", "kink", &theta, Vec::new()),
+            profile_panel("(b) kink profile", "kink", &theta, theta_bar, Vec::new()),
             cobweb_panel("(c) cobweb plot", &model, n / 2 - 1, &theta, q).map_err(FigureError::on(LABEL))?,
         ],
         rows: Vec::new(),
@@ -116,9 +117,9 @@ pub fn kcobweb(p: &Params, q: Quality) -> Result<Figure, FigureError> {
 }
 
 /// The antikink of Figs. `fig:akcobweb` and `fig:aktheta`: the Peierls-Nabarro minimum of the
-/// 16-rotor chain at `theta_bar = 0.58`, ends held.
+/// chain of [`Params::cobweb`] (16 rotors at `theta_bar = 0.58`), ends held.
 fn cobweb_antikink(p: &Params, label: &'static str) -> Result<(RuntimeChain, Antikink), FigureError> {
-    let model = chain(p, COBWEB_ROTORS, THETA_BAR).map_err(FigureError::on(label))?;
+    let model = chain(p, p.cobweb.rotors, p.cobweb.theta_bar).map_err(FigureError::on(label))?;
     let minimum = peierls_nabarro(&model, &AntikinkOptions::default())
         .map_err(FigureError::on(label))?
         .minimum()
@@ -137,17 +138,24 @@ pub fn akcobweb(p: &Params, q: Quality) -> Result<Figure, FigureError> {
     let spring = (antikink.centre.floor() as usize).min(n - 2);
     let drawing = ChainDrawing::new("(a) antikink: springs stretched", &model, &antikink.theta, 0..n)
         .map_err(FigureError::on(LABEL))?;
-    let guess = Series::new(Quantity::Antikink, "reflected kink (start)", profile(&start), Style::Dashed);
+    // Rings: the start lies within a dot's size of the minimum on most rotors.
+    let guess = Series::new(Quantity::Antikink, "reflected kink (start)", profile(&start), Style::Rings);
     Ok(Figure {
         label: LABEL,
         caption: format!(
             "Antikink at the Peierls-Nabarro minimum, ends held at ∓θ̄: configuration (a), profile (b) and cobweb \
-             plot (c): n = {n}, r/a = {}, θ̄ = {THETA_BAR}, centre {:.2}",
-            p.r, antikink.centre
+             plot (c): n = {n}, r/a = {}, θ̄ = {}, centre {:.2}",
+            p.r, p.cobweb.theta_bar, antikink.centre
         ),
         panels: vec![
             drawing.into(),
-            profile_panel("(b) antikink profile", "antikink", &antikink.theta, vec![guess]),
+            profile_panel(
+                "(b) antikink profile",
+                "antikink",
+                &antikink.theta,
+                p.cobweb.theta_bar,
+                vec![guess],
+            ),
             cobweb_panel("(c) cobweb plot", &model, spring, &antikink.theta, q)
                 .map_err(FigureError::on(LABEL))?,
         ],
@@ -162,7 +170,7 @@ pub fn aktheta(p: &Params, q: Quality) -> Result<Figure, FigureError> {
     const LABEL: &str = "fig:aktheta";
     let (model, antikink) = cobweb_antikink(p, LABEL)?;
     let n = model.rotor_count();
-    let theory = continuum(p, THETA_BAR).map_err(FigureError::on(LABEL))?;
+    let theory = continuum(p, p.cobweb.theta_bar).map_err(FigureError::on(LABEL))?;
     let end = (n - 1) as f64;
     let curve = grid(0.0, end, q.pick(20, 4) * (n - 1) + 1)
         .into_iter()
@@ -175,8 +183,9 @@ pub fn aktheta(p: &Params, q: Quality) -> Result<Figure, FigureError> {
         label: LABEL,
         caption: format!(
             "Antikink profile against the continuum wall (a) and spring stretch (b): n = {n}, r/a = {}, \
-             θ̄ = {THETA_BAR}, ends held, w = {:.4} a",
+             θ̄ = {}, ends held, w = {:.4} a",
             p.r,
+            p.cobweb.theta_bar,
             theory.width()
         ),
         panels: vec![

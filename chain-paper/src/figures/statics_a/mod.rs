@@ -33,8 +33,52 @@ pub fn figures() -> Vec<(&'static str, FigureFn)> {
     ]
 }
 
-/// The equilibrium angle of the paper's figures (Secs. II, V).
-const THETA_BAR: f64 = 0.58;
+/// The kink and antikink pictures and cobweb plots of Sec. II (`fig:kcobweb`, `fig:akcobweb`,
+/// `fig:aktheta`).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Cobweb {
+    /// Rotors of the chain drawn: 16, the paper's "rotors 8 and 9" and "8th spring" at the core.
+    pub rotors: usize,
+    /// Equilibrium angle `theta_bar` (rad): 0.58, the paper's chain (Sec. II).
+    pub theta_bar: f64,
+}
+
+impl Default for Cobweb {
+    fn default() -> Self {
+        Self { rotors: 16, theta_bar: 0.58 }
+    }
+}
+
+/// The antikink's energy and Peierls-Nabarro barrier of Secs. III and V (`fig:akenergy`,
+/// `fig:akconfigpn`, `fig:logvpn-theta`, `fig:logvpn-size`), on chains of `Params::n` rotors.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Barrier {
+    /// Equilibrium angle (rad) of the two equilibria of `fig:akconfigpn` and the energy row of
+    /// `fig:akenergy`: 0.58, the paper's Sec. V.
+    pub theta_bar: f64,
+    /// `theta_bar` range (rad) of `fig:akenergy`: 0.05 to 0.65, the paper's axis.
+    pub energy_range: (f64, f64),
+    /// `theta_bar` range (rad) of `fig:logvpn-theta`: 0.35 to 0.65, where the barrier is resolved
+    /// at `n = 60` (below 0.35 it sinks under the rounding of the two energies).
+    pub width_range: (f64, f64),
+    /// Equilibrium angle (rad) of the finite-size study `fig:logvpn-size`: 0.40, the paper's.
+    pub size_theta_bar: f64,
+    /// Chain lengths of `fig:logvpn-size`, first and last (every length between): 16 to 36, where
+    /// the correction at 0.40 stays above rounding; `Params::n` is the reference.
+    pub sizes: (usize, usize),
+}
+
+impl Default for Barrier {
+    fn default() -> Self {
+        Self {
+            theta_bar: 0.58,
+            energy_range: (0.05, 0.65),
+            width_range: (0.35, 0.65),
+            size_theta_bar: 0.40,
+            sizes: (16, 36),
+        }
+    }
+}
 
 /// The minimum and saddle of the antikink in the middle of `n` rotors, ends held.
 fn pn(p: &Params, n: usize, theta_bar: f64) -> Result<PeierlsNabarro, StaticsError> {

@@ -7,21 +7,14 @@ use rotor_chain::statics::linkage::{
     LinkageChain, LinkageError, PhaseState, Region, TrajectoryPoint, el_diagram,
 };
 
-use super::THETA_BAR;
 use crate::figures::{Cause, FigureError, Params, continuum, grid};
 use crate::model::{
     ChainDrawing, Chart, Figure, Heatmap, Panel, Quality, Quantity, Row, Series, Style, format_number,
 };
 
-/// Rotors per sub-chain of the linkage limit (Fig. `fig:defect-chain-conf`).
-const LINKAGE_ROTORS: usize = 8;
-/// Impurity rest lengths of the linkage figures: below, near (just below) and above `l_critical`.
-const L0_BELOW: f64 = 2.15;
-const L0_NEAR: f64 = 2.30;
-const L0_ABOVE: f64 = 2.40;
-
 fn linkage(params: &Params, l0: f64) -> Result<LinkageChain, Cause> {
-    Ok(LinkageChain::new(continuum(params, THETA_BAR)?, LINKAGE_ROTORS, l0)?)
+    let l = &params.linkage;
+    Ok(LinkageChain::new(continuum(params, l.theta_bar)?, l.rotors, l0)?)
 }
 
 /// The real-space chain of the linkage limit with its kinks at `(x1, x2)`: two sub-chains of
@@ -35,7 +28,7 @@ fn linkage_drawing(
     title: String,
 ) -> Result<Chart, Cause> {
     let m = model.rotors();
-    let chain = RuntimeChain::builder(2 * m, params.r, params.k, THETA_BAR)
+    let chain = RuntimeChain::builder(2 * m, params.r, params.k, params.linkage.theta_bar)
         .mass(params.mass)
         .spring_rest_length(m - 1, model.impurity_rest_length())
         .build()?;
@@ -65,6 +58,8 @@ fn potential_map(model: &LinkageChain, title: String, points: usize, cap: f64) -
         values,
         categories: Vec::new(),
         value_label: "V (M a²/t²)".to_owned(),
+        log_x: false,
+        colour_limit: None,
     })
 }
 
@@ -72,13 +67,16 @@ fn potential_map(model: &LinkageChain, title: String, points: usize, cap: f64) -
 /// portraits, below, near and above `l_critical`, and the two-kink potential below it.
 pub fn defective_kl(params: &Params, quality: Quality) -> Result<Figure, FigureError> {
     const LABEL: &str = "fig:defectiveKL";
-    let cont = continuum(params, THETA_BAR).map_err(FigureError::on(LABEL))?;
+    let theta_bar = params.linkage.theta_bar;
+    let [l0_below, l0_near, l0_above] = params.linkage.rest_lengths;
+    let linkage_rotors = params.linkage.rotors;
+    let cont = continuum(params, theta_bar).map_err(FigureError::on(LABEL))?;
     let l_c = cont.l_critical();
-    let below = linkage(params, L0_BELOW).map_err(FigureError::on(LABEL))?;
+    let below = linkage(params, l0_below).map_err(FigureError::on(LABEL))?;
     let (from, to) = coordinate_range(&below);
     let xs = grid(from, to, quality.pick(721, 145));
     let mut panels = Vec::new();
-    for (tag, l0) in [("below", L0_BELOW), ("near", L0_NEAR), ("above", L0_ABOVE)] {
+    for (tag, l0) in [("below", l0_below), ("near", l0_near), ("above", l0_above)] {
         let model = linkage(params, l0).map_err(|e| FigureError::new(LABEL, e).at("l0", l0))?;
         let e_c = model.critical_energy();
         // V(x1, 0) up to 3 E_c: the walls at the heads rise to 1e3, which would hide the well of
@@ -138,16 +136,16 @@ pub fn defective_kl(params: &Params, quality: Quality) -> Result<Figure, FigureE
     let e_c = below.critical_energy();
     panels.push(potential_map(
         &below,
-        format!("V(x1, x2; l0 = {L0_BELOW:.2}), clipped at 1.5 E_c = {}", format_number(1.5 * e_c)),
+        format!("V(x1, x2; l0 = {l0_below:.2}), clipped at 1.5 E_c = {}", format_number(1.5 * e_c)),
         quality.pick(181, 37),
         1.5 * e_c,
     ));
     let x_eq = below.equilibria().iter().filter(|e| e.stable).map(|e| e.x).fold(f64::NAN, f64::max);
     let title =
-        format!("(a) the chain at x1 = x_eq = {x_eq:.2}, x2 = 0, l0 = {L0_BELOW:.2} (impurity outlined)");
+        format!("(a) the chain at x1 = x_eq = {x_eq:.2}, x2 = 0, l0 = {l0_below:.2} (impurity outlined)");
     panels.insert(0, linkage_drawing(params, &below, (x_eq, 0.0), title).map_err(FigureError::on(LABEL))?);
     let rows = vec![Row::number(
-        format!("kink-1 equilibrium x_eq (x2 = 0), l0 = {L0_BELOW} < l_critical"),
+        format!("kink-1 equilibrium x_eq (x2 = 0), l0 = {l0_below} < l_critical"),
         "8",
         x_eq,
         None,
@@ -157,9 +155,9 @@ pub fn defective_kl(params: &Params, quality: Quality) -> Result<Figure, FigureE
     Ok(Figure {
         label: LABEL,
         caption: format!(
-            "Linkage limit, two sub-chains of {LINKAGE_ROTORS} rotors, θ̄ = {THETA_BAR}, r/a = {}, k = {}, \
-             M = {}: the chain (a), V(x1, 0) and phase portraits of kink 1 at l0 = {L0_BELOW:.2}, {L0_NEAR:.2}, \
-             {L0_ABOVE:.2} (l_critical = {l_c:.4}), and V(x1, x2) at l0 = {L0_BELOW:.2}",
+            "Linkage limit, two sub-chains of {linkage_rotors} rotors, θ̄ = {theta_bar}, r/a = {}, k = {}, \
+             M = {}: the chain (a), V(x1, 0) and phase portraits of kink 1 at l0 = {l0_below:.2}, {l0_near:.2}, \
+             {l0_above:.2} (l_critical = {l_c:.4}), and V(x1, x2) at l0 = {l0_below:.2}",
             params.r, params.k, params.mass
         ),
         panels,
@@ -198,6 +196,11 @@ fn contour(model: &LinkageChain, energy: f64, points: usize) -> Vec<(f64, f64)> 
     out
 }
 
+/// `(a)`, `(b)`, ...: the panel letter of the `index`-th panel (from 0).
+fn letter(index: usize) -> String {
+    format!("({})", char::from(b'a' + (index % 26) as u8))
+}
+
 /// One case of Fig. `fig:orbit`.
 struct OrbitCase {
     title: &'static str,
@@ -211,34 +214,37 @@ struct OrbitCase {
 /// Fig. `fig:orbit`: two-kink trajectories in the `(x1, x2)` plane.
 pub fn orbit(params: &Params, quality: Quality) -> Result<Figure, FigureError> {
     const LABEL: &str = "fig:orbit";
-    let l_c = continuum(params, THETA_BAR).map_err(FigureError::on(LABEL))?.l_critical();
+    let theta_bar = params.linkage.theta_bar;
+    let [l0_below, _, l0_above] = params.linkage.rest_lengths;
+    let linkage_rotors = params.linkage.rotors;
+    let l_c = continuum(params, theta_bar).map_err(FigureError::on(LABEL))?.l_critical();
     let (dt, steps) = (4.0e-4, quality.pick(50_000, 3_000));
     let stride = (steps / 2_000).max(1);
     let cases = [
         OrbitCase {
-            title: "(a) l0 < l_critical, E = 0.7 E_c",
-            l0: L0_BELOW,
+            title: "(e) l0 < l_critical, E = 0.7 E_c",
+            l0: l0_below,
             energy: |m| 0.7 * m.critical_energy(),
             position: [6.6, 4.0],
             direction: [1.0, 0.0],
         },
         OrbitCase {
-            title: "(b) l0 < l_critical, E = 1.2 E_c",
-            l0: L0_BELOW,
+            title: "(f) l0 < l_critical, E = 1.2 E_c",
+            l0: l0_below,
             energy: |m| 1.2 * m.critical_energy(),
             position: [6.0, 5.0],
             direction: [-1.0, -0.6],
         },
         OrbitCase {
-            title: "(c) l0 = l_critical (E_c = 0), E = 20",
+            title: "(g) l0 = l_critical (E_c = 0), E = 20",
             l0: l_c,
             energy: |_| 20.0,
             position: [2.0, -3.0],
             direction: [1.0, 0.6],
         },
         OrbitCase {
-            title: "(d) l0 > l_critical, E = E_min + 20",
-            l0: L0_ABOVE,
+            title: "(h) l0 > l_critical, E = E_min + 20",
+            l0: l0_above,
             energy: |m| m.critical_energy() + 20.0,
             position: [2.0, -3.0],
             direction: [1.0, 0.6],
@@ -277,8 +283,14 @@ pub fn orbit(params: &Params, quality: Quality) -> Result<Figure, FigureError> {
                 ),
             ],
         )));
+        // The drawings come first, (a) to (d); each names the trajectory it starts, (e) to (h).
         let tag = &case.title[..case.title.find(')').map_or(0, |i| i + 1)];
-        let title = format!("{tag} the chain at the start, x1 = {:.2}, x2 = {:.2}", state.x1, state.x2);
+        let title = format!(
+            "{} the chain at the start of {tag}, x1 = {:.2}, x2 = {:.2}",
+            letter(drawings.len()),
+            state.x1,
+            state.x2
+        );
         drawings.push(
             linkage_drawing(params, &model, (state.x1, state.x2), title).map_err(FigureError::on(LABEL))?,
         );
@@ -310,8 +322,8 @@ pub fn orbit(params: &Params, quality: Quality) -> Result<Figure, FigureError> {
     Ok(Figure {
         label: LABEL,
         caption: format!(
-            "Two-kink trajectories on V(x1, x2; l0) and the chain at each start (red dot), {LINKAGE_ROTORS}-rotor \
-             sub-chains, θ̄ = {THETA_BAR}, \
+            "Two-kink trajectories on V(x1, x2; l0) (e-h) and the chain at each start (a-d; the red dot of e-h), \
+             {linkage_rotors}-rotor sub-chains, θ̄ = {theta_bar}, \
              r/a = {}, k = {}, M = {}; {steps} symplectic steps of dt = {dt} (max |ΔE|/E = {})",
             params.r,
             params.k,
@@ -326,7 +338,8 @@ pub fn orbit(params: &Params, quality: Quality) -> Result<Figure, FigureError> {
 /// Fig. `fig:ELdiagram`: the `(E, l0)` diagram.
 pub fn el_diagram_figure(params: &Params, quality: Quality) -> Result<Figure, FigureError> {
     const LABEL: &str = "fig:ELdiagram";
-    let cont = continuum(params, THETA_BAR).map_err(FigureError::on(LABEL))?;
+    let theta_bar = params.linkage.theta_bar;
+    let cont = continuum(params, theta_bar).map_err(FigureError::on(LABEL))?;
     let (l_c, bar) = (cont.l_critical(), cont.rest_length());
     let (from, to) = ((bar + 0.03).max(1.7), 2.9);
     let l0s = grid(from, to, quality.pick(241, 49));
@@ -354,7 +367,7 @@ pub fn el_diagram_figure(params: &Params, quality: Quality) -> Result<Figure, Fi
     let (e_left, e_right) = (cont.critical_energy(mid_left), cont.critical_energy(mid_right));
     let panels = vec![
         Chart::from(Panel::new(
-            "(E, l0) diagram",
+            "(a) the critical energies against l0",
             "l0 / a",
             "E (M a²/t²)",
             vec![
@@ -377,7 +390,7 @@ pub fn el_diagram_figure(params: &Params, quality: Quality) -> Result<Figure, Fi
             ],
         )),
         Chart::Heat(Heatmap {
-            title: "accessible region (Region::classify)".to_owned(),
+            title: "(b) the region of each (l0, E)".to_owned(),
             x_label: "l0 / a".to_owned(),
             y_label: "E (M a²/t²)".to_owned(),
             x: l0s.clone(),
@@ -385,13 +398,16 @@ pub fn el_diagram_figure(params: &Params, quality: Quality) -> Result<Figure, Fi
             values,
             categories: vec!["annulus".to_owned(), "disk".to_owned(), "forbidden".to_owned()],
             value_label: "region".to_owned(),
+            log_x: false,
+            colour_limit: None,
         }),
     ];
     Ok(Figure {
         label: LABEL,
         caption: format!(
-            "(E, l0) diagram of the linkage limit: E_c = k (l0 − l_critical)²/2, l_critical = {l_c:.4}, \
-             l̄ = {bar:.4}, θ̄ = {THETA_BAR}, r/a = {}, k = {}",
+            "(E, l0) diagram of the linkage limit: (a) E_c = k (l0 − l_critical)²/2 below l_critical, E_min \
+             above, and one dot in each region in its colour of (b), which marks every (l0, E) annulus, disk or \
+             forbidden; l_critical = {l_c:.4}, l̄ = {bar:.4}, θ̄ = {theta_bar}, r/a = {}, k = {}",
             params.r, params.k
         ),
         panels,

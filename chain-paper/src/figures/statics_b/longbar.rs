@@ -7,9 +7,7 @@ use rotor_chain::statics::impurity::{impurity_analysis, two_kink_configuration};
 use rotor_chain::statics::kink::kink;
 use rotor_chain::statics::modes::{Mode, ModeKind, ModeOptions, modes};
 
-use super::{
-    THETA_BAR, first_of, frequency_label, frequency_resolution, indexed, middle_spring, normalised, unit,
-};
+use super::{first_of, frequency_label, frequency_resolution, indexed, middle_spring, normalised, unit};
 use crate::drawing::window;
 use crate::figures::{FigureError, Params, chain, continuum};
 use crate::model::{
@@ -17,29 +15,29 @@ use crate::model::{
 };
 use rotor_chain::SpringNetwork;
 
-/// The impurity's rest length of Fig. `fig:longbar`.
-const LONGBAR_L0: f64 = 2.30;
 /// Rotors drawn either side of the impurity.
 const DRAWN: usize = 7;
 
-/// Fig. `fig:longbar`: zero mode, soft mode and soft tensional mode of a long middle spring.
+/// Fig. `fig:longbar`: zero mode, soft mode and soft tensional mode of a long middle spring
+/// ([`Params::long_bar`]: rest length 2.30 at `theta_bar = 0.58`).
 pub fn longbar(params: &Params, _quality: Quality) -> Result<Figure, FigureError> {
     const LABEL: &str = "fig:longbar";
     let n = params.n;
+    let (theta_bar, rest_length) = (params.long_bar.theta_bar, params.long_bar.rest_length);
     let p = middle_spring(n);
     let build = |l0: f64| {
-        RuntimeChain::builder(n, params.r, params.k, THETA_BAR)
+        RuntimeChain::builder(n, params.r, params.k, theta_bar)
             .mass(params.mass)
             .spring(p, Some(params.k), Some(l0))
             .build()
             .map_err(FigureError::on(LABEL))
     };
-    let model = build(LONGBAR_L0)?;
+    let model = build(rest_length)?;
     let analysis = impurity_analysis(&model, p).map_err(FigureError::on(LABEL))?;
     let u = unit(params);
-    let cont = continuum(params, THETA_BAR).map_err(FigureError::on(LABEL))?;
+    let cont = continuum(params, theta_bar).map_err(FigureError::on(LABEL))?;
     let (zero, soft) = (&analysis.modes[0], &analysis.modes[1]);
-    let profile: Vec<f64> = analysis.theta.iter().map(|t| t / THETA_BAR).collect();
+    let profile: Vec<f64> = analysis.theta.iter().map(|t| t / theta_bar).collect();
     let mode_panel = |title: String, mode: &Mode| -> Chart {
         Panel::new(
             title,
@@ -97,7 +95,7 @@ pub fn longbar(params: &Params, _quality: Quality) -> Result<Figure, FigureError
     ];
 
     let kink_shape = {
-        let plain = chain(params, n, THETA_BAR).map_err(FigureError::on(LABEL))?;
+        let plain = chain(params, n, theta_bar).map_err(FigureError::on(LABEL))?;
         let theta = kink(&plain, (n as f64 - 1.0) / 2.0).map_err(FigureError::on(LABEL))?;
         let list = modes(&plain, &theta, &ModeOptions { count: Some(4), ..ModeOptions::default() })
             .map_err(FigureError::on(LABEL))?;
@@ -119,14 +117,14 @@ pub fn longbar(params: &Params, _quality: Quality) -> Result<Figure, FigureError
     };
     let rows = vec![
         Row::number(
-            "l_critical / a (θ̄ = 0.58, r/a = 0.8)",
+            format!("l_critical / a (θ̄ = {theta_bar}, r/a = {})", params.r),
             "2.31",
             analysis.critical_length,
             Some(cont.l_critical()),
             "2.3051 rounds to the paper's 2.31",
         ),
         Row::number(
-            "soft-mode frequency at l0 = 2.30 ((r/a)√(k/M))",
+            format!("soft-mode frequency at l0 = {rest_length:.2} ((r/a)√(k/M))"),
             "7.7e-9",
             soft.frequency / u,
             None,
@@ -138,7 +136,7 @@ pub fn longbar(params: &Params, _quality: Quality) -> Result<Figure, FigureError
             "10 √(ε‖K‖/(M r²)), the least ω resolved from a double-precision ω² for this chain",
         ),
         Row::number(
-            "l̄ / a (θ̄ = 0.58, r/a = 0.8)",
+            format!("l̄ / a (θ̄ = {theta_bar}, r/a = {})", params.r),
             "1.68",
             model.rest_length(0),
             Some(cont.rest_length()),
@@ -146,7 +144,7 @@ pub fn longbar(params: &Params, _quality: Quality) -> Result<Figure, FigureError
              (docs/statics.md §3)",
         ),
         Row::words(
-            "kink shape-mode frequency, θ̄ = 0.58 ((r/a)√(k/M))",
+            format!("kink shape-mode frequency, θ̄ = {theta_bar} ((r/a)√(k/M))"),
             "of the order 1e-2",
             &format_number(kink_shape),
             "the caption's 1e-2 disagrees with both our lattice value and the continuum, \
@@ -154,7 +152,7 @@ pub fn longbar(params: &Params, _quality: Quality) -> Result<Figure, FigureError
         )
         .with_continuum(format_number(cont.shape_mode_frequency() / u)),
         Row::words(
-            "Maxwell-Calladine counting at l0 = 2.30",
+            format!("Maxwell-Calladine counting at l0 = {rest_length:.2}"),
             "1 zero mode, 0 self-stresses",
             &count(analysis.counting.zero_modes.len(), analysis.counting.self_stresses.len()),
             "",
@@ -170,7 +168,7 @@ pub fn longbar(params: &Params, _quality: Quality) -> Result<Figure, FigureError
         label: LABEL,
         caption: format!(
             "Zero mode (a), soft mode (b) and soft tensional mode (c) with a long middle spring (spring {p}, \
-             l0/a = {LONGBAR_L0:.2}, same stiffness, outlined), drawn and plotted: n = {n}, θ̄ = {THETA_BAR}, r/a = {}, k = {}, M = {}",
+             l0/a = {rest_length:.2}, same stiffness, outlined), drawn and plotted: n = {n}, θ̄ = {theta_bar}, r/a = {}, k = {}, M = {}",
             params.r, params.k, params.mass
         ),
         panels,

@@ -35,8 +35,58 @@ pub fn figures() -> Vec<(&'static str, FigureFn)> {
     ]
 }
 
-/// The equilibrium angle of Figs. `fig:mode-config`, `fig:longbar` and Sec. VII-B.
-const THETA_BAR: f64 = 0.58;
+/// The localised modes of Sec. IV (`fig:mode-config`, `fig:w-th`).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Modes {
+    /// Equilibrium angle (rad) of `fig:mode-config` and of the `omega_t / omega_s` row of
+    /// `fig:w-th`: 0.58, the paper's chain.
+    pub theta_bar: f64,
+    /// `theta_bar` range (rad) of `fig:w-th`: 0.05 to 0.65, the paper's axis.
+    pub theta_range: (f64, f64),
+    /// The least chain length of `fig:w-th` (the larger of this and `Params::n` is used): 240, so
+    /// that the walls at `theta_bar = 0.05` (`w = 12.5 a`) do not feel the ends, which at `n = 60`
+    /// lift the antikink's translation frequency to `1e-3`.
+    pub w_th_rotors: usize,
+}
+
+impl Default for Modes {
+    fn default() -> Self {
+        Self { theta_bar: 0.58, theta_range: (0.05, 0.65), w_th_rotors: 240 }
+    }
+}
+
+/// The long middle spring of Sec. VII-A (`fig:longbar`).
+#[derive(Clone, Debug, PartialEq)]
+pub struct LongBar {
+    /// Equilibrium angle (rad): 0.58, the paper's chain.
+    pub theta_bar: f64,
+    /// Rest length of the middle spring, in `a`: 2.30, the paper's, just below `l_critical`.
+    pub rest_length: f64,
+}
+
+impl Default for LongBar {
+    fn default() -> Self {
+        Self { theta_bar: 0.58, rest_length: 2.30 }
+    }
+}
+
+/// The linkage limit of Sec. VII-B (`fig:defectiveKL`, `fig:orbit`, `fig:ELdiagram`).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Linkage {
+    /// Equilibrium angle (rad): 0.58, the paper's chain.
+    pub theta_bar: f64,
+    /// Rotors per sub-chain: 8, the paper's Fig. `fig:defect-chain-conf`.
+    pub rotors: usize,
+    /// Impurity rest lengths (in `a`) below, near (just below) and above `l_critical` (2.3051 for
+    /// the paper's chain): 2.15, 2.30 and 2.40, the paper's.
+    pub rest_lengths: [f64; 3],
+}
+
+impl Default for Linkage {
+    fn default() -> Self {
+        Self { theta_bar: 0.58, rotors: 8, rest_lengths: [2.15, 2.30, 2.40] }
+    }
+}
 
 /// The paper's frequency unit `(r/a) sqrt(k/M)` (`a = 1`), in `1/t`.
 fn unit(params: &Params) -> f64 {

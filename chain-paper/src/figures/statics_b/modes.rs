@@ -8,16 +8,13 @@ use rotor_chain::statics::kink::kink;
 use rotor_chain::statics::modes::{Mode, ModeKind, ModeOptions, modes};
 use rotor_chain::statics::walls::domain_walls;
 
-use super::{THETA_BAR, first_of, frequency_label, frequency_resolution, indexed, normalised, unit};
+use super::{first_of, frequency_label, frequency_resolution, indexed, normalised, unit};
 use crate::drawing::window;
 use crate::figures::{Cause, FigureError, Params, chain, continuum, grid};
 use crate::model::{
     ChainDrawing, Chart, Figure, Panel, Quality, Quantity, Row, Series, Style, format_number,
 };
 
-/// The least chain length of Fig. `fig:w-th`: the walls at `theta_bar = 0.05` (`w = 12.5 a`) must
-/// not feel the ends, which at `n = 60` lift the antikink's translation frequency to `1e-3`.
-const W_TH_ROTORS: usize = 240;
 /// Rotors plotted either side of a defect in Fig. `fig:mode-config`.
 const MODE_WINDOW: usize = 12;
 /// Rotors drawn either side of a defect in Fig. `fig:mode-config`.
@@ -59,8 +56,8 @@ fn defect_modes(model: &RuntimeChain, n: usize) -> Result<DefectModes, Cause> {
 /// Fig. `fig:mode-config`: the translation and shape modes of the kink and the antikink.
 pub fn mode_config(params: &Params, _quality: Quality) -> Result<Figure, FigureError> {
     const LABEL: &str = "fig:mode-config";
-    let n = params.n;
-    let model = chain(params, n, THETA_BAR).map_err(FigureError::on(LABEL))?;
+    let (n, theta_bar) = (params.n, params.modes.theta_bar);
+    let model = chain(params, n, theta_bar).map_err(FigureError::on(LABEL))?;
     let DefectModes { kink_theta, kink_modes, antikink_theta, antikink_modes } =
         defect_modes(&model, n).map_err(FigureError::on(LABEL))?;
     let u = unit(params);
@@ -77,7 +74,7 @@ pub fn mode_config(params: &Params, _quality: Quality) -> Result<Figure, FigureE
             FigureError::new(LABEL, Cause::NoSuchMode { defect, kind, searched: LOWEST })
         })?;
         let centre = domain_walls(theta).first().map_or(n as f64 / 2.0, |w| w.position);
-        let profile: Vec<f64> = theta.iter().map(|t| t / THETA_BAR).collect();
+        let profile: Vec<f64> = theta.iter().map(|t| t / theta_bar).collect();
         let omega = frequency_label(mode.frequency, frequency_resolution(&model, theta, params), u);
         let shown = window(centre, DRAWN, n);
         let drawing = ChainDrawing::new(
@@ -110,7 +107,7 @@ pub fn mode_config(params: &Params, _quality: Quality) -> Result<Figure, FigureE
         label: LABEL,
         caption: format!(
             "Translation and shape modes of the kink (a, b) and the antikink minimum (c, d; ends held), drawn \
-             (arrows: each tip's displacement) and plotted: n = {n}, r/a = {}, θ̄ = {THETA_BAR}, k = {}, M = {}",
+             (arrows: each tip's displacement) and plotted: n = {n}, r/a = {}, θ̄ = {theta_bar}, k = {}, M = {}",
             params.r, params.k, params.mass
         ),
         panels: drawings,
@@ -149,21 +146,20 @@ fn localised_modes(params: &Params, n: usize, theta_bar: f64) -> Result<Localise
     })
 }
 
-/// Fig. `fig:w-th`: localised-mode frequencies of the kink and the antikink against `theta_bar`.
+/// Fig. `fig:w-th`: localised-mode frequencies of the kink and the antikink against `theta_bar`
+/// over [`Modes::theta_range`](super::Modes::theta_range).
 pub fn w_th(params: &Params, quality: Quality) -> Result<Figure, FigureError> {
     const LABEL: &str = "fig:w-th";
-    let thetas: Vec<f64> = match quality {
-        Quality::Full => grid(0.05, 0.65, 25),
-        Quality::Quick => vec![0.05, 0.1, 0.3, 0.5, 0.65],
-    };
+    let (from, to) = params.modes.theta_range;
+    let thetas: Vec<f64> = grid(from, to, quality.pick(25, 5));
     let u = unit(params);
-    let n = params.n.max(W_TH_ROTORS);
+    let n = params.n.max(params.modes.w_th_rotors);
     let data: Vec<LocalisedModes> =
         thetas.iter().map(|&t| localised_modes(params, n, t)).collect::<Result<_, _>>()?;
     let points = |get: &dyn Fn(&LocalisedModes) -> Option<f64>| -> Vec<(f64, f64)> {
         data.iter().filter_map(|d| get(d).map(|w| (d.theta_bar, w / u))).filter(|p| p.1 > 0.0).collect()
     };
-    let curve: Vec<(f64, f64)> = grid(0.05, 0.65, 61)
+    let curve: Vec<(f64, f64)> = grid(from, to, 61)
         .into_iter()
         .map(|t| continuum(params, t).map(|c| (t, c.shape_mode_frequency() / u)))
         .collect::<Result<_, _>>()
@@ -246,10 +242,10 @@ pub fn w_th(params: &Params, quality: Quality) -> Result<Figure, FigureError> {
         "zero: below 10 sqrt(ε‖K‖/(Mr²)); at n = 60 the ends lift it to ~1e-4 at θ̄ = 0.1 \
          (docs/statics.md §5)",
     ));
-    let mid = localised_modes(params, n, THETA_BAR)?;
+    let mid = localised_modes(params, n, params.modes.theta_bar)?;
     if let (Some(t), Some(s)) = (mid.antikink_translation, mid.antikink_shape) {
         rows.push(Row::words(
-            "antikink ω_t / ω_s at θ̄ = 0.58",
+            format!("antikink ω_t / ω_s at θ̄ = {}", params.modes.theta_bar),
             "finite, significantly smaller than ω_s",
             &format!("{} / {} = {}", format_number(t / u), format_number(s / u), format_number(t / s)),
             "the antikink's translation is pinned by its Peierls-Nabarro potential",

@@ -203,17 +203,29 @@ fn select(
         match all.iter().find(|(l, _)| *l == label) {
             Some(&(l, _)) => wanted.push(l),
             None => {
-                let nearest = all.iter().map(|(l, _)| *l).min_by_key(|l| edit_distance(l, &label));
-                return Err(match nearest {
-                    Some(near) => {
+                return Err(match (all.is_empty(), close_match(all, &label)) {
+                    (true, _) => format!("unknown figure `{name}`: no figures are defined"),
+                    (false, Some(near)) => {
                         format!("unknown figure `{name}`; did you mean `{near}`? (`paper --list` lists them)")
                     }
-                    None => format!("unknown figure `{name}`: no figures are defined"),
+                    (false, None) => format!("unknown figure `{name}` (`paper --list` lists them)"),
                 });
             }
         }
     }
     Ok(all.iter().filter(|(l, _)| wanted.contains(l)).copied().collect())
+}
+
+/// The label nearest to `label` (both without `fig:`), if it is close: at most a third of the
+/// longer name's letters differ (one for names up to five letters), as a typo's would. A name
+/// that is no figure's gets no suggestion rather than an unrelated one.
+fn close_match(all: &[(&'static str, FigureFn)], label: &str) -> Option<&'static str> {
+    let bare = |l: &str| l.strip_prefix("fig:").unwrap_or(l).to_lowercase();
+    let wanted = bare(label);
+    let (distance, nearest) =
+        all.iter().map(|&(l, _)| (edit_distance(&bare(l), &wanted), l)).min_by_key(|&(d, _)| d)?;
+    let longer = wanted.chars().count().max(bare(nearest).chars().count());
+    (distance <= longer.div_ceil(3).max(1) && distance < longer).then_some(nearest)
 }
 
 /// Levenshtein distance, for "did you mean".
@@ -440,6 +452,8 @@ mod demo {
             values,
             categories: Vec::new(),
             value_label: "θ (rad)".into(),
+            log_x: false,
+            colour_limit: None,
         };
         let outcomes = ["transmitted", "reflected", "trapped"];
         let model = rotor_chain::RuntimeChain::builder(12, p.r, p.k, 0.5)
@@ -460,6 +474,8 @@ mod demo {
             values: (0..10).map(|j| (0..12).map(|i| ((i + 2 * j) / 7 % 3) as f64).collect()).collect(),
             categories: outcomes.iter().map(|s| s.to_string()).collect(),
             value_label: String::new(),
+            log_x: false,
+            colour_limit: None,
         };
         Ok(Figure {
             label: "fig:demo-maps",
@@ -491,6 +507,14 @@ mod tests {
             select(&all, &["demo-maps".into(), "fig:demo-lines".into(), "demo-maps".into()]).unwrap();
         assert_eq!(picked.iter().map(|f| f.0).collect::<Vec<_>>(), ["fig:demo-lines", "fig:demo-maps"]);
         assert_eq!(edit_distance("fig:kcobwbe", "fig:kcobweb"), 2);
+        // Typos are matched; a name of no figure gets no suggestion.
+        let paper = chain_paper::figures::all();
+        assert_eq!(close_match(&paper, "fig:kcobwbe"), Some("fig:kcobweb"));
+        assert_eq!(close_match(&paper, "fig:phasediagrm"), Some("fig:phasediagram"));
+        assert_eq!(close_match(&paper, "fig:AKENERGY"), Some("fig:akenergy"));
+        assert_eq!(close_match(&paper, "fig:nonexistent"), None);
+        assert_eq!(close_match(&paper, "fig:no-such-figure"), None);
+        assert_eq!(close_match(&paper, "fig:x"), None);
         assert_eq!(edit_distance("", "abc"), 3);
     }
 }

@@ -27,6 +27,11 @@ fn an_unknown_label_is_refused_with_the_nearest_one() {
     let (code, _, stderr) = paper(&["--out", out, "--only", "fig:no-such-figure"]);
     assert_eq!(code, Some(2), "{stderr}");
     assert!(stderr.contains("unknown figure `fig:no-such-figure`"), "{stderr}");
+    // Nothing close: no suggestion (it named an unrelated figure).
+    let (code, _, stderr) = paper(&["--out", out, "--only", "fig:nonexistent"]);
+    assert_eq!(code, Some(2), "{stderr}");
+    assert!(stderr.contains("unknown figure `fig:nonexistent` (`paper --list` lists them)"), "{stderr}");
+    assert!(!stderr.contains("did you mean"), "{stderr}");
     let (code, _, stderr) = paper(&["--demo", "--out", out, "--only", "fig:demo-lines,,fig:demo-maps"]);
     assert_eq!(code, Some(2), "{stderr}");
     assert!(stderr.contains("empty figure label"), "{stderr}");
@@ -126,6 +131,8 @@ fn synthetic() -> Figure {
                 values: vec![vec![0.0, 1.0, 2.0], vec![f64::NAN, 4.0, 5.0]],
                 categories: Vec::new(),
                 value_label: "energy (J)".into(),
+                log_x: false,
+                colour_limit: None,
             }),
         ],
         rows: vec![Row::number("a number", "2.0", 2.2, Some(2.1), "")],
