@@ -72,13 +72,18 @@ mod tests {
                     assert_eq!(local, k);
                     // Move the node's attachment point by +-h along the degree of freedom.
                     let length = |s: f64| {
-                        let mut c = cell.clone();
-                        let node = &mut c.nodes[end];
-                        match &mut node.kind {
-                            crate::NodeKind::Joint { position } => position[local] += s,
-                            crate::NodeKind::Rotor { length, angle, .. } => *angle += s / *length,
-                        }
-                        c.bond_length(b)
+                        let point = |n: usize| {
+                            let mut node = cell.nodes()[n].clone();
+                            if n == end {
+                                match &mut node.kind {
+                                    crate::NodeKind::Joint { position } => position[local] += s,
+                                    crate::NodeKind::Rotor { length, angle, .. } => *angle += s / *length,
+                                }
+                            }
+                            node.point()
+                        };
+                        let (p, q, shift) = (point(bond.from), point(bond.to), cell.shift(bond.cell));
+                        (q[0] + shift[0] - p[0]).hypot(q[1] + shift[1] - p[1])
                     };
                     // A bond from a node to its own image moves both ends: its row has both.
                     let expected = (length(h) - length(-h)) / (2.0 * h);

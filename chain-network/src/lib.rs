@@ -21,6 +21,8 @@
 //! | [`winding`] | winding numbers of `det Q(k)`, the cell dipole `r0`, the polarization `R_T` |
 //! | [`strip`] | strips periodic along one lattice vector: zero modes per edge |
 //! | [`guest`] | Guest modes: macroscopic strains at no cost |
+//! | [`kernel`] | the generated per-bond kernels (energy, gradient, Hessian block, ...) |
+//! | [`model`] | the nonlinear mechanics of a patch: the capability ladder on a network |
 //! | [`linalg`] | the decompositions used (faer), with the rank rule |
 #![deny(missing_docs)]
 
@@ -30,7 +32,9 @@ pub mod compatibility;
 pub mod counts;
 pub mod error;
 pub mod guest;
+pub mod kernel;
 pub mod linalg;
+pub mod model;
 pub mod patch;
 pub mod strip;
 pub mod winding;
@@ -40,3 +44,4 @@ pub use error::{CellError, Location, NetworkError};
 /// The linear-algebra crate whose matrices the API returns.
 pub use faer;
 pub use faer::c64;
+pub use model::{ChainView, NetworkModel, NetworkModelBuilder};

@@ -244,7 +244,7 @@ impl Kernel {
 /// free `math` calls) for the unrolled code; here constants are `L::splat(..)` and functions are
 /// `Lane` methods. Integer powers are written as `Program::render` writes them (products for
 /// small exponents), so a kernel computes exactly what the unrolled code computes.
-fn render_lanes(program: &Program) -> String {
+pub(crate) fn render_lanes(program: &Program) -> String {
     let op = |o: &Operand| match o {
         Operand::Temp(i) => format!("t{i}"),
         Operand::Leaf(name) => name.clone(),

@@ -13,7 +13,10 @@
 //! - [`spring`]: the physics in symbols: the length of spring `p` in the rotor angles (paper
 //!   Eq. `eq:instantlength`), a spring law, and everything derived from them (paper Appendix D).
 //! - [`chain`]: a whole chain unrolled spring by spring, and the per-spring kernel rendered once.
+//! - [`bond`]: a network's bond of each type (joint-joint, joint-rotor, rotor-rotor) and its
+//!   kernels rendered once per law (issue 36).
 
+pub mod bond;
 pub mod diff;
 pub mod graph;
 pub mod lower;

@@ -132,8 +132,67 @@ impl SpringTerms {
         let q = g.add(dx2, dy2);
         let length = g.sqrt(q);
 
+        let LawAtLength { energy, tension, t_hat, g_hat } = LawAtLength::derive(g, law, p.k, p.l0, length, q);
+        let half = g.constant(0.5);
+        let half_q = g.mul(half, q);
+        let dq1 = diff(g, half_q, theta1);
+        let dq2 = diff(g, half_q, theta2);
+        let g1 = g.mul(t_hat, dq1);
+        let g2 = g.mul(t_hat, dq2);
+
+        let stress = [(dq1, theta1), (dq1, theta2), (dq2, theta2)].map(|(dq, theta)| {
+            let d = diff(g, dq, theta);
+            g.mul(t_hat, d)
+        });
+        let per_q = g.div(g_hat, q);
+        let hessian =
+            [(dq1, dq1, stress[0]), (dq1, dq2, stress[1]), (dq2, dq2, stress[2])].map(|(a, b, s)| {
+                let ab = g.mul(a, b);
+                let m = g.mul(per_q, ab);
+                g.add(m, s)
+            });
+
+        // Guest's material part in the paper's own terms, `g^ dl_i dl_j`.
+        let dl1 = diff(g, length, theta1);
+        let dl2 = diff(g, length, theta2);
+        let material = [(dl1, dl1), (dl1, dl2), (dl2, dl2)].map(|(a, b)| {
+            let ab = g.mul(a, b);
+            g.mul(g_hat, ab)
+        });
+        let compatibility = [g.div(dl1, p.r1), g.div(dl2, p.r2)];
+
+        Self {
+            trig: [s1, c1, s2, c2],
+            length,
+            energy,
+            tension,
+            gradient: [g1, g2],
+            hessian,
+            material,
+            stress,
+            compatibility,
+        }
+    }
+}
+
+/// A law evaluated at a spring's length `l = sqrt(q)` with the spring's own `k` and `l0`: the
+/// energy, the tension `t = dlaw/dl`, the tension coefficient `t^ = t / l` and the modified axial
+/// stiffness `g^ = g - t^` (paper Appendix D), from which every spring or bond (the chain's
+/// [`SpringTerms`], a network's [`BondTerms`](crate::bond::BondTerms)) writes its force and
+/// stiffness in the paper's form.
+#[derive(Clone, Copy, Debug)]
+pub struct LawAtLength {
+    pub energy: Id,
+    pub tension: Id,
+    pub t_hat: Id,
+    pub g_hat: Id,
+}
+
+impl LawAtLength {
+    /// `law` with stiffness `k` and rest length `l0` at the length `length = sqrt(q)`.
+    pub fn derive(g: &mut Graph, law: &SpringLaw, k: Id, l0: Id, length: Id, q: Id) -> Self {
         // The law with this spring's k and l0, still a function of the symbol l.
-        let fixed = HashMap::from([(law.l0, p.l0), (law.k, p.k)]);
+        let fixed = HashMap::from([(law.l0, l0), (law.k, k)]);
         let law_l = g.substitute(law.energy, &fixed);
         let tension_l = diff(g, law_l, law.l);
         let axial_l = diff(g, tension_l, law.l);
@@ -176,45 +235,7 @@ impl SpringTerms {
         // stays finite at `l = 0`, as the force `t^ d(q/2)/dtheta` does.
         let t_hat = without_length(g, tension, length, q).unwrap_or_else(|| g.div(tension, length));
         let g_hat = g.sub(axial, t_hat);
-        let half = g.constant(0.5);
-        let half_q = g.mul(half, q);
-        let dq1 = diff(g, half_q, theta1);
-        let dq2 = diff(g, half_q, theta2);
-        let g1 = g.mul(t_hat, dq1);
-        let g2 = g.mul(t_hat, dq2);
-
-        let stress = [(dq1, theta1), (dq1, theta2), (dq2, theta2)].map(|(dq, theta)| {
-            let d = diff(g, dq, theta);
-            g.mul(t_hat, d)
-        });
-        let per_q = g.div(g_hat, q);
-        let hessian =
-            [(dq1, dq1, stress[0]), (dq1, dq2, stress[1]), (dq2, dq2, stress[2])].map(|(a, b, s)| {
-                let ab = g.mul(a, b);
-                let m = g.mul(per_q, ab);
-                g.add(m, s)
-            });
-
-        // Guest's material part in the paper's own terms, `g^ dl_i dl_j`.
-        let dl1 = diff(g, length, theta1);
-        let dl2 = diff(g, length, theta2);
-        let material = [(dl1, dl1), (dl1, dl2), (dl2, dl2)].map(|(a, b)| {
-            let ab = g.mul(a, b);
-            g.mul(g_hat, ab)
-        });
-        let compatibility = [g.div(dl1, p.r1), g.div(dl2, p.r2)];
-
-        Self {
-            trig: [s1, c1, s2, c2],
-            length,
-            energy,
-            tension,
-            gradient: [g1, g2],
-            hessian,
-            material,
-            stress,
-            compatibility,
-        }
+        Self { energy, tension, t_hat, g_hat }
     }
 }
 

@@ -214,8 +214,9 @@ impl Lane for f64 {
 
 /// What the drivers need beyond [`Lane`]: loads, stores, a horizontal sum and `sin_cos`.
 /// Implemented by `f64` (one lane) and the crate-private vector types, whose values exist only
-/// inside code running at their level.
-pub(crate) trait Vector: Lane {
+/// inside code running at their level. Hidden: public only for chain-network's bond drivers.
+#[doc(hidden)]
+pub trait Vector: Lane {
     /// Lanes per value.
     const LANES: usize;
     /// The first `LANES` entries of `s`.
@@ -322,14 +323,20 @@ pub(crate) fn first_lanes(count: usize) -> u8 {
 
 /// Lane-generic work handed to [`dispatch`]: `run::<V>` is instantiated once per level, inside a
 /// function compiled with that level's target features.
-pub(crate) trait WithLanes {
+///
+/// Hidden: public only for chain-network's bond drivers.
+#[doc(hidden)]
+pub trait WithLanes {
+    /// What the work returns.
     type Output;
+    /// The work at lane type `V`.
     fn run<V: Vector>(self) -> Self::Output;
 }
 
 /// Runs `work` at [`level`].
 #[inline(always)]
-pub(crate) fn dispatch<W: WithLanes>(work: W) -> W::Output {
+#[doc(hidden)]
+pub fn dispatch<W: WithLanes>(work: W) -> W::Output {
     match level() {
         // SAFETY: `level()` returns a vector level only if the CPU supports it.
         #[cfg(target_arch = "x86_64")]

@@ -7,7 +7,7 @@ use crate::error::CellError;
 /// Builds a [`Cell`] node by node and bond by bond; [`CellBuilder::build`] validates it.
 ///
 /// ```
-/// use chain_network::Cell;
+/// use chain_cell::Cell;
 ///
 /// // The square lattice: one joint, bonds to the neighbours along a1 and a2.
 /// let cell = Cell::builder(2, &[[1.0, 0.0], [0.0, 1.0]])
@@ -16,7 +16,7 @@ use crate::error::CellError;
 ///     .bond("a", "a", &[0, 1])
 ///     .build()?;
 /// assert_eq!((cell.dof(), cell.bonds().len()), (2, 2));
-/// # Ok::<(), chain_network::CellError>(())
+/// # Ok::<(), chain_cell::CellError>(())
 /// ```
 #[derive(Clone, Debug)]
 pub struct CellBuilder {

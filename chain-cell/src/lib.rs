@@ -1,7 +1,15 @@
-//! The unit cell of a periodic network: its typed model ([`Cell`]), read from the TOML cell
-//! format of issue 33 ([`Cell::from_toml_str`], [`Cell::from_toml_file`]), built in Rust
-//! ([`CellBuilder`]) or taken ready-made ([`ready`]). Every route goes through one validation
-//! (the rules are listed on [`CellBuilder::build`]), so the library, the command line and Python agree on what a valid cell is.
+//! # chain-cell
+//!
+//! The unit cell of a periodic network of joints and rotors, described once (STYLE.md
+//! "Networks"): its typed model ([`Cell`]), read from the TOML cell format of issue 33
+//! ([`Cell::from_toml_str`], [`Cell::from_toml_file`]), built in Rust ([`CellBuilder`]) or taken
+//! ready-made ([`ready`]). Every route goes through one validation (the rules are listed on
+//! [`CellBuilder::build`]), so the library, the command line, Python and the attribute agree on
+//! what a valid cell is.
+//!
+//! This crate is light on purpose (serde, toml and thiserror, no linear algebra): the
+//! proc-macro crate reads cell files through it without compiling faer. `chain-network`
+//! re-exports everything here unchanged (`chain_network::cell`, `chain_network::CellError`).
 //!
 //! # Conventions
 //! - Positions are two-component vectors in both dimensions; a 1D cell has one lattice vector.
@@ -12,16 +20,17 @@
 //! - A bond joins `from` (in cell 0) to `to` in the cell shifted by `R = n1 a1 + n2 a2`
 //!   (`cell = [n1, n2]`); its unit vector `e` points from the `from` end to the `to` end.
 //! - Degrees of freedom are numbered node by node in the file's order (a joint's `x` then `y`).
+#![deny(missing_docs)]
 
 mod builder;
+pub mod error;
 mod text;
 mod validate;
 
 pub mod ready;
 
 pub use builder::{BondDescription, CellBuilder, CellDescription, NodeDescription};
-
-use crate::error::CellError;
+pub use error::{CellError, Location};
 use std::path::Path;
 
 /// What a node is.
@@ -110,7 +119,7 @@ pub struct Bond {
 pub struct Cell {
     dimension: usize,
     lattice: [[f64; 2]; 2],
-    pub(crate) nodes: Vec<Node>,
+    nodes: Vec<Node>,
     bonds: Vec<Bond>,
     dof_offset: Vec<usize>,
     dof: usize,

@@ -1,0 +1,38 @@
+//! Per-bond kernels rendered by the symbolic engine (`chain-symbolic`'s `bond` module): for each
+//! law a module per bond type (`joint_joint`, `joint_rotor`, `rotor_rotor`), each holding the
+//! energy, length, tension, gradient, Hessian block, material part, stress matrix,
+//! compatibility row and the fused energy + gradient (+ Hessian) of one bond with every
+//! parameter an argument.
+//!
+//! The kernels are checked in, so this crate needs no build script;
+//! `tests/kernels_are_current.rs` regenerates them and fails if they differ (run it with
+//! `UPDATE_KERNELS=1` to rewrite them after changing the engine). Each is a unit type
+//! implementing [`BondFn<A, M>`], generic over chain-core's [`Lane`] type, so a driver may
+//! evaluate several bonds at once in vector lanes. The arguments, per type:
+//!
+//! | type | arguments | degrees of freedom (gradient order) |
+//! | --- | --- | --- |
+//! | joint-joint | `[x1, y1, x2, y2, ox, oy, k, l0]` | `x1, y1, x2, y2` |
+//! | joint-rotor | `[x1, y1, s2, c2, ox, oy, r2, k, l0]` | `x1, y1, phi2` |
+//! | rotor-rotor | `[s1, c1, s2, c2, ox, oy, r1, r2, k, l0]` | `phi1, phi2` |
+//!
+//! `(x, y)` is a joint's position, `s, c` the sine and cosine of a rotor's angle `phi`
+//! (counter-clockwise from `+x`), `r` its length, and `(ox, oy)` the offset of the `to` end (its
+//! cell shift, plus its pivot for a rotor, minus the `from` pivot for a rotor-rotor bond). Blocks
+//! are upper triangles row by row; a rotor's compatibility entry is `dl / d(r phi)`.
+
+pub use chain_core::simd::Lane;
+
+/// The harmonic law `k (l - l0)^2 / 2`.
+#[rustfmt::skip]
+pub mod harmonic;
+
+/// The quartic law `k (l^2 - l0^2)^2 / (8 l0^2)` (the paper's Eq. `eq:discretepotential`).
+#[rustfmt::skip]
+pub mod quartic;
+
+/// One rendered per-bond kernel with `A` arguments and `M` outputs, generic over the lane type.
+pub trait BondFn<const A: usize, const M: usize> {
+    /// The outputs for the arguments `x` (the module doc's table), lane by lane.
+    fn eval<L: Lane>(x: [L; A]) -> [L; M];
+}
