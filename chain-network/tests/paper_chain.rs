@@ -72,16 +72,24 @@ fn the_antikink_minimum_and_barrier_are_the_chain_codes() {
     let (ours, theirs) =
         (peierls_nabarro(&view, &options).unwrap(), peierls_nabarro(&chain, &options).unwrap());
     assert!(ours.resolved && theirs.resolved);
-    let (min, saddle) = (ours.minimum().energy, ours.saddle().energy);
+    let (min, saddle) = (ours.minimum().unwrap().energy, ours.saddle().unwrap().energy);
     eprintln!("network: V_min = {min:.6}, V_saddle = {saddle:.6}, barrier = {:.6}", ours.barrier);
-    assert!(close(min, theirs.minimum().energy, 1e-9), "{min} vs {}", theirs.minimum().energy);
-    assert!(close(saddle, theirs.saddle().energy, 1e-9), "{saddle} vs {}", theirs.saddle().energy);
+    assert!(
+        close(min, theirs.minimum().unwrap().energy, 1e-9),
+        "{min} vs {}",
+        theirs.minimum().unwrap().energy
+    );
+    assert!(
+        close(saddle, theirs.saddle().unwrap().energy, 1e-9),
+        "{saddle} vs {}",
+        theirs.saddle().unwrap().energy
+    );
     assert!((ours.barrier - theirs.barrier).abs() <= 1e-9 * min, "{} vs {}", ours.barrier, theirs.barrier);
     // The printed values (docs/statics.md §3), within their last digit's rounding.
     assert!((min - 1392.029215).abs() <= 5e-7 + 1e-9 * min, "V_min {min}");
     assert!((ours.barrier - 0.668267).abs() <= 5e-7 + 1e-9 * min, "barrier {}", ours.barrier);
-    assert_eq!(ours.minimum().classification.index, 0);
-    assert_eq!(ours.saddle().classification.index, 1);
+    assert_eq!(ours.minimum().unwrap().classification.index, 0);
+    assert_eq!(ours.saddle().unwrap().classification.index, 1);
 }
 
 /// One robust point of each of the paper's kinds (tests/dynamics.rs): the network gives the chain
