@@ -191,12 +191,8 @@ impl BondTerms {
     }
 }
 
-/// One function of a rendered bond kernel: its name, doc line and outputs.
-pub struct BondFunction {
-    pub name: &'static str,
-    pub doc: &'static str,
-    pub outputs: fn(&BondTerms) -> Vec<Id>,
-}
+/// One function of a rendered bond kernel: the chain kernel's description over the bond's terms.
+pub type BondFunction = crate::chain::KernelFunction<BondTerms>;
 
 /// The functions rendered for each bond type (the chain kernel's set, `chain::KERNEL_FUNCTIONS`,
 /// over the bond's degrees of freedom).

@@ -135,12 +135,13 @@ pub struct Kernel {
 /// The kernel's argument, element by element.
 pub const KERNEL_ARGS: [&str; 9] = ["s1", "c1", "s2", "c2", "a", "r1", "r2", "k", "l0"];
 
-/// One rendered kernel: the type implementing `SpringFn<M>`, its documentation, and its `M`
-/// outputs.
-pub struct KernelFunction {
+/// One rendered kernel: the type implementing the kernel trait (`SpringFn<M>` for the chain's
+/// spring over [`SpringTerms`], `BondFn<A, M>` for a network's bond over `bond::BondTerms`), its
+/// documentation, and its `M` outputs.
+pub struct KernelFunction<Terms = SpringTerms> {
     pub name: &'static str,
     pub doc: &'static str,
-    pub outputs: fn(&SpringTerms) -> Vec<Id>,
+    pub outputs: fn(&Terms) -> Vec<Id>,
 }
 
 /// The kernels. The fused ones share every subexpression of their outputs (one square root per
