@@ -62,13 +62,22 @@ pub fn mode_config(params: &Params, _quality: Quality) -> Result<Figure, FigureE
         defect_modes(&model, n).map_err(FigureError::on(LABEL))?;
     let u = unit(params);
     let (mut drawings, mut plots) = (Vec::new(), Vec::new());
+    // Each mode is drawn (panels a-d) and plotted (e-h): a letter of its own for every panel.
     let cases = [
-        ("(a) kink translation", "kink", &kink_theta, &kink_modes, ModeKind::Translation),
-        ("(b) kink shape", "kink", &kink_theta, &kink_modes, ModeKind::Shape),
-        ("(c) antikink translation", "antikink", &antikink_theta, &antikink_modes, ModeKind::Translation),
-        ("(d) antikink shape", "antikink", &antikink_theta, &antikink_modes, ModeKind::Shape),
+        ("a", "e", "kink translation", "kink", &kink_theta, &kink_modes, ModeKind::Translation),
+        ("b", "f", "kink shape", "kink", &kink_theta, &kink_modes, ModeKind::Shape),
+        (
+            "c",
+            "g",
+            "antikink translation",
+            "antikink",
+            &antikink_theta,
+            &antikink_modes,
+            ModeKind::Translation,
+        ),
+        ("d", "h", "antikink shape", "antikink", &antikink_theta, &antikink_modes, ModeKind::Shape),
     ];
-    for (title, defect, theta, list, kind) in cases {
+    for (drawn, plotted_letter, title, defect, theta, list, kind) in cases {
         let mode = first_of(list, kind).ok_or_else(|| {
             let kind = if kind == ModeKind::Shape { "shape" } else { "translation" };
             FigureError::new(LABEL, Cause::NoSuchMode { defect, kind, searched: LOWEST })
@@ -78,7 +87,7 @@ pub fn mode_config(params: &Params, _quality: Quality) -> Result<Figure, FigureE
         let omega = frequency_label(mode.frequency, frequency_resolution(&model, theta, params), u);
         let shown = window(centre, DRAWN, n);
         let drawing = ChainDrawing::new(
-            format!("{title} mode, ω = {omega} (rotors {}–{})", shown.start, shown.end - 1),
+            format!("({drawn}) {title} mode, ω = {omega} (rotors {}–{})", shown.start, shown.end - 1),
             &model,
             theta,
             shown,
@@ -88,7 +97,7 @@ pub fn mode_config(params: &Params, _quality: Quality) -> Result<Figure, FigureE
         drawings.push(Chart::from(drawing));
         let plotted = window(centre, MODE_WINDOW, n);
         plots.push(Chart::from(Panel::new(
-            format!("{title}: components, wall at {centre:.2}"),
+            format!("({plotted_letter}) {title}: components, wall at {centre:.2}"),
             "rotor index i",
             "mode component (max 1); θ_i / θ̄",
             vec![
@@ -106,8 +115,8 @@ pub fn mode_config(params: &Params, _quality: Quality) -> Result<Figure, FigureE
     Ok(Figure {
         label: LABEL,
         caption: format!(
-            "Translation and shape modes of the kink (a, b) and the antikink minimum (c, d; ends held), drawn \
-             (arrows: each tip's displacement) and plotted: n = {n}, r/a = {}, θ̄ = {theta_bar}, k = {}, M = {}",
+            "Translation and shape modes of the kink (a, b; e, f) and the antikink minimum (c, d; g, h; ends \
+             held), drawn (a-d, arrows: each tip's displacement) and plotted (e-h): n = {n}, r/a = {}, θ̄ = {theta_bar}, k = {}, M = {}",
             params.r, params.k, params.mass
         ),
         panels: drawings,
