@@ -22,6 +22,12 @@ pub enum Boundary {
 /// cell joins a node to itself or doubles another bond (issue 33).
 pub const MIN_PERIODIC_CELLS: usize = 3;
 
+/// The most bonds (and degrees of freedom) a patch may have: 2^25 (33.5 million; 1.3 GB for the patch's bond list alone,
+/// and a multiple of it for a model or a matrix built on it). A 1000 x 1000 kagome patch has
+/// 6 million; the bound turns a mistyped size (`--cells 100000x100000`) into an error naming it
+/// instead of an allocation the machine cannot give.
+pub const MAX_PATCH_BONDS: usize = 1 << 25;
+
 /// One bond of a patch: the cell's bond `bond` from cell `from_cell` to cell `to_cell`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct PatchBond {
@@ -79,21 +85,29 @@ impl<'a> Patch<'a> {
                 });
             }
         }
-        let total = cells[0]
-            .checked_mul(cells[1])
-            .filter(|t| t.checked_mul(cell.dof().max(cell.bonds().len())).is_some());
-        let Some(total) = total else {
+        // Bonds and degrees of freedom both (a cell of many nodes and few bonds has more of the latter).
+        let per_cell = cell.bonds().len().max(cell.dof());
+        let size = cells[0].checked_mul(cells[1]).and_then(|t| t.checked_mul(per_cell));
+        if size.is_none_or(|s| s > MAX_PATCH_BONDS) {
             return Err(NetworkError::PatchSize {
                 what,
                 direction: 1,
                 found: cells[0],
-                rule: "the patch is too large to index".into(),
+                rule: format!(
+                    "at most {MAX_PATCH_BONDS} bonds and as many degrees of freedom in a patch ({} x {} cells of \
+                     {} bonds and {} degrees of freedom ask for more)",
+                    cells[0],
+                    cells[1],
+                    cell.bonds().len(),
+                    cell.dof()
+                ),
             });
-        };
+        }
+        let count = cells[0] * cells[1] * cell.bonds().len();
         if boundary == Boundary::Periodic {
             check_periodic_images(cell, cells)?;
         }
-        let mut bonds = Vec::with_capacity(total * cell.bonds().len());
+        let mut bonds = Vec::with_capacity(count);
         for c2 in 0..cells[1] {
             for c1 in 0..cells[0] {
                 for (b, bond) in cell.bonds().iter().enumerate() {

@@ -106,6 +106,27 @@ fn small_periodic_patches_are_refused() {
     assert!(Patch::new(&ready::kagome(), [2, 2], Boundary::Free).is_ok());
 }
 
+/// A patch larger than `MAX_PATCH_BONDS` is a typed error before anything is allocated (a
+/// 100 000 x 100 000 kagome patch asked for 6e10 bonds, 2.4 TB, and aborted the process); the
+/// largest size under the bound, 2 364 x 2 364 kagome cells (6 bonds each: 33.5 million),
+/// is accepted by the check.
+#[test]
+fn patches_beyond_the_size_bound_are_refused_before_allocating() {
+    use chain_network::patch::MAX_PATCH_BONDS;
+    let kagome = ready::kagome();
+    for boundary in [Boundary::Free, Boundary::Periodic] {
+        let e = Patch::new(&kagome, [100_000, 100_000], boundary).unwrap_err();
+        assert!(matches!(e, NetworkError::PatchSize { direction: 1, found: 100_000, .. }), "{e}");
+        assert!(e.to_string().contains(&MAX_PATCH_BONDS.to_string()), "{e}");
+        // Overflowing usize is the same error, not a wrapped small size.
+        let e = Patch::new(&kagome, [usize::MAX / 2, 3], boundary).unwrap_err();
+        assert!(matches!(e, NetworkError::PatchSize { .. }), "{e}");
+    }
+    // Just above the bound along one direction (6 bonds per cell: 2 365 x 2 365 x 6 > 2^25).
+    assert!(2365 * 2365 * 6 > MAX_PATCH_BONDS && 2364 * 2364 * 6 <= MAX_PATCH_BONDS);
+    assert!(Patch::new(&kagome, [2365, 2365], Boundary::Free).is_err());
+}
+
 /// The paper's chain as a rotor network: its compatibility matrix equals the chain code's
 /// (`SpringNetwork::compatibility_into`, per `r_i theta_i`) up to the column signs
 /// `dphi = -dtheta` (up rotors, even i) and `+dtheta` (down rotors, odd i), to 1e-12.
