@@ -1,7 +1,7 @@
 //! Speed of the network model (issue 36), side by side in one run: the fused energy and gradient
 //! per bond on a periodic kagome patch against the chain's per-spring cost (`RuntimeChain`, its
 //! vectorised kernels, as many springs), and a Verlet step on the 256 x 256 kagome patch (393 216
-//! degrees of freedom) per degree of freedom. `cargo bench -p chain-network --bench motion`;
+//! degrees of freedom) per degree of freedom. `cargo bench -p rotor-chain-network --bench motion`;
 //! results, the CPU and the dispatch level in docs/benchmarks.md. One thread.
 
 use chain_core::integrate::{Phase, Verlet};
