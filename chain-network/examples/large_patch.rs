@@ -1,7 +1,7 @@
 //! A 1000 x 1000 periodic kagome patch (6 000 000 degrees of freedom, 6 000 000 bonds) built and
 //! stepped with velocity Verlet: the model's heap, the process's peak resident memory and the
 //! time per step (docs/benchmarks.md, "Networks in motion"). `cargo run --release -p
-//! chain-network --example large_patch [cells]`.
+//! rotor-chain-network --example large_patch [cells]` (at most `patch::MAX_PATCH_BONDS` bonds).
 
 use chain_core::integrate::{Phase, Verlet};
 use chain_core::{Potential, SpringNetwork};
