@@ -3,6 +3,7 @@
 
 use super::NetworkModel;
 use super::bonds::{Group, Kind};
+use super::stencil::Stencil;
 use crate::cell::NodeKind;
 use crate::error::NetworkError;
 use crate::patch::Patch;
@@ -198,6 +199,7 @@ impl<'p, 'c> NetworkModelBuilder<'p, 'c> {
             g.k.push(springs[p][0]);
             g.l0.push(springs[p][1]);
         }
+        let stencil = Stencil::new(&groups, cell.dof(), patch.cell_count(), |j| rotor_of[j] != u32::MAX);
         Ok(NetworkModel {
             law: self.law,
             inertia,
@@ -206,6 +208,7 @@ impl<'p, 'c> NetworkModelBuilder<'p, 'c> {
             rotors,
             springs,
             groups,
+            stencil,
             length_scale: cell.length_scale(),
             stiffness: OnceLock::new(),
             compatibility: OnceLock::new(),

@@ -1,87 +1,110 @@
 //! The vector driver of the hot path (energy and gradient, the gradient alone: every Verlet step
-//! and relaxation step): `V::LANES` bonds of a group at a time through the lane-generic kernel, at
-//! the level chain-core's `simd` detects. Each bond's arguments are gathered into the lanes and
-//! its gradient entries scattered back in bond order, so the gradient is bit for bit the scalar
-//! driver's (the kernels' arithmetic is lane-for-lane IEEE); the energy is summed in lanes.
+//! and relaxation step): `V::LANES` bonds of a run at a time through the lane-generic kernel, at
+//! the level chain-core's `simd` detects. The runs and their structure-of-arrays buffers are
+//! `stencil.rs`'s: a run's endpoints, `k` and `l0` are contiguous loads, its gradient entries
+//! contiguous adds (masked at a run's end). Each bond's arithmetic is the scalar kernel's, lane for
+//! lane (IEEE, nothing fused); the gradient's sums are taken run by run, so they equal the scalar
+//! bond-by-bond driver's to rounding (the order of a degree of freedom's terms differs).
 
 use super::NetworkModel;
-use super::bonds::Group;
+use super::stencil::Runs;
 use crate::kernel::BondFn;
 use chain_core::simd::{Vector, WithLanes, dispatch};
+use std::cell::RefCell;
 
-/// The widest lane count of any level (AVX-512's 8).
-const MAX_LANES: usize = 8;
-
-/// Energy (when `ENERGY`, the kernel's first output) and gradient of every bond of `g`, the
-/// gradient added into `out`.
+/// `count` (at most `V::LANES`) bonds of `run` from its bond `i`: the energy lanes (zero past
+/// `count`) when `ENERGY`, the gradient added into `grad`.
 #[inline(always)]
-// The lane loops transpose bonds into lanes and back: they index two arrays by the lane.
-#[allow(clippy::needless_range_loop)]
-fn group<V: Vector, const A: usize, const M: usize, K: BondFn<A, M>, const ENERGY: bool>(
-    g: &Group,
-    x: &[f64],
-    trig: &[[f64; 2]],
-    rotor_of: &[u32],
-    out: &mut [f64],
-) -> f64 {
+fn bonds<V: Vector, const A: usize, const M: usize, K: BondFn<A, M>, const ENERGY: bool>(
+    runs: &Runs,
+    run: usize,
+    i: usize,
+    count: usize,
+    input: &[f64],
+    grad: &mut [f64],
+) -> V {
+    let full = count == V::LANES;
+    let r = &runs.runs[run];
+    let p = r.param + i;
+    // No closures or `array::from_fn` here: they are not inlined into the level's function, and
+    // its vector loads then become calls.
+    let mut args = [V::splat(0.0); A];
+    for a in 0..A {
+        let s: &[f64] = if a < 4 {
+            &input[r.ends[a] + i..]
+        } else if a == A - 2 {
+            &runs.k[p..]
+        } else if a == A - 1 {
+            &runs.l0[p..]
+        } else {
+            args[a] = V::splat(r.constants[a - 4]);
+            continue;
+        };
+        args[a] = if full { V::load(s) } else { V::load_partial(&s[..count]) };
+    }
+    let values = K::eval::<V>(args);
     let first = usize::from(ENERGY);
-    let lanes = V::LANES.min(MAX_LANES);
-    let n = g.len();
-    let full = n - n % lanes;
-    let mut energy = V::splat(0.0);
-    let mut args = [[0.0f64; MAX_LANES]; A];
-    let mut outs = [[0.0f64; MAX_LANES]; M];
-    let mut i = 0;
-    while i < full {
-        for l in 0..lanes {
-            let a = g.args::<A>(i + l, x, trig, rotor_of);
-            for j in 0..A {
-                args[j][l] = a[j];
-            }
-        }
-        let values = K::eval::<V>(core::array::from_fn(|j| V::load(&args[j])));
-        if ENERGY {
-            energy = energy + values[0];
-        }
-        for j in first..M {
-            values[j].store(&mut outs[j]);
-        }
-        for l in 0..lanes {
-            for (k, &dof) in g.bond_dofs(i + l).iter().enumerate() {
-                out[dof] += outs[first + k][l];
-            }
-        }
-        i += lanes;
-    }
-    let mut energy = energy.sum();
-    for i in full..n {
-        let values = K::eval::<f64>(g.args::<A>(i, x, trig, rotor_of));
-        if ENERGY {
-            energy += values[0];
-        }
-        for (k, &dof) in g.bond_dofs(i).iter().enumerate() {
-            out[dof] += values[first + k];
+    for a in 0..M - first {
+        let (v, s) = (values[first + a], &mut grad[r.grads[a] + i..]);
+        if full {
+            (V::load(s) + v).store(s);
+        } else {
+            (V::load_partial(&s[..count]) + v).store_partial(&mut s[..count]);
         }
     }
-    energy
+    match (ENERGY, full) {
+        (false, _) => V::splat(0.0),
+        (true, true) => values[0],
+        (true, false) => values[0].keep_first(count),
+    }
 }
 
-/// The work handed to `dispatch`: the fused energy and gradient (`ENERGY`) or the gradient.
+/// Energy (when `ENERGY`, the kernel's first output) and gradient of every bond of `runs`, the
+/// gradient added into `grad` (the stencil's layout).
+#[inline(always)]
+fn group<V: Vector, const A: usize, const M: usize, K: BondFn<A, M>, const ENERGY: bool>(
+    runs: &Runs,
+    input: &[f64],
+    grad: &mut [f64],
+) -> f64 {
+    let mut energy = V::splat(0.0);
+    for (run, r) in runs.runs.iter().enumerate() {
+        let mut i = 0;
+        while i + V::LANES <= r.len {
+            energy = energy + bonds::<V, A, M, K, ENERGY>(runs, run, i, V::LANES, input, grad);
+            i += V::LANES;
+        }
+        if i < r.len {
+            energy = energy + bonds::<V, A, M, K, ENERGY>(runs, run, i, r.len - i, input, grad);
+        }
+    }
+    energy.sum()
+}
+
+/// The work handed to `dispatch`: the fused energy and gradient (`ENERGY`) or the gradient, on
+/// the stencil's buffers, from `x` into `out` (both in the patch's order; the transposes run
+/// inside the level's function, where the compiler may vectorise them).
 pub(super) struct Gradient<'a, const ENERGY: bool> {
     pub model: &'a NetworkModel,
     pub x: &'a [f64],
-    pub trig: &'a [[f64; 2]],
+    pub input: &'a mut [f64],
+    pub grad: &'a mut [f64],
     pub out: &'a mut [f64],
 }
 
 macro_rules! groups {
     ($self:ident, $V:ident, $law:ident, $f:ident, [$m1:literal, $m2:literal, $m3:literal], $energy:literal) => {{
         use crate::kernel::$law::{joint_joint, joint_rotor, rotor_rotor};
-        let m = $self.model;
-        let [jj, jr, rr] = &m.groups;
-        group::<$V, 8, $m1, joint_joint::$f, $energy>(jj, $self.x, $self.trig, &m.rotor_of, $self.out)
-            + group::<$V, 9, $m2, joint_rotor::$f, $energy>(jr, $self.x, $self.trig, &m.rotor_of, $self.out)
-            + group::<$V, 10, $m3, rotor_rotor::$f, $energy>(rr, $self.x, $self.trig, &m.rotor_of, $self.out)
+        // Inline, not in a closure: a closure is not compiled for the level's target features.
+        let (st, input, grad) = (&$self.model.stencil, $self.input, $self.grad);
+        st.gather($self.x, input);
+        grad.fill(0.0);
+        let [jj, jr, rr] = &st.kinds;
+        let energy = group::<$V, 8, $m1, joint_joint::$f, $energy>(jj, input, grad)
+            + group::<$V, 9, $m2, joint_rotor::$f, $energy>(jr, input, grad)
+            + group::<$V, 10, $m3, rotor_rotor::$f, $energy>(rr, input, grad);
+        st.scatter(grad, $self.out);
+        energy
     }};
 }
 
@@ -107,15 +130,31 @@ impl WithLanes for Gradient<'_, false> {
     }
 }
 
+std::thread_local! {
+    /// The stencil's input and gradient buffers, kept between calls: a step's gradient should
+    /// not allocate (16 B per degree of freedom and 16 B per rotor per thread that evaluates).
+    static BUFFERS: RefCell<Vec<f64>> = const { RefCell::new(Vec::new()) };
+}
+
 impl NetworkModel {
-    /// The gradient into `out` (zeroed first) and, with `ENERGY`, the energy, at the detected
-    /// vector level.
+    /// The gradient into `out` and, with `ENERGY`, the energy, at the detected vector level.
     pub(super) fn gradient_lanes<const ENERGY: bool>(&self, x: &[f64], out: &mut [f64]) -> f64
     where
         for<'a> Gradient<'a, ENERGY>: WithLanes<Output = f64>,
     {
-        let trig = self.trig(x);
-        out.fill(0.0);
-        dispatch(Gradient::<ENERGY> { model: self, x, trig: &trig, out })
+        let st = &self.stencil;
+        let (inputs, grads) = (st.input_len(), st.grad_len());
+        let mut run = |buffers: &mut Vec<f64>| {
+            if buffers.len() < inputs + grads {
+                buffers.resize(inputs + grads, 0.0);
+            }
+            let (input, grad) = buffers.split_at_mut(inputs);
+            dispatch(Gradient::<ENERGY> { model: self, x, input, grad: &mut grad[..grads], out: &mut *out })
+        };
+        BUFFERS.with(|b| match b.try_borrow_mut() {
+            Ok(mut buffers) => run(&mut buffers),
+            // Only a re-entrant call (none today) finds the buffers taken: it gets its own.
+            Err(_) => run(&mut Vec::new()),
+        })
     }
 }
