@@ -30,15 +30,18 @@ fn bonds<V: Vector, const A: usize, const M: usize, K: BondFn<A, M>, const ENERG
     // its vector loads then become calls.
     let mut args = [V::splat(0.0); A];
     for a in 0..A {
-        let s: &[f64] = if a < 4 {
-            &input[r.ends[a] + i..]
-        } else if a == A - 2 {
-            &runs.k[p..]
-        } else if a == A - 1 {
-            &runs.l0[p..]
-        } else {
-            args[a] = V::splat(r.constants[a - 4]);
-            continue;
+        let s: &[f64] = match (a, runs.uniform) {
+            (0..4, _) => &input[r.ends[a] + i..],
+            (_, Some(k_l0)) if a >= A - 2 => {
+                args[a] = V::splat(k_l0[a + 2 - A]);
+                continue;
+            }
+            _ if a == A - 2 => &runs.k[p..],
+            _ if a == A - 1 => &runs.l0[p..],
+            _ => {
+                args[a] = V::splat(r.constants[a - 4]);
+                continue;
+            }
         };
         args[a] = if full { V::load(s) } else { V::load_partial(&s[..count]) };
     }
