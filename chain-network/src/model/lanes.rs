@@ -30,7 +30,7 @@ fn bonds<V: Vector, const A: usize, const M: usize, K: BondFn<A, M>, const ENERG
     // its vector loads then become calls.
     let mut args = [V::splat(0.0); A];
     for a in 0..A {
-        let s: &[f64] = match (a, runs.uniform) {
+        let s: &[f64] = match (a, r.uniform) {
             (0..4, _) => &input[r.ends[a] + i..],
             (_, Some(k_l0)) if a >= A - 2 => {
                 args[a] = V::splat(k_l0[a + 2 - A]);

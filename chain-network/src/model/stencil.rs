@@ -40,17 +40,19 @@ pub(super) struct Run {
     pub constants: [f64; 4],
     /// The first bond's index in [`Runs::k`] and [`Runs::l0`].
     pub param: usize,
+    /// `[k, l0]` when every bond of the run has the same (a cell bond without overrides: the
+    /// common case), passed as constants: a large patch's step then streams 16 bytes per bond
+    /// less, and the model holds them once per run.
+    pub uniform: Option<[f64; 2]>,
 }
 
-/// The runs of one bond type, with every bond's `k` and `l0` in run order, or, when every bond
-/// of the type has the same (no override: the common case), those two numbers alone, so a large
-/// patch's step streams 16 bytes per bond less.
+/// The runs of one bond type, with the `k` and `l0` of the bonds of every run that has not one
+/// pair for all its bonds ([`Run::uniform`]), in run order.
 #[derive(Debug)]
 pub(super) struct Runs {
     pub runs: Vec<Run>,
     pub k: Vec<f64>,
     pub l0: Vec<f64>,
-    pub uniform: Option<[f64; 2]>,
 }
 
 /// The runs of a patch's bonds by type (in the order of `NetworkModel::groups`) and the shape of
@@ -126,12 +128,7 @@ impl Stencil {
                     })
                     .push(i);
             }
-            let mut runs = Runs {
-                runs: Vec::new(),
-                k: Vec::with_capacity(g.len()),
-                l0: Vec::with_capacity(g.len()),
-                uniform: None,
-            };
+            let mut runs = Runs { runs: Vec::new(), k: Vec::with_capacity(g.len()), l0: Vec::with_capacity(g.len()) };
             let used = g.kind.dofs();
             for key in keys {
                 let mut last: Option<([usize; 4], [usize; 4], [f64; 4])> = None;
@@ -144,18 +141,25 @@ impl Stencil {
                     });
                     match runs.runs.last_mut() {
                         Some(run) if follows => run.len += 1,
-                        _ => runs.runs.push(Run { len: 1, ends, grads, constants, param: runs.k.len() }),
+                        _ => runs.runs.push(Run { len: 1, ends, grads, constants, param: runs.k.len(), uniform: None }),
                     }
                     runs.k.push(g.k[i]);
                     runs.l0.push(g.l0[i]);
                     last = Some((ends, grads, constants));
                 }
             }
+            // Keep per-bond parameters only for the runs that need them.
             let same = |v: &[f64]| v.iter().all(|x| x.to_bits() == v[0].to_bits());
-            if !runs.k.is_empty() && same(&runs.k) && same(&runs.l0) {
-                runs.uniform = Some([runs.k[0], runs.l0[0]]);
-                runs.k = Vec::new();
-                runs.l0 = Vec::new();
+            let (k, l0) = (std::mem::take(&mut runs.k), std::mem::take(&mut runs.l0));
+            for run in &mut runs.runs {
+                let range = run.param..run.param + run.len;
+                if same(&k[range.clone()]) && same(&l0[range.clone()]) {
+                    run.uniform = Some([k[run.param], l0[run.param]]);
+                } else {
+                    run.param = runs.k.len();
+                    runs.k.extend_from_slice(&k[range.clone()]);
+                    runs.l0.extend_from_slice(&l0[range]);
+                }
             }
             runs
         });
@@ -325,13 +329,13 @@ mod tests {
                 for (law, overrides) in [(Law::Harmonic, false), (Law::Harmonic, true), (Law::Quartic, true)] {
                     let mut rng = SplitMix(patch.bonds().len() as u64);
                     let mut builder = NetworkModel::builder(&patch).law(law);
-                    // Without overrides every bond type has one `k` and `l0` (`Runs::uniform`).
+                    // Without overrides every run has one `k` and `l0` (`Run::uniform`).
                     for p in (0..patch.bonds().len()).filter(|_| overrides) {
                         builder = builder.spring_constant(p, rng.range(0.5, 2.0)).rest_length(p, rng.range(0.5, 1.5));
                     }
                     let model = builder.build().unwrap();
-                    for runs in &model.stencil.kinds {
-                        seen[usize::from(runs.uniform.is_some())] |= !runs.runs.is_empty();
+                    for run in model.stencil.kinds.iter().flat_map(|r| &r.runs) {
+                        seen[usize::from(run.uniform.is_some())] = true;
                     }
                     let x: Vec<f64> = model.reference().iter().map(|x| x + 0.1 * rng.symmetric()).collect();
                     let n = x.len();
