@@ -47,6 +47,11 @@ struct RotorsExponential;
 #[rotor_network(ready = "kagome", cells = (4, 4), boundary = "periodic")]
 struct ReadyKagome;
 
+/// The last spring of a free 4 x 4 kagome patch (66 bonds; `spring(66, ..)` is a compile error,
+/// ui-tests/tests/ui/compile_fail/network.rs).
+#[rotor_network(ready = "kagome", cells = (4, 4), boundary = "free", spring(65, k = 2.0, l0 = 0.6))]
+struct LastSpring;
+
 fn rotors_cell() -> Cell {
     Cell::from_toml_file(concat!(env!("CARGO_MANIFEST_DIR"), "/tests/cells/rotors.toml")).unwrap()
 }
@@ -241,4 +246,15 @@ fn relaxation_modes_counts_and_verlet_run_on_an_attribute_struct() {
     let patch = Patch::new(&cell, [4, 4], Boundary::Periodic).unwrap();
     let runtime = NetworkModel::builder(&patch).build().unwrap();
     assert_eq!(runtime.reference(), x0);
+}
+
+#[test]
+fn the_attribute_counts_a_free_patch_s_bonds_as_the_patch_does() {
+    let cell = ready::kagome();
+    let patch = Patch::new(&cell, [4, 4], Boundary::Free).unwrap();
+    assert_eq!(patch.bonds().len(), 66);
+    assert_eq!(LastSpring.spring_count(), 66);
+    assert_eq!((LastSpring.spring_constant(65), LastSpring.rest_length(65)), (2.0, 0.6));
+    assert_eq!(LastSpring.spring_constant(64), 1.0);
+    assert!((LastSpring.rest_length(64) - 0.5).abs() < 1e-15);
 }
