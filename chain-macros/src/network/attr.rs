@@ -243,3 +243,65 @@ fn parse_spring(cx: &Ctxt, spec: &mut Spec, key: Ident, args: TokenStream) {
     }
     spec.springs.push(SpringOverride { index, k, l0, inner_error });
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use quote::quote;
+
+    fn parse_ok(tokens: TokenStream) -> Spec {
+        let cx = Ctxt::new();
+        let spec = parse(&cx, tokens);
+        cx.check().expect("no errors");
+        spec
+    }
+
+    fn parse_err(tokens: TokenStream) -> String {
+        let cx = Ctxt::new();
+        let _ = parse(&cx, tokens);
+        let err = cx.check().expect_err("an error");
+        err.into_iter().map(|e| e.to_string()).collect::<Vec<_>>().join("\n")
+    }
+
+    #[test]
+    fn parses_the_issue_example() {
+        let spec = parse_ok(quote!(
+            cell = "cells/kagome.toml",
+            cells = (16, 16),
+            boundary = "free",
+            law = k * (l - l0).powi(2),
+            mass = 2.0,
+            spring(3, k = 1.5, l0 = 0.4)
+        ));
+        assert_eq!(spec.cell.unwrap().value.value(), "cells/kagome.toml");
+        assert_eq!(spec.cells.unwrap().value, vec![16, 16]);
+        assert_eq!(spec.boundary.unwrap().value.value(), "free");
+        assert!(spec.law.is_some());
+        assert_eq!(spec.mass.unwrap().value, 2.0);
+        let s = &spec.springs[0];
+        assert_eq!((s.index.value, s.k.as_ref().unwrap().value, s.l0.as_ref().unwrap().value), (3, 1.5, 0.4));
+    }
+
+    #[test]
+    fn one_dimensional_sizes_parse_with_or_without_parentheses() {
+        assert_eq!(parse_ok(quote!(cells = 60)).cells.unwrap().value, vec![60]);
+        assert_eq!(parse_ok(quote!(cells = (60))).cells.unwrap().value, vec![60]);
+    }
+
+    #[test]
+    fn reports_every_error_with_suggestions() {
+        let msg = parse_err(quote!(
+            cel = "a.toml",
+            cells = (1, 2, 3),
+            mass = m,
+            boundary = "free",
+            boundary = "free",
+            spring(2, kk = 1.0)
+        ));
+        assert!(msg.contains("unknown key `cel`; did you mean `cell`?"), "{msg}");
+        assert!(msg.contains("one or two entries"), "{msg}");
+        assert!(msg.contains("parameters are literals, not fields"), "{msg}");
+        assert!(msg.contains("duplicate key `boundary`"), "{msg}");
+        assert!(msg.contains("unknown key `kk` in `spring(2, ..)`; did you mean `k`?"), "{msg}");
+    }
+}

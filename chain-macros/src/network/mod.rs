@@ -68,3 +68,27 @@ fn fallback(item: &TokenStream, ident: Option<&syn::Ident>, errors: syn::Error) 
         #stubs
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use quote::quote;
+
+    /// A cell file's text enters the output through `include_str!` of its absolute path, so
+    /// rustc tracks the file and a change to it rebuilds the crate; a ready cell needs no file.
+    #[test]
+    fn a_cell_file_is_included_so_that_a_change_rebuilds() {
+        let item = quote!(
+            struct Kagome;
+        );
+        let file = super::expand(
+            quote!(cell = "../docs/cells/kagome.toml", cells = (2, 2), boundary = "free"),
+            item.clone(),
+        )
+        .to_string();
+        let dir = env!("CARGO_MANIFEST_DIR");
+        assert!(file.contains(&format!(":: core :: include_str ! (\"{dir}/../docs/cells/kagome.toml\")")), "{file}");
+        assert!(!file.contains("compile_error"), "a valid declaration");
+        let ready = super::expand(quote!(ready = "kagome", cells = (2, 2), boundary = "free"), item).to_string();
+        assert!(!ready.contains("include_str") && ready.contains("CellSource :: Ready (\"kagome\")"));
+    }
+}

@@ -268,3 +268,31 @@ pub fn validate(cx: &Ctxt, spec: Spec) -> Option<Model> {
     let (cells, periodic, mass) = (cells?, periodic?, mass?);
     (law_ok && springs_ok).then_some(Model { source, cells, periodic, law, mass, springs })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The bonds of a free `n1 x n2` square patch in closed form: `n2 (n1 - 1)` along `a1`,
+    /// `n1 (n2 - 1)` along `a2`; periodic: `2 n1 n2`.
+    #[test]
+    fn patch_bonds_of_the_square_lattice_in_closed_form() {
+        let cell = ready::square();
+        for (n1, n2) in [(1, 1), (1, 5), (4, 4), (7, 3)] {
+            assert_eq!(patch_bonds(&cell, [n1, n2], false), n2 * (n1 - 1) + n1 * (n2 - 1));
+            assert_eq!(patch_bonds(&cell, [n1, n2], true), 2 * n1 * n2);
+        }
+    }
+
+    /// A bond reaching two cells along `a1`, counted by hand: `n1 - 2` cells of each row hold it.
+    #[test]
+    fn patch_bonds_of_a_longer_bond() {
+        let cell = Cell::builder(2, &[[1.0, 0.0], [0.0, 1.0]])
+            .joint("a", [0.0, 0.0])
+            .bond("a", "a", &[2, -1])
+            .build()
+            .unwrap();
+        assert_eq!(patch_bonds(&cell, [5, 3], false), 3 * 2);
+        assert_eq!(patch_bonds(&cell, [1, 3], false), 0);
+    }
+}
