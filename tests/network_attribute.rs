@@ -259,3 +259,11 @@ fn the_attribute_counts_a_free_patch_s_bonds_as_the_patch_does() {
     assert_eq!(LastSpring.spring_constant(64), 1.0);
     assert!((LastSpring.rest_length(64) - 0.5).abs() < 1e-15);
 }
+
+/// The attribute checks the patch's rules at compile time with these values of its own
+/// (chain-macros/src/network/valid.rs): they must stay the library's.
+#[test]
+fn the_attribute_s_patch_rules_are_the_library_s() {
+    use rotor_chain::network::patch::{MAX_PATCH_BONDS, MIN_PERIODIC_CELLS};
+    assert_eq!((MAX_PATCH_BONDS, MIN_PERIODIC_CELLS), (1 << 25, 3));
+}
