@@ -106,7 +106,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut times = Vec::new();
     let mut energy = 0.0;
     for _ in 0..5 {
-        let mut stepper = Verlet::new(&model, Phase { time: 0.0, theta: x0.clone(), omega: vec![0.0; dof] }, dt)?;
+        let mut stepper =
+            Verlet::new(&model, Phase { time: 0.0, theta: x0.clone(), omega: vec![0.0; dof] }, dt)?;
         let start = Instant::now();
         for _ in 0..steps {
             stepper.step(&model)?;

@@ -17,6 +17,7 @@ use std::sync::OnceLock;
 pub struct NetworkModelBuilder<'p, 'c> {
     patch: &'p Patch<'c>,
     law: Law,
+    kernels: Option<super::kernels::Kernels>,
     mass: f64,
     node_masses: Vec<([usize; 2], usize, f64)>,
     constants: Vec<(usize, f64)>,
@@ -40,6 +41,7 @@ impl<'p, 'c> NetworkModelBuilder<'p, 'c> {
         Self {
             patch,
             law: Law::Harmonic,
+            kernels: None,
             mass: 1.0,
             node_masses: Vec::new(),
             constants: Vec::new(),
@@ -50,6 +52,16 @@ impl<'p, 'c> NetworkModelBuilder<'p, 'c> {
     /// The spring law of every bond (default harmonic).
     pub fn law(mut self, law: Law) -> Self {
         self.law = law;
+        self
+    }
+
+    /// Evaluates every bond with the kernels `K` instead of the checked-in ones of the law: the
+    /// `#[rotor_network]` attribute's, rendered at compile time for its law (which may be a
+    /// custom one; [`NetworkModel::law`] then still reports the builder's [`Law`]). Not public
+    /// API: the attribute's generated code calls it through `rotor_chain::__private`.
+    #[doc(hidden)]
+    pub fn kernels<K: crate::kernel::LawKernels>(mut self) -> Self {
+        self.kernels = Some(super::kernels::Kernels::of::<K>());
         self
     }
 
@@ -200,8 +212,13 @@ impl<'p, 'c> NetworkModelBuilder<'p, 'c> {
             g.l0.push(springs[p][1]);
         }
         let stencil = Stencil::new(&groups, cell.dof(), patch.cell_count(), |j| rotor_of[j] != u32::MAX);
+        let kernels = self.kernels.unwrap_or_else(|| match self.law {
+            Law::Quartic => super::kernels::Kernels::of::<crate::kernel::quartic::Law>(),
+            _ => super::kernels::Kernels::of::<crate::kernel::harmonic::Law>(),
+        });
         Ok(NetworkModel {
             law: self.law,
+            kernels,
             inertia,
             reference,
             rotor_of,

@@ -8,7 +8,7 @@
 
 use super::NetworkModel;
 use super::stencil::Runs;
-use crate::kernel::BondFn;
+use crate::kernel::{BondFn, BondKernels, LawKernels};
 use chain_core::simd::{Vector, WithLanes, dispatch};
 use std::cell::RefCell;
 
@@ -84,52 +84,49 @@ fn group<V: Vector, const A: usize, const M: usize, K: BondFn<A, M>, const ENERG
     energy.sum()
 }
 
-/// The work handed to `dispatch`: the fused energy and gradient (`ENERGY`) or the gradient, on
-/// the stencil's buffers, from `x` into `out` (both in the patch's order; the transposes run
-/// inside the level's function, where the compiler may vectorise them).
-pub(super) struct Gradient<'a, const ENERGY: bool> {
+/// The work handed to `dispatch`: the fused energy and gradient (`ENERGY`) or the gradient, with
+/// the law's kernels `K`, on the stencil's buffers, from `x` into `out` (both in the patch's
+/// order; the transposes run inside the level's function, where the compiler may vectorise them).
+pub(super) struct Gradient<'a, K, const ENERGY: bool> {
     pub model: &'a NetworkModel,
     pub x: &'a [f64],
     pub input: &'a mut [f64],
     pub grad: &'a mut [f64],
     pub out: &'a mut [f64],
+    pub kernels: core::marker::PhantomData<K>,
 }
 
 macro_rules! groups {
-    ($self:ident, $V:ident, $law:ident, $f:ident, [$m1:literal, $m2:literal, $m3:literal], $energy:literal) => {{
-        use crate::kernel::$law::{joint_joint, joint_rotor, rotor_rotor};
+    ($self:ident, $V:ident, $K:ty, $f:ident, [$m1:literal, $m2:literal, $m3:literal], $energy:literal) => {{
+        type Jj<K> = <<K as LawKernels>::JointJoint as BondKernels<8, 4, 5, 10, 15>>::$f;
+        type Jr<K> = <<K as LawKernels>::JointRotor as BondKernels<9, 3, 4, 6, 10>>::$f;
+        type Rr<K> = <<K as LawKernels>::RotorRotor as BondKernels<10, 2, 3, 3, 6>>::$f;
         // Inline, not in a closure: a closure is not compiled for the level's target features.
         let (st, input, grad) = (&$self.model.stencil, $self.input, $self.grad);
         st.gather($self.x, input);
         grad.fill(0.0);
         let [jj, jr, rr] = &st.kinds;
-        let energy = group::<$V, 8, $m1, joint_joint::$f, $energy>(jj, input, grad)
-            + group::<$V, 9, $m2, joint_rotor::$f, $energy>(jr, input, grad)
-            + group::<$V, 10, $m3, rotor_rotor::$f, $energy>(rr, input, grad);
+        let energy = group::<$V, 8, $m1, Jj<$K>, $energy>(jj, input, grad)
+            + group::<$V, 9, $m2, Jr<$K>, $energy>(jr, input, grad)
+            + group::<$V, 10, $m3, Rr<$K>, $energy>(rr, input, grad);
         st.scatter(grad, $self.out);
         energy
     }};
 }
 
-impl WithLanes for Gradient<'_, true> {
+impl<K: LawKernels> WithLanes for Gradient<'_, K, true> {
     type Output = f64;
     #[inline(always)]
     fn run<V: Vector>(self) -> f64 {
-        match self.model.law {
-            chain_core::Law::Quartic => groups!(self, V, quartic, EnergyGradient, [5, 4, 3], true),
-            _ => groups!(self, V, harmonic, EnergyGradient, [5, 4, 3], true),
-        }
+        groups!(self, V, K, EnergyGradient, [5, 4, 3], true)
     }
 }
 
-impl WithLanes for Gradient<'_, false> {
+impl<K: LawKernels> WithLanes for Gradient<'_, K, false> {
     type Output = f64;
     #[inline(always)]
     fn run<V: Vector>(self) -> f64 {
-        match self.model.law {
-            chain_core::Law::Quartic => groups!(self, V, quartic, Gradient, [4, 3, 2], false),
-            _ => groups!(self, V, harmonic, Gradient, [4, 3, 2], false),
-        }
+        groups!(self, V, K, Gradient, [4, 3, 2], false)
     }
 }
 
@@ -139,25 +136,31 @@ std::thread_local! {
     static BUFFERS: RefCell<Vec<f64>> = const { RefCell::new(Vec::new()) };
 }
 
-impl NetworkModel {
-    /// The gradient into `out` and, with `ENERGY`, the energy, at the detected vector level.
-    pub(super) fn gradient_lanes<const ENERGY: bool>(&self, x: &[f64], out: &mut [f64]) -> f64
-    where
-        for<'a> Gradient<'a, ENERGY>: WithLanes<Output = f64>,
-    {
-        let st = &self.stencil;
-        let (inputs, grads) = (st.input_len(), st.grad_len());
-        let mut run = |buffers: &mut Vec<f64>| {
-            if buffers.len() < inputs + grads {
-                buffers.resize(inputs + grads, 0.0);
-            }
-            let (input, grad) = buffers.split_at_mut(inputs);
-            dispatch(Gradient::<ENERGY> { model: self, x, input, grad: &mut grad[..grads], out: &mut *out })
-        };
-        BUFFERS.with(|b| match b.try_borrow_mut() {
-            Ok(mut buffers) => run(&mut buffers),
-            // Only a re-entrant call (none today) finds the buffers taken: it gets its own.
-            Err(_) => run(&mut Vec::new()),
-        })
-    }
+/// The gradient into `out` and, with `ENERGY`, the energy, at the detected vector level, with the
+/// law's kernels `K`. The rotors' sines and cosines are taken into the stencil's buffers (`_trig`,
+/// the caller's, is for the bond-by-bond passes).
+pub(super) fn gradient<K: LawKernels, const ENERGY: bool>(
+    model: &NetworkModel,
+    x: &[f64],
+    _trig: &[[f64; 2]],
+    out: &mut [f64],
+) -> f64
+where
+    for<'a> Gradient<'a, K, ENERGY>: WithLanes<Output = f64>,
+{
+    let st = &model.stencil;
+    let (inputs, grads) = (st.input_len(), st.grad_len());
+    let mut run = |buffers: &mut Vec<f64>| {
+        if buffers.len() < inputs + grads {
+            buffers.resize(inputs + grads, 0.0);
+        }
+        let (input, grad) = buffers.split_at_mut(inputs);
+        let kernels = core::marker::PhantomData;
+        dispatch(Gradient::<K, ENERGY> { model, x, input, grad: &mut grad[..grads], out: &mut *out, kernels })
+    };
+    BUFFERS.with(|b| match b.try_borrow_mut() {
+        Ok(mut buffers) => run(&mut buffers),
+        // Only a re-entrant call (none today) finds the buffers taken: it gets its own.
+        Err(_) => run(&mut Vec::new()),
+    })
 }

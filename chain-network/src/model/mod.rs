@@ -20,12 +20,14 @@
 //! kernels of [`crate::kernel`] (`bonds.rs`); every rotor's `sin_cos` is taken once per call.
 //! The energy and gradient (every step of a run or a relaxation) evaluate several bonds at once
 //! in vector lanes at the level chain-core's `simd` detects (`lanes.rs`), over runs of bonds whose
-//! endpoints are contiguous in a structure-of-arrays copy of the coordinates (`stencil.rs`).
+//! endpoints are contiguous in a structure-of-arrays copy of the coordinates (`stencil.rs`). The
+//! passes are generic over the law's kernels and chosen when the model is built (`kernels.rs`).
 //! Spring `p` of the model is bond `p` of the patch (`Patch::bonds`).
 
 mod bonds;
 mod build;
 mod chain;
+mod kernels;
 mod lanes;
 mod stencil;
 mod traits;
@@ -42,6 +44,8 @@ use std::sync::OnceLock;
 #[derive(Debug)]
 pub struct NetworkModel {
     law: Law,
+    /// The passes of the law's kernels (the checked-in ones of `law`, or the attribute's).
+    kernels: kernels::Kernels,
     inertia: Vec<f64>,
     reference: Vec<f64>,
     /// The rotor index of each degree of freedom (`u32::MAX` for a joint's).
@@ -96,7 +100,8 @@ impl NetworkModel {
             + size_of_val(&self.rotor_of[..])
             + size_of_val(&self.rotors[..])
             + size_of_val(&self.springs[..]);
-        let groups: usize = self.groups.iter().map(|g| g.heap_bytes()).sum::<usize>() + self.stencil.heap_bytes();
+        let groups: usize =
+            self.groups.iter().map(|g| g.heap_bytes()).sum::<usize>() + self.stencil.heap_bytes();
         let upper = self.stiffness.get().map_or(0, |u| u.heap_bytes());
         let rows = self.compatibility.get().map_or(0, |r| r.heap_bytes());
         vecs + groups + upper + rows

@@ -128,7 +128,8 @@ impl Stencil {
                     })
                     .push(i);
             }
-            let mut runs = Runs { runs: Vec::new(), k: Vec::with_capacity(g.len()), l0: Vec::with_capacity(g.len()) };
+            let mut runs =
+                Runs { runs: Vec::new(), k: Vec::with_capacity(g.len()), l0: Vec::with_capacity(g.len()) };
             let used = g.kind.dofs();
             for key in keys {
                 let mut last: Option<([usize; 4], [usize; 4], [f64; 4])> = None;
@@ -141,7 +142,14 @@ impl Stencil {
                     });
                     match runs.runs.last_mut() {
                         Some(run) if follows => run.len += 1,
-                        _ => runs.runs.push(Run { len: 1, ends, grads, constants, param: runs.k.len(), uniform: None }),
+                        _ => runs.runs.push(Run {
+                            len: 1,
+                            ends,
+                            grads,
+                            constants,
+                            param: runs.k.len(),
+                            uniform: None,
+                        }),
                     }
                     runs.k.push(g.k[i]);
                     runs.l0.push(g.l0[i]);
@@ -212,14 +220,38 @@ impl Stencil {
 macro_rules! transposes {
     ($d:expr, |D| $fixed:expr, $any:expr) => {
         match $d {
-            1 => { const D: usize = 1; $fixed }
-            2 => { const D: usize = 2; $fixed }
-            3 => { const D: usize = 3; $fixed }
-            4 => { const D: usize = 4; $fixed }
-            5 => { const D: usize = 5; $fixed }
-            6 => { const D: usize = 6; $fixed }
-            7 => { const D: usize = 7; $fixed }
-            8 => { const D: usize = 8; $fixed }
+            1 => {
+                const D: usize = 1;
+                $fixed
+            }
+            2 => {
+                const D: usize = 2;
+                $fixed
+            }
+            3 => {
+                const D: usize = 3;
+                $fixed
+            }
+            4 => {
+                const D: usize = 4;
+                $fixed
+            }
+            5 => {
+                const D: usize = 5;
+                $fixed
+            }
+            6 => {
+                const D: usize = 6;
+                $fixed
+            }
+            7 => {
+                const D: usize = 7;
+                $fixed
+            }
+            8 => {
+                const D: usize = 8;
+                $fixed
+            }
             _ => $any,
         }
     };
@@ -282,13 +314,13 @@ fn to_rows_any(columns: &[f64], out: &mut [f64], cells: usize, d: usize) {
 
 #[cfg(test)]
 mod tests {
+    use crate::Cell;
     use crate::cell::ready;
     use crate::model::NetworkModel;
     use crate::model::bonds::each_bond;
     use crate::patch::{Boundary, Patch};
-    use crate::Cell;
-    use chain_core::{Law, Potential};
     use chain_core::simd::{Level, with_level};
+    use chain_core::{Law, Potential};
     use test_support::random::SplitMix;
 
     /// Every bond type, a joint-rotor bond from either end, a rotor bonded to its own image, and
@@ -326,12 +358,15 @@ mod tests {
         for (cell, size) in &cells {
             for boundary in [Boundary::Periodic, Boundary::Free] {
                 let patch = Patch::new(cell, *size, boundary).unwrap();
-                for (law, overrides) in [(Law::Harmonic, false), (Law::Harmonic, true), (Law::Quartic, true)] {
+                for (law, overrides) in [(Law::Harmonic, false), (Law::Harmonic, true), (Law::Quartic, true)]
+                {
                     let mut rng = SplitMix(patch.bonds().len() as u64);
                     let mut builder = NetworkModel::builder(&patch).law(law);
                     // Without overrides every run has one `k` and `l0` (`Run::uniform`).
                     for p in (0..patch.bonds().len()).filter(|_| overrides) {
-                        builder = builder.spring_constant(p, rng.range(0.5, 2.0)).rest_length(p, rng.range(0.5, 1.5));
+                        builder = builder
+                            .spring_constant(p, rng.range(0.5, 2.0))
+                            .rest_length(p, rng.range(0.5, 1.5));
                     }
                     let model = builder.build().unwrap();
                     for run in model.stencil.kinds.iter().flat_map(|r| &r.runs) {
@@ -343,31 +378,57 @@ mod tests {
                     // between levels (2 ulp).
                     let bond_by_bond = || {
                         let trig = model.trig(&x);
-                        let (mut reference, mut magnitude, mut terms) = (vec![0.0; n], vec![0.0; n], vec![0usize; n]);
+                        let (mut reference, mut magnitude, mut terms) =
+                            (vec![0.0; n], vec![0.0; n], vec![0usize; n]);
                         let mut energy = 0.0;
-                        each_bond!(&model, &x, &trig, EnergyGradient, [5, 4, 3], |g, i, out| {
+                        let mut add = |g: &crate::model::bonds::Group, i: usize, out: &[f64]| {
                             energy += out[0];
                             for (&d, &v) in g.bond_dofs(i).iter().zip(&out[1..]) {
                                 reference[d] += v;
                                 magnitude[d] += v.abs();
                                 terms[d] += 1;
                             }
-                        });
+                        };
+                        match law {
+                            Law::Quartic => each_bond!(
+                                &model,
+                                crate::kernel::quartic::Law,
+                                &x,
+                                &trig,
+                                EnergyGradient,
+                                [5, 4, 3],
+                                |g, i, out| { add(g, i, out) }
+                            ),
+                            _ => each_bond!(
+                                &model,
+                                crate::kernel::harmonic::Law,
+                                &x,
+                                &trig,
+                                EnergyGradient,
+                                [5, 4, 3],
+                                |g, i, out| { add(g, i, out) }
+                            ),
+                        }
                         (energy, reference, magnitude, terms)
                     };
                     for level in Level::ALL {
-                        let Some((e, grad, alone, (energy, reference, magnitude, terms))) = with_level(level, || {
-                            let mut grad = vec![f64::NAN; n];
-                            let e = model.energy_and_gradient_into(&x, &mut grad);
-                            (e, grad, model.gradient(&x), bond_by_bond())
-                        }) else {
+                        let Some((e, grad, alone, (energy, reference, magnitude, terms))) =
+                            with_level(level, || {
+                                let mut grad = vec![f64::NAN; n];
+                                let e = model.energy_and_gradient_into(&x, &mut grad);
+                                (e, grad, model.gradient(&x), bond_by_bond())
+                            })
+                        else {
                             continue;
                         };
                         let what = format!("{size:?} {boundary:?} {law:?} overrides {overrides} {level:?}");
                         assert_eq!(grad, alone, "{what}: fused and alone");
                         // Both energies are sums of the same bond energies (positive).
                         let bonds = patch.bonds().len() as f64;
-                        assert!((e - energy).abs() <= 2.0 * bonds * f64::EPSILON * energy, "{what}: {e} vs {energy}");
+                        assert!(
+                            (e - energy).abs() <= 2.0 * bonds * f64::EPSILON * energy,
+                            "{what}: {e} vs {energy}"
+                        );
                         for d in 0..n {
                             let bound = 2.0 * terms[d] as f64 * f64::EPSILON * magnitude[d];
                             assert!(
