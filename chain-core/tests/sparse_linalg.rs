@@ -167,8 +167,15 @@ fn shifted_solves_agree_with_the_dense_path_and_satisfy_the_system() {
 fn a_singular_shift_and_bad_input_are_typed_errors() {
     let k = laplacian(9, 9, true, 0.0).with_dense_limit(0);
     let rhs = vec![1.0; 81];
-    // K itself is singular (the constant vector): a zero pivot, not a silent infinity.
-    assert!(matches!(k.solve_shifted(0.0, &rhs), Err(LinalgError::Singular { .. } | LinalgError::Unstable { .. })));
+    // An exactly zero pivot: diag(1, ..., 1, 0, 1, ...) shifted by 0.
+    let diag: Vec<f64> = (0..81).map(|i| if i == 40 { 0.0 } else { 1.0 + i as f64 }).collect();
+    let (starts, columns): (Vec<usize>, Vec<usize>) = ((0..=81).collect(), (0..81).collect());
+    let pattern = Pattern { columns_count: 81, row_starts: &starts, columns: &columns };
+    let singular = SymmetricMatrix::upper(pattern, diag).unwrap().with_dense_limit(0);
+    assert!(matches!(singular.solve_shifted(0.0, &rhs), Err(LinalgError::Singular { pivot: 0.0, .. })));
+    // One eigenvalue at the shift is neither below nor above it.
+    assert_eq!(singular.count_below(0.0).unwrap(), 0);
+    assert_eq!(singular.count_below(1e-300).unwrap(), 1);
     assert!(matches!(k.count_below(f64::NAN), Err(LinalgError::NotFinite { .. })));
     assert!(matches!(k.lowest_eigenpairs(82), Err(LinalgError::IndexOutOfRange { .. })));
     assert!(matches!(k.solve_shifted(0.5, &rhs[..80]), Err(LinalgError::RhsMismatch { .. })));

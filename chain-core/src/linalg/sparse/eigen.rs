@@ -28,6 +28,7 @@ use nalgebra::DMatrix;
 use super::Upper;
 use super::lblt::{Lblt, try_vec};
 use crate::linalg::{Eigenpair, LinalgError};
+use crate::math;
 
 /// At most this many block iterations. Why 300: the worst rate the shifts below leave for a
 /// wanted pair is `|lambda_k - sigma| / |lambda_{p+1} - sigma|` with `p >= 2k`, in practice below
@@ -53,7 +54,7 @@ pub(crate) enum Target {
 /// the rounding of a zero eigenvalue (`64 n eps`) that `A - sigma I` is safely nonsingular at a
 /// zero mode, small enough that the zero modes converge at once (rate `delta / lambda_{p+1}`).
 fn offset(n: usize, norm: f64) -> f64 {
-    f64::EPSILON.sqrt().max(128.0 * n as f64 * f64::EPSILON) * norm
+    math::sqrt(f64::EPSILON).max(128.0 * n as f64 * f64::EPSILON) * norm
 }
 
 /// The `k` eigenpairs of `A` (`||A||_inf = norm > 0`) nearest the target, ascending, each vector of
@@ -188,41 +189,38 @@ fn start_block(n: usize, p: usize) -> Result<Vec<f64>, LinalgError> {
 }
 
 /// Modified Gram-Schmidt, twice ("twice is enough", Giraud et al. 2005), on the `p` columns of `x`;
-/// a column that vanishes against the others is replaced by a unit vector orthogonal to them.
+/// a column that vanishes against the others is replaced by a coordinate vector made orthogonal
+/// to them.
 fn orthonormalise(x: &mut [f64], n: usize, p: usize) {
     for j in 0..p {
-        for _ in 0..2 {
-            let (done, rest) = x.split_at_mut(j * n);
-            let col = &mut rest[..n];
-            for i in 0..j {
-                let q = &done[i * n..(i + 1) * n];
-                let dot: f64 = q.iter().zip(col.iter()).map(|(a, b)| a * b).sum();
-                col.iter_mut().zip(q).for_each(|(c, q)| *c -= dot * q);
-            }
-        }
-        let norm = x[j * n..(j + 1) * n].iter().map(|v| v * v).sum::<f64>().sqrt();
-        if norm > 0.0 && norm.is_finite() {
-            x[j * n..(j + 1) * n].iter_mut().for_each(|v| *v /= norm);
-        } else {
-            // Linearly dependent (or overflowed): restart the column on a coordinate vector.
+        project_out_previous(x, n, j);
+        project_out_previous(x, n, j);
+        if !normalise(&mut x[j * n..(j + 1) * n]) {
             x[j * n..(j + 1) * n].iter_mut().enumerate().for_each(|(i, v)| *v = f64::from(u8::from(i == j % n)));
-            orthonormalise_one(x, n, j);
+            project_out_previous(x, n, j);
+            normalise(&mut x[j * n..(j + 1) * n]);
         }
     }
 }
 
-fn orthonormalise_one(x: &mut [f64], n: usize, j: usize) {
+/// Column `j` of `x` minus its components along columns `0..j`.
+fn project_out_previous(x: &mut [f64], n: usize, j: usize) {
     let (done, rest) = x.split_at_mut(j * n);
     let col = &mut rest[..n];
-    for i in 0..j {
-        let q = &done[i * n..(i + 1) * n];
+    for q in done.chunks_exact(n) {
         let dot: f64 = q.iter().zip(col.iter()).map(|(a, b)| a * b).sum();
         col.iter_mut().zip(q).for_each(|(c, q)| *c -= dot * q);
     }
-    let norm = col.iter().map(|v| v * v).sum::<f64>().sqrt();
-    if norm > 0.0 {
-        col.iter_mut().for_each(|v| *v /= norm);
+}
+
+/// Scales `v` to unit length; `false` if its length is zero or not finite.
+fn normalise(v: &mut [f64]) -> bool {
+    let norm = math::sqrt(v.iter().map(|v| v * v).sum::<f64>());
+    let ok = norm > 0.0 && norm.is_finite();
+    if ok {
+        v.iter_mut().for_each(|x| *x /= norm);
     }
+    ok
 }
 
 /// The eigenvalues (ascending) and eigenvectors of `X^T A X` (`p x p`).

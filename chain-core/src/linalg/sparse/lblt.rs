@@ -64,6 +64,10 @@ pub(crate) struct Lblt {
     inverse: Vec<usize>,
     /// `||A - sigma I||_inf`.
     norm: f64,
+    /// `B`'s inertia, counted once after the factorization.
+    inertia: Option<Inertia>,
+    /// The diagonal of `A - sigma I` when it is a diagonal matrix (faer's simplicial form).
+    diagonal: Vec<f64>,
 }
 
 /// `A - sigma I` as a lower triangle by columns (the transpose of the upper triangle by rows), a
@@ -152,8 +156,18 @@ impl Lblt {
             Default::default(),
         );
         let norm = inf_norm_lower(n, &s);
-        let lblt = Self { n, symbolic, values, subdiag, forward, inverse, norm };
-        lblt.check_backward_error(a, sigma)?;
+        let diagonal = match lblt_form(&symbolic, &s, n) {
+            Some(diagonal) => diagonal,
+            None => return Err(LinalgError::Unstable { shift: sigma, backward_error: f64::INFINITY, bound: 0.0 }),
+        };
+        let mut lblt = Self { n, symbolic, values, subdiag, forward, inverse, norm, inertia: None, diagonal };
+        let inertia = lblt.count_inertia();
+        lblt.inertia = Some(inertia);
+        // A zero pivot has no solves to check (an eigenvalue at sigma: its inertia is still exact
+        // for the factored matrix, and the callers that solve refuse it).
+        if inertia.zero == 0 {
+            lblt.check_backward_error(a, sigma)?;
+        }
         Ok(lblt)
     }
 
@@ -168,6 +182,10 @@ impl Lblt {
 
     /// The inertia of `B` (and so of `A - sigma I`, Sylvester's law of inertia).
     pub(crate) fn inertia(&self) -> Inertia {
+        self.inertia.unwrap_or_else(|| self.count_inertia())
+    }
+
+    fn count_inertia(&self) -> Inertia {
         let mut inertia = Inertia { negative: 0, zero: 0, positive: 0, smallest: (0, f64::INFINITY) };
         let mut add = |row: usize, v: f64| {
             match v.partial_cmp(&0.0) {
@@ -180,7 +198,11 @@ impl Lblt {
             }
         };
         let SymbolicCholeskyRaw::Supernodal(symbolic) = self.symbolic.raw() else {
-            unreachable!("the factorization is forced supernodal")
+            // faer keeps the simplicial form, even when supernodal is forced, only when the
+            // ordering predicts no arithmetic at all: a diagonal matrix, whose pivots are its
+            // diagonal (checked in `new`).
+            self.diagonal.iter().enumerate().for_each(|(i, &d)| add(i, d));
+            return inertia;
         };
         let factor = SupernodalIntranodeLbltRef::new(symbolic, &self.values, &self.subdiag, self.pivots());
         for s in 0..symbolic.n_supernodes() {
@@ -197,7 +219,7 @@ impl Lblt {
                     // The block's eigenvalues (x + y)/2 -+ sqrt(((x - y)/2)^2 + c^2): of opposite
                     // signs exactly when the determinant x y - c^2 is negative.
                     let (x, y) = (b[(i, i)], b[(i + 1, i + 1)]);
-                    let (mean, radius) = (0.5 * (x + y), (0.5 * (x - y)).hypot(c));
+                    let (mean, radius) = (0.5 * (x + y), libm::hypot(0.5 * (x - y), c));
                     let (low, high) = (mean - radius, mean + radius);
                     // The eigenvalue of least magnitude from the determinant (no cancellation).
                     let far = if low.abs() > high.abs() { low } else { high };
@@ -256,6 +278,21 @@ pub(crate) fn backward_error(a: &Upper<'_>, sigma: f64, norm: f64, x: &[f64], b:
     let residual = r.iter().zip(b).fold(0.0f64, |m, (r, b)| m.max((b - r).abs()));
     let scale = norm * max(x) + max(b);
     if scale == 0.0 { 0.0 } else { residual / scale }
+}
+
+/// `Some` of nothing for the supernodal form; for the simplicial form (which faer keeps only when
+/// the ordering predicts no arithmetic) `Some` of the diagonal if `s` is indeed diagonal, else
+/// `None` (the unpivoted simplicial `LDL^T` is not trusted with anything else).
+fn lblt_form(symbolic: &SymbolicCholesky<usize>, s: &Shifted, n: usize) -> Option<Vec<f64>> {
+    if matches!(symbolic.raw(), SymbolicCholeskyRaw::Supernodal(_)) {
+        return Some(Vec::new());
+    }
+    (0..n)
+        .map(|j| match s.col_ptr[j + 1] - s.col_ptr[j] {
+            1 => Some(s.values[s.col_ptr[j]]),
+            _ => None,
+        })
+        .collect()
 }
 
 /// `max_i sum_j |S_ij|` of the symmetric matrix whose lower triangle is `s`.
