@@ -80,4 +80,4 @@ pub use solve::{solve, solve_shifted};
 #[cfg(feature = "alloc")]
 pub use sturm::{count_below, try_count_below};
 #[cfg(feature = "alloc")]
-pub use symmetric::{DENSE_LIMIT, MAX_DENSE_VALUES, SymmetricMatrix};
+pub use symmetric::{DENSE_FACTOR_LIMIT, DENSE_LIMIT, MAX_DENSE_VALUES, SymmetricMatrix};

@@ -5,7 +5,8 @@
 //! **Three paths, one interface.** A tridiagonal matrix (the rotor chain's, paper Eq.
 //! `eq:prestress8`) takes the O(n) algorithms of this module's siblings: Sturm counts, bisection
 //! and inverse iteration, Gaussian elimination with partial pivoting. A sparse upper triangle (a
-//! spring network's) of at most [`DENSE_LIMIT`] rows is taken densely: nalgebra's symmetric
+//! spring network's) of at most [`DENSE_LIMIT`] rows ([`DENSE_FACTOR_LIMIT`] for counts and solves)
+//! is taken densely: nalgebra's symmetric
 //! eigendecomposition (Householder tridiagonalisation and implicit QL) for counts and eigenpairs,
 //! LU with partial pivoting for solves. A larger one takes the sparse path ([`super::sparse`]):
 //! inertia counts and solves from a sparse `LBL^T` factorization (Sylvester's law of inertia), the
@@ -37,10 +38,26 @@ use crate::model::{Pattern, Stiffness, StiffnessLayout};
 /// typed error before anything is allocated, not an allocation failure.
 pub const MAX_DENSE_VALUES: usize = 1 << 26;
 
-/// The largest sparse [`SymmetricMatrix`] taken densely by default; larger ones take the sparse
-/// path. Why 8192: the dense bound ([`MAX_DENSE_VALUES`] = 8192^2), until the crossover is
-/// measured (docs/benchmarks.md, "Sparse stiffness").
-pub const DENSE_LIMIT: usize = 8192;
+/// The largest sparse [`SymmetricMatrix`] whose eigenpairs are computed densely by default; larger
+/// ones take shift-invert subspace iteration. Why 384: the lowest 12 eigenpairs of a 2D lattice's
+/// pattern cost 9.2 ms dense and 14.8 ms sparse at 256 rows, 100 ms and 29 ms at 576 (the
+/// crossover near 350; `benches/sparse.rs`, docs/network.md §10.3).
+pub const DENSE_LIMIT: usize = 384;
+
+/// The largest sparse [`SymmetricMatrix`] whose inertia counts and shifted solves are computed
+/// densely by default; larger ones take the sparse `LBL^T`. Why 256: there already the sparse count
+/// takes 0.21 ms against the dense eigenvalues' 4.5 ms, the sparse solve 0.25 ms against dense LU's
+/// 1.2 ms (same benchmark).
+pub const DENSE_FACTOR_LIMIT: usize = 256;
+
+/// Which algorithm family asks whether to take the sparse path.
+#[derive(Clone, Copy)]
+enum Operation {
+    /// Eigenpairs ([`DENSE_LIMIT`]).
+    Eigenpairs,
+    /// Inertia counts and solves ([`DENSE_FACTOR_LIMIT`]).
+    Factor,
+}
 
 /// A symmetric `n x n` matrix in one of the layouts of [`StiffnessLayout`], owning its pattern
 /// and values.
@@ -49,8 +66,10 @@ pub struct SymmetricMatrix {
     n: usize,
     form: Form,
     values: Vec<f64>,
-    /// The largest dimension a sparse form is taken densely at ([`DENSE_LIMIT`] by default).
-    dense_limit: usize,
+    /// The largest dimension a sparse form is taken densely at: `None` for the defaults
+    /// ([`DENSE_LIMIT`], [`DENSE_FACTOR_LIMIT`]), or the one limit of
+    /// [`SymmetricMatrix::with_dense_limit`].
+    dense_limit: Option<usize>,
 }
 
 #[derive(Clone, Debug, PartialEq)]
@@ -76,7 +95,7 @@ impl SymmetricMatrix {
                 n,
                 form: Form::Tridiagonal,
                 values: vec![0.0; (2 * n).saturating_sub(1)],
-                dense_limit: DENSE_LIMIT,
+                dense_limit: None,
             })
             }
             StiffnessLayout::Upper(p) => {
@@ -88,7 +107,7 @@ impl SymmetricMatrix {
                     n,
                     form: Form::Upper { row_starts: p.row_starts.to_vec(), columns: p.columns.to_vec() },
                     values: vec![0.0; p.entries()],
-                    dense_limit: DENSE_LIMIT,
+                    dense_limit: None,
                 })
             }
         }
@@ -119,7 +138,7 @@ impl SymmetricMatrix {
         let mut values = Vec::with_capacity(diag.len() + off.len());
         values.extend_from_slice(diag);
         values.extend_from_slice(off);
-        Ok(Self { n: diag.len(), form: Form::Tridiagonal, values, dense_limit: DENSE_LIMIT })
+        Ok(Self { n: diag.len(), form: Form::Tridiagonal, values, dense_limit: None })
     }
 
     /// The symmetric matrix whose upper triangle is `values` in `pattern`.
@@ -132,7 +151,7 @@ impl SymmetricMatrix {
             return Err(LinalgError::RhsMismatch { n: pattern.entries(), rhs: values.len() });
         }
         let form = Form::Upper { row_starts: pattern.row_starts.to_vec(), columns: pattern.columns.to_vec() };
-        Ok(Self { n: pattern.rows(), form, values, dense_limit: DENSE_LIMIT })
+        Ok(Self { n: pattern.rows(), form, values, dense_limit: None })
     }
 
     /// The same matrix, taken densely up to `limit` rows and by the sparse path beyond (a sparse
@@ -140,21 +159,25 @@ impl SymmetricMatrix {
     /// [`MAX_DENSE_VALUES`]: a larger `limit` is capped there.
     #[must_use]
     pub fn with_dense_limit(mut self, limit: usize) -> Self {
-        self.dense_limit = limit;
+        self.dense_limit = Some(limit);
         self
     }
 
-    /// Whether the sparse path serves this matrix: a sparse form beyond the dense limit or the
-    /// dense bound.
+    /// Whether the sparse path serves this matrix's eigenpairs (and so its counts and solves): a
+    /// sparse form beyond the dense limit or the dense bound.
     pub fn is_sparse_path(&self) -> bool {
-        self.sparse_view().is_some()
+        self.sparse_view(Operation::Eigenpairs).is_some()
     }
 
-    /// The sparse view when the sparse path serves this matrix.
-    fn sparse_view(&self) -> Option<Upper<'_>> {
+    /// The sparse view when the sparse path serves this matrix for `operation`.
+    fn sparse_view(&self, operation: Operation) -> Option<Upper<'_>> {
+        let limit = self.dense_limit.unwrap_or(match operation {
+            Operation::Eigenpairs => DENSE_LIMIT,
+            Operation::Factor => DENSE_FACTOR_LIMIT,
+        });
         match &self.form {
             Form::Upper { row_starts, columns }
-                if self.n > self.dense_limit || self.n.saturating_mul(self.n) > MAX_DENSE_VALUES =>
+                if self.n > limit || self.n.saturating_mul(self.n) > MAX_DENSE_VALUES =>
             {
                 Some(Upper { n: self.n, row_starts, columns, values: &self.values })
             }
@@ -360,7 +383,7 @@ impl SymmetricMatrix {
     /// A non-finite entry or shift, a sparse factorization that is unstable or does not fit in
     /// memory.
     pub fn count_below(&self, x: f64) -> Result<usize, LinalgError> {
-        if let Some(upper) = self.sparse_view() {
+        if let Some(upper) = self.sparse_view(Operation::Factor) {
             self.check_finite()?;
             bands::check_finite(Input::Shift, &[x])?;
             let inertia = Lblt::new(&upper, x)?.inertia();
@@ -424,7 +447,7 @@ impl SymmetricMatrix {
     /// Non-finite input, a right-hand side of the wrong length, a singular matrix, or a sparse
     /// matrix too large for the dense path.
     pub fn solve_shifted(&self, shift: f64, rhs: &[f64]) -> Result<Vec<f64>, LinalgError> {
-        if let Some(upper) = self.sparse_view() {
+        if let Some(upper) = self.sparse_view(Operation::Factor) {
             return self.sparse_solve(&upper, shift, rhs);
         }
         match self.bands() {
@@ -453,7 +476,7 @@ impl SymmetricMatrix {
     /// The sparse path's eigenpairs (`None` when the matrix takes another path, or asks for so
     /// many pairs that the block would exceed half the matrix and the dense path can serve).
     fn sparse_eigenpairs(&self, target: Target, k: usize) -> Result<Option<Vec<Eigenpair>>, LinalgError> {
-        let Some(upper) = self.sparse_view() else { return Ok(None) };
+        let Some(upper) = self.sparse_view(Operation::Eigenpairs) else { return Ok(None) };
         self.check_finite()?;
         if let Target::Near(sigma) = target {
             bands::check_finite(Input::Shift, &[sigma])?;
