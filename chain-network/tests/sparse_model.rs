@@ -9,11 +9,11 @@
 //! `omega^2 = k (2 - 2 cos q_x) + (t / l)(2 - 2 cos q_y)` for the `x` displacements (and `x, y`
 //! exchanged for `y`), `q = 2 pi m / N`.
 
+use chain_core::Potential;
 use chain_core::linalg::SymmetricMatrix;
 use chain_core::statics::classify::classify;
 use chain_core::statics::equilibrium::{NewtonOptions, newton, polish};
 use chain_core::statics::modes::{ModeOptions, normal_modes};
-use chain_core::Potential;
 use chain_network::NetworkModel;
 use chain_network::cell::ready;
 use chain_network::patch::{Boundary, Patch};
@@ -65,8 +65,9 @@ fn newton_and_modes_on_a_patch_beyond_the_dense_bound() {
     assert!(largest(&g) < 1e-13, "largest force {}", largest(&g));
     assert!(solution.iterations <= 10, "{} Newton steps", solution.iterations);
     let exact = spectrum(n, 0.1 / 1.0);
-    let modes = normal_modes(&model, &solution.theta, &ModeOptions { count: Some(10), ..ModeOptions::default() })
-        .unwrap();
+    let modes =
+        normal_modes(&model, &solution.theta, &ModeOptions { count: Some(10), ..ModeOptions::default() })
+            .unwrap();
     for (mode, e) in modes.iter().zip(&exact) {
         assert!((mode.omega_squared - e).abs() < 1e-10, "{} against {e}", mode.omega_squared);
     }

@@ -63,7 +63,10 @@ impl NetworkModel {
         let values = args::finite_floats(x, what)?;
         let n = self.model.dof_count();
         if values.len() != n {
-            return Err(value_error(format!("{what} has {} values, the patch has {n} coordinates", values.len())));
+            return Err(value_error(format!(
+                "{what} has {} values, the patch has {n} coordinates",
+                values.len()
+            )));
         }
         Ok(values)
     }
@@ -77,12 +80,15 @@ fn overrides<'p, 'c>(
     masses: Option<&Bound<'_, PyDict>>,
 ) -> PyResult<rotor_chain::network::NetworkModelBuilder<'p, 'c>> {
     for (key, value) in springs.into_iter().flat_map(|d| d.iter()) {
-        let p: usize = key.extract().map_err(|_| value_error("springs: keys are bond indices (ints >= 0)"))?;
+        let p: usize =
+            key.extract().map_err(|_| value_error("springs: keys are bond indices (ints >= 0)"))?;
         let what = format!("springs[{p}]");
         let d = value.cast::<PyDict>().map_err(|_| value_error(format!("{what} must be a dict")))?;
         for (name, v) in d.iter() {
-            let name: String = name.extract().map_err(|_| value_error(format!("{what}: keys are strings")))?;
-            let v: f64 = v.extract().map_err(|_| value_error(format!("{what}['{name}'] must be a number")))?;
+            let name: String =
+                name.extract().map_err(|_| value_error(format!("{what}: keys are strings")))?;
+            let v: f64 =
+                v.extract().map_err(|_| value_error(format!("{what}['{name}'] must be a number")))?;
             builder = match name.as_str() {
                 "k" => builder.spring_constant(p, v),
                 "rest_length" => builder.rest_length(p, v),
@@ -176,7 +182,8 @@ impl NetworkModel {
     ) -> PyResult<Bound<'py, PyTuple>> {
         let x = self.coordinates(x, "x")?;
         let options = RelaxOptions { tolerance, max_steps, ..RelaxOptions::default() };
-        let (x, steps) = py.detach(|| relax(&self.model, &x, &options)).map_err(|e| errors::statics(py, &e))?;
+        let (x, steps) =
+            py.detach(|| relax(&self.model, &x, &options)).map_err(|e| errors::statics(py, &e))?;
         PyTuple::new(py, [array(py, x).into_any(), steps.into_pyobject(py)?.into_any().unbind()])
     }
 
@@ -204,7 +211,8 @@ impl NetworkModel {
     fn modes(&self, py: Python<'_>, x: &Bound<'_, PyAny>, count: usize) -> PyResult<NetworkModes> {
         let x = self.coordinates(x, "x")?;
         let options = ModeOptions { count: Some(count), ..ModeOptions::default() };
-        let modes = py.detach(|| normal_modes(&self.model, &x, &options)).map_err(|e| errors::statics(py, &e))?;
+        let modes =
+            py.detach(|| normal_modes(&self.model, &x, &options)).map_err(|e| errors::statics(py, &e))?;
         let n = self.model.dof_count();
         let shapes: Vec<Vec<f64>> = modes.iter().map(|m| m.shape.clone()).collect();
         Ok(NetworkModes {
@@ -247,7 +255,8 @@ impl NetworkModel {
                 verlet(&self.model, &mut state, t_max, &options, output_every, &mut |s: &State| {
                     times.push(s.time);
                     energies.push(
-                        self.model.energy(&s.theta) + rotor_chain::integrate::kinetic_energy(&self.model, &s.omega),
+                        self.model.energy(&s.theta)
+                            + rotor_chain::integrate::kinetic_energy(&self.model, &s.omega),
                     );
                     if interrupt.pending() { Flow::Stop } else { Flow::Continue }
                 })

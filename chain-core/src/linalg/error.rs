@@ -136,7 +136,9 @@ pub enum LinalgError {
     },
     /// The sparse eigensolver's result disagrees with an inertia count: `counted` eigenvalues lie
     /// in the inner part of the found range (below `below`), but `found` of the returned ones do.
-    #[error("{counted} eigenvalues lie below {below:e} in the found range, but the eigensolver found {found}")]
+    #[error(
+        "{counted} eigenvalues lie below {below:e} in the found range, but the eigensolver found {found}"
+    )]
     Missed {
         /// The end of the range compared.
         below: f64,

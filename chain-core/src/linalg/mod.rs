@@ -62,9 +62,9 @@ pub mod ql;
 #[cfg(feature = "alloc")]
 pub mod solve;
 #[cfg(feature = "alloc")]
-pub mod sturm;
-#[cfg(feature = "alloc")]
 pub mod sparse;
+#[cfg(feature = "alloc")]
+pub mod sturm;
 #[cfg(feature = "alloc")]
 mod symmetric;
 

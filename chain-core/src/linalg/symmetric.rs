@@ -90,14 +90,12 @@ impl SymmetricMatrix {
     pub fn for_model<M: Stiffness + ?Sized>(model: &M) -> Result<Self, LinalgError> {
         let n = model.dof_count();
         match model.stiffness_layout() {
-            StiffnessLayout::Tridiagonal => {
-                Ok(Self {
+            StiffnessLayout::Tridiagonal => Ok(Self {
                 n,
                 form: Form::Tridiagonal,
                 values: vec![0.0; (2 * n).saturating_sub(1)],
                 dense_limit: None,
-            })
-            }
+            }),
             StiffnessLayout::Upper(p) => {
                 p.check(true)?;
                 if p.rows() != n {
@@ -485,7 +483,11 @@ impl SymmetricMatrix {
         let dense_fits = self.n.saturating_mul(self.n) <= MAX_DENSE_VALUES;
         if 2 * eigen::block_size(k, self.n) > self.n {
             // So many pairs that subspace iteration is no cheaper than the dense decomposition.
-            return if dense_fits { Ok(None) } else { Err(LinalgError::TooLarge { n: self.n, max: MAX_DENSE_VALUES }) };
+            return if dense_fits {
+                Ok(None)
+            } else {
+                Err(LinalgError::TooLarge { n: self.n, max: MAX_DENSE_VALUES })
+            };
         }
         let norm = self.inf_norm();
         if norm == 0.0 {
@@ -523,7 +525,7 @@ impl SymmetricMatrix {
         x.iter_mut().zip(&r).for_each(|(x, d)| *x += d);
         let eta = lblt::backward_error(upper, shift, factors.norm(), &x, rhs);
         let bound = lblt::MAX_BACKWARD_ERROR_FACTOR * self.n as f64 * f64::EPSILON;
-        if !(eta <= bound) {
+        if eta.is_nan() || eta > bound {
             return Err(LinalgError::Unstable { shift, backward_error: eta, bound });
         }
         Ok(x)

@@ -56,7 +56,9 @@ pub fn patch_bonds(cell: &Cell, cells: [usize; 2], periodic: bool) -> usize {
             if periodic {
                 cells[0] * cells[1]
             } else {
-                let fit = |n: usize, c: i64| n.saturating_sub(usize::try_from(c.unsigned_abs()).unwrap_or(usize::MAX));
+                let fit = |n: usize, c: i64| {
+                    n.saturating_sub(usize::try_from(c.unsigned_abs()).unwrap_or(usize::MAX))
+                };
                 fit(cells[0], b.cell[0]) * fit(cells[1], b.cell[1])
             }
         })
@@ -64,14 +66,19 @@ pub fn patch_bonds(cell: &Cell, cells: [usize; 2], periodic: bool) -> usize {
 }
 
 fn manifest_dir() -> Option<PathBuf> {
-    std::env::var_os("ROTOR_NETWORK_MANIFEST_DIR").or_else(|| std::env::var_os("CARGO_MANIFEST_DIR")).map(PathBuf::from)
+    std::env::var_os("ROTOR_NETWORK_MANIFEST_DIR")
+        .or_else(|| std::env::var_os("CARGO_MANIFEST_DIR"))
+        .map(PathBuf::from)
 }
 
 /// The cell named by `cell = ..` or `ready = ..`.
 fn read_cell(cx: &Ctxt, spec: &Spec) -> Option<(Source, Cell)> {
     match (&spec.cell, &spec.ready) {
         (Some(_), Some(ready)) => {
-            cx.error_spanned_by(&ready.key, "give the cell once: `cell = \"file.toml\"` or `ready = \"name\"`, not both");
+            cx.error_spanned_by(
+                &ready.key,
+                "give the cell once: `cell = \"file.toml\"` or `ready = \"name\"`, not both",
+            );
             None
         }
         (Some(file), None) => {
@@ -86,7 +93,9 @@ fn read_cell(cx: &Ctxt, spec: &Spec) -> Option<(Source, Cell)> {
                 Err(e) => {
                     cx.error_spanned_by(
                         &file.value,
-                        format!("cannot read the cell file `{written}` (relative to the crate's Cargo.toml): {e}"),
+                        format!(
+                            "cannot read the cell file `{written}` (relative to the crate's Cargo.toml): {e}"
+                        ),
                     );
                     return None;
                 }
@@ -249,12 +258,18 @@ pub fn validate(cx: &Ctxt, spec: Spec) -> Option<Model> {
         {
             cx.error_spanned_by(
                 &s.index.tokens,
-                format!("spring {p} does not exist: the patch has {count} springs (0 to {})", count.saturating_sub(1)),
+                format!(
+                    "spring {p} does not exist: the patch has {count} springs (0 to {})",
+                    count.saturating_sub(1)
+                ),
             );
             springs_ok = false;
         }
         if s.k.is_none() && s.l0.is_none() {
-            cx.error_spanned_by(&s.index.key, format!("`spring({p})` overrides nothing: give `k = ..` or `l0 = ..`"));
+            cx.error_spanned_by(
+                &s.index.key,
+                format!("`spring({p})` overrides nothing: give `k = ..` or `l0 = ..`"),
+            );
             springs_ok = false;
         }
         let k = s.k.as_ref().map(|k| positive(cx, &k.tokens, "a spring constant", k.value));

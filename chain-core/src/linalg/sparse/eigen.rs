@@ -1,7 +1,7 @@
 //! The eigenpairs of a sparse symmetric `A` nearest a value, or at the bottom of the spectrum, by
 //! shift-invert block subspace iteration with Rayleigh-Ritz, checked by an inertia count.
 //!
-//! With the factorization of `A - sigma I` ([`Lblt`]) the block `X` (`p` orthonormal columns) is
+//! With the factorization of `A - sigma I` ([`lblt`](super::lblt)) the block `X` (`p` orthonormal columns) is
 //! replaced by an orthonormal basis of `(A - sigma I)^{-1} X`, and `A` is diagonalised within it
 //! (Rayleigh-Ritz): eigenvalue `lambda_j` converges at the rate
 //! `|lambda_j - sigma| / |lambda_{p+1} - sigma|` per iteration, so the eigenvalues nearest `sigma`
@@ -17,7 +17,7 @@
 //! **Stopping.** Every wanted pair's residual `||A v - lambda v||_inf <= `[`RESIDUAL_TOLERANCE`]`
 //! ||A||_inf`, within [`MAX_ITERATIONS`] iterations, else [`LinalgError::NoConvergence`] with the
 //! worst residual. **Completeness.** The number of eigenvalues that lie strictly inside the found
-//! set's range (by [`Lblt::inertia`], Sylvester's law) must equal the number found there, else
+//! set's range (by an inertia count of [`lblt`](super::lblt), Sylvester's law) must equal the number found there, else
 //! [`LinalgError::Missed`]: a skipped eigenvalue cannot go unnoticed.
 
 use alloc::vec;
@@ -62,7 +62,12 @@ fn offset(n: usize, norm: f64) -> f64 {
 ///
 /// # Errors
 /// No convergence, a missed eigenvalue, an unstable factorization, or a failed allocation.
-pub(crate) fn eigenpairs(a: &Upper<'_>, norm: f64, target: Target, k: usize) -> Result<Vec<Eigenpair>, LinalgError> {
+pub(crate) fn eigenpairs(
+    a: &Upper<'_>,
+    norm: f64,
+    target: Target,
+    k: usize,
+) -> Result<Vec<Eigenpair>, LinalgError> {
     let n = a.n;
     if k == 0 {
         return Ok(Vec::new());
@@ -101,14 +106,17 @@ pub(crate) fn eigenpairs(a: &Upper<'_>, norm: f64, target: Target, k: usize) -> 
         let wanted: Vec<usize> = order(&values).into_iter().take(k).collect();
         worst = (0, 0.0);
         for &j in &wanted {
-            let r = (0..n).fold(0.0f64, |m, i| m.max((ax[j * n + i] - values[j] * x[j * n + i]).abs())) / norm;
-            if !(r <= worst.1) {
+            let r =
+                (0..n).fold(0.0f64, |m, i| m.max((ax[j * n + i] - values[j] * x[j * n + i]).abs())) / norm;
+            if r.is_nan() || r > worst.1 {
                 worst = (j, r);
             }
         }
         if worst.1 <= RESIDUAL_TOLERANCE {
-            let mut pairs: Vec<Eigenpair> =
-                wanted.iter().map(|&j| Eigenpair { value: values[j], vector: signed(&x[j * n..(j + 1) * n]) }).collect();
+            let mut pairs: Vec<Eigenpair> = wanted
+                .iter()
+                .map(|&j| Eigenpair { value: values[j], vector: signed(&x[j * n..(j + 1) * n]) })
+                .collect();
             pairs.sort_by(|a, b| a.value.total_cmp(&b.value));
             check_complete(a, norm, target, &pairs)?;
             return Ok(pairs);
@@ -196,7 +204,10 @@ fn orthonormalise(x: &mut [f64], n: usize, p: usize) {
         project_out_previous(x, n, j);
         project_out_previous(x, n, j);
         if !normalise(&mut x[j * n..(j + 1) * n]) {
-            x[j * n..(j + 1) * n].iter_mut().enumerate().for_each(|(i, v)| *v = f64::from(u8::from(i == j % n)));
+            x[j * n..(j + 1) * n]
+                .iter_mut()
+                .enumerate()
+                .for_each(|(i, v)| *v = f64::from(u8::from(i == j % n)));
             project_out_previous(x, n, j);
             normalise(&mut x[j * n..(j + 1) * n]);
         }

@@ -158,7 +158,13 @@ impl Lblt {
         let norm = inf_norm_lower(n, &s);
         let diagonal = match lblt_form(&symbolic, &s, n) {
             Some(diagonal) => diagonal,
-            None => return Err(LinalgError::Unstable { shift: sigma, backward_error: f64::INFINITY, bound: 0.0 }),
+            None => {
+                return Err(LinalgError::Unstable {
+                    shift: sigma,
+                    backward_error: f64::INFINITY,
+                    bound: 0.0,
+                });
+            }
         };
         let mut lblt = Self { n, symbolic, values, subdiag, forward, inverse, norm, inertia: None, diagonal };
         let inertia = lblt.count_inertia();
@@ -193,7 +199,7 @@ impl Lblt {
                 Some(core::cmp::Ordering::Greater) => inertia.positive += 1,
                 _ => inertia.zero += 1,
             }
-            if !(v.abs() >= inertia.smallest.1.abs()) {
+            if v.is_nan() || v.abs() < inertia.smallest.1.abs() {
                 inertia.smallest = (row, v);
             }
         };
@@ -251,7 +257,9 @@ impl Lblt {
     fn check_backward_error(&self, a: &Upper<'_>, sigma: f64) -> Result<(), LinalgError> {
         let n = self.n;
         // A fixed probe with entries of both signs and varied sizes (any generic vector serves).
-        let y: Vec<f64> = (0..n).map(|i| 1.0 + ((i * 7919) % 97) as f64 / 97.0 * if i % 2 == 0 { 1.0 } else { -1.5 }).collect();
+        let y: Vec<f64> = (0..n)
+            .map(|i| 1.0 + ((i * 7919) % 97) as f64 / 97.0 * if i % 2 == 0 { 1.0 } else { -1.5 })
+            .collect();
         let mut b = try_vec(n)?;
         b.resize(n, 0.0);
         a.mul_vec_shifted(sigma, &y, &mut b);
