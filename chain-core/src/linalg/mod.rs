@@ -20,7 +20,8 @@
 //!   partial pivoting. O(n).
 //!
 //! - [`SymmetricMatrix`] (`symmetric.rs`): the tridiagonal path through the functions above, a
-//!   sparse upper triangle through dense decompositions up to [`MAX_DENSE_VALUES`].
+//!   sparse upper triangle through dense decompositions up to [`DENSE_LIMIT`] rows and through
+//!   [`sparse`] (a sparse `LBL^T` and shift-invert subspace iteration) beyond.
 //!
 //! What they share (input checks, exact scaling, norms) is in the private `bands.rs`.
 //!
@@ -61,6 +62,8 @@ pub mod ql;
 #[cfg(feature = "alloc")]
 pub mod solve;
 #[cfg(feature = "alloc")]
+pub mod sparse;
+#[cfg(feature = "alloc")]
 pub mod sturm;
 #[cfg(feature = "alloc")]
 mod symmetric;
@@ -77,4 +80,4 @@ pub use solve::{solve, solve_shifted};
 #[cfg(feature = "alloc")]
 pub use sturm::{count_below, try_count_below};
 #[cfg(feature = "alloc")]
-pub use symmetric::{MAX_DENSE_VALUES, SymmetricMatrix};
+pub use symmetric::{DENSE_FACTOR_LIMIT, DENSE_LIMIT, MAX_DENSE_VALUES, SymmetricMatrix};
