@@ -4,7 +4,8 @@
 //!
 //! A point's record crosses into Python as a dict with the columns of the results file
 //! (`i, j, ki, v0, outcome, t_decided, confirmed, later, t_later, kinks_final, antikinks_final,
-//! energy_error, integrator, error`): a failed point has `error` set and `None` elsewhere. Floats
+//! energy_error, integrator, unresolved, unresolved_outcome, t_unresolved, error`): a failed point
+//! has `error` set and `None` elsewhere; a resolved one `None` in the three `unresolved` keys. Floats
 //! are Python floats, so a record goes to another process and back bit for bit.
 
 use std::panic::{AssertUnwindSafe, catch_unwind};
@@ -241,6 +242,10 @@ fn record_dict<'py>(
             d.set_item("antikinks_final", r.antikinks_final)?;
             d.set_item("energy_error", r.energy_error)?;
             d.set_item("integrator", r.integrator.to_string())?;
+            let (reason, other, time) = r.unresolved_columns();
+            d.set_item("unresolved", reason)?;
+            d.set_item("unresolved_outcome", other.map(Outcome::name))?;
+            d.set_item("t_unresolved", time)?;
             d.set_item("error", &none)?;
         }
         Err(message) => {
@@ -254,6 +259,9 @@ fn record_dict<'py>(
                 "antikinks_final",
                 "energy_error",
                 "integrator",
+                "unresolved",
+                "unresolved_outcome",
+                "t_unresolved",
             ] {
                 d.set_item(key, &none)?;
             }
@@ -285,20 +293,29 @@ fn record_of(d: &Bound<'_, PyDict>) -> PyResult<RecordOf> {
         _ => return Err(value_error("a record has `later` and `t_later` both or neither")),
     };
     let integrator = Recomputed::from_str(&item::<String>(d, "integrator")?).map_err(value_error)?;
-    Ok((
-        index,
-        coords,
-        Ok(PointRecord {
-            outcome,
-            t_decided: item(d, "t_decided")?,
-            confirmed: item(d, "confirmed")?,
-            later,
-            kinks_final: item(d, "kinks_final")?,
-            antikinks_final: item(d, "antikinks_final")?,
-            energy_error: item(d, "energy_error")?,
-            integrator,
-        }),
-    ))
+    let mut record = PointRecord {
+        outcome,
+        t_decided: item(d, "t_decided")?,
+        confirmed: item(d, "confirmed")?,
+        later,
+        kinks_final: item(d, "kinks_final")?,
+        antikinks_final: item(d, "antikinks_final")?,
+        energy_error: item(d, "energy_error")?,
+        integrator,
+        unresolved: None,
+    };
+    // Records made before the `unresolved` keys existed have none of them: resolved.
+    let optional = |key: &str| -> PyResult<Option<Bound<'_, PyAny>>> {
+        d.get_item(key)?.filter(|v| !v.is_none()).map(Ok).transpose()
+    };
+    let reason: Option<String> = optional("unresolved")?.map(|v| v.extract()).transpose()?;
+    let other = match optional("unresolved_outcome")? {
+        Some(v) => Some(Outcome::from_str(&v.extract::<String>()?).map_err(|e| value_error(e.to_string()))?),
+        None => None,
+    };
+    let time: Option<f64> = optional("t_unresolved")?.map(|v| v.extract()).transpose()?;
+    record.unresolved = record.unresolved_of((reason.as_deref(), other, time)).map_err(value_error)?;
+    Ok((index, coords, Ok(record)))
 }
 
 /// The values of an axis: ``"FROM:TO:COUNT"`` or ``"FROM:TO:COUNT:log"`` as on the
