@@ -830,7 +830,7 @@ mod tests {
         d.check().unwrap();
         assert!(
             d.run_label().ends_with(
-                "physics=scatter-v3 impurity=20 impurity_rest_length=1.75 direction=right start=5.0 damping=0.5"
+                "physics=scatter-v4 impurity=20 impurity_rest_length=1.75 direction=right start=5.0 damping=0.5"
             ),
             "{}",
             d.run_label()
