@@ -51,13 +51,14 @@ fn cell_name(cell: &Cell) -> &'static str {
     }
 }
 
-/// What the isolated cells of `outcomes` ([`OutcomeGrid::isolated`], the diagram of `defect`)
-/// are: each point is run again with DOP853 and with absorbing ends (the checks of
+/// What the isolated cells of `outcomes` ([`OutcomeGrid::isolated`], the diagram of `defect`;
+/// unresolved cells, which say why themselves, left out) are: each point is run again with DOP853 and with absorbing ends (the checks of
 /// docs/dynamics.md §6). A label both keep is a real outcome in a window narrower than the grid's
 /// spacing; one that changes depends on rounding and on what the free ends send back (the late
 /// events of a chaotic run). Empty when no cell is isolated.
 fn isolated_cells(params: &Params, defect: Defect, outcomes: &OutcomeGrid) -> Result<Vec<String>, Cause> {
-    let cells = outcomes.isolated();
+    let mut cells = outcomes.isolated();
+    cells.retain(|&(i, j)| !matches!(outcomes.cells()[j][i], Cell::Unresolved { .. }));
     let dop853 = PhaseDiagram { integrator: Method::dop853(), ..settings(params, defect)? };
     let absorbing = PhaseDiagram { ends: Ends::Absorbing, ..settings(params, defect)? };
     cells
@@ -107,10 +108,9 @@ fn counts(outcomes: &OutcomeGrid) -> String {
 fn unresolved_note(cross_check: bool) -> &'static str {
     if cross_check {
         "Verlet and DOP853 decide differently, or a wall from a free end reached the impurity before the \
-         decision (hatched grey)"
+         decision"
     } else {
-        "a wall from a free end reached the impurity before the decision (hatched grey; not cross-checked \
-         with DOP853)"
+        "a wall from a free end reached the impurity before the decision (not cross-checked with DOP853)"
     }
 }
 
@@ -330,7 +330,7 @@ pub fn phasediagram(params: &Params, quality: Quality) -> Result<Figure, FigureE
             &counts(&grids[1]),
             format!(
                 "{grid_note}; free ends; annihilated = by a wall from a free end before anything settled; \
-                 unresolved = {}",
+                 unresolved (hatched grey) = {}",
                 unresolved_note(s.cross_check)
             ),
         ),
