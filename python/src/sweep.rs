@@ -13,7 +13,8 @@ use std::path::PathBuf;
 use std::str::FromStr;
 
 use chain_sweep::scattering::{
-    Defect, Ends, LaterEvent, Outcome, PhaseDiagram as Diagram, PointRecord, Recomputed, method_by_name,
+    Defect, Direction, Ends, LaterEvent, Outcome, PhaseDiagram as Diagram, PointRecord, Recomputed,
+    method_by_name,
 };
 use chain_sweep::threads::{max_threads, worker_threads};
 use chain_sweep::{Axis, Grid, Point, ResultsFile as File, SweepOptions};
@@ -41,10 +42,12 @@ impl PhaseDiagram {
     #[pyo3(signature = (defect, *, n = RotorCount(Ok(60)), r = Real::of(0.8), k = Real::of(1.0e4), theta_bar = Real::of(0.28),
                         mass = Real::of(1.0), ends = "free", integrator = "verlet", dt = None,
                         energy_tolerance = Real::of(chain_sweep::scattering::DEFAULT_ENERGY_TOLERANCE),
-                        recompute = true, t_max = Real::of(20.0)),
+                        recompute = true, t_max = Real::of(20.0), impurity = None, impurity_rest_length = None,
+                        start = None, direction = "left", damping = Real::of(0.0), cross_check = false),
            text_signature = "(defect, *, n=60, r=0.8, k=1e4, theta_bar=0.28, mass=1.0, ends='free', \
                              integrator='verlet', dt=None, energy_tolerance=DEFAULT_ENERGY_TOLERANCE, recompute=True, \
-                             t_max=20.0)")]
+                             t_max=20.0, impurity=None, impurity_rest_length=None, start=None, direction='left', \
+                             damping=0.0, cross_check=False)")]
     #[allow(clippy::too_many_arguments)]
     fn new(
         py: Python<'_>,
@@ -60,6 +63,12 @@ impl PhaseDiagram {
         energy_tolerance: Real,
         recompute: bool,
         t_max: Real,
+        impurity: Option<usize>,
+        impurity_rest_length: Option<Real>,
+        start: Option<Real>,
+        direction: &str,
+        damping: Real,
+        cross_check: bool,
     ) -> PyResult<Self> {
         let (r, k, theta_bar, mass) =
             (r.get("r")?, k.get("k")?, theta_bar.get("theta_bar")?, mass.get("mass")?);
@@ -87,6 +96,17 @@ impl PhaseDiagram {
         d.energy_tolerance = energy_tolerance;
         d.recompute = recompute;
         d.t_max = t_max;
+        // The `phase-diagram` command's experiment settings, with its names.
+        d.impurity_spring = impurity;
+        d.impurity_rest_length = Real::optional(impurity_rest_length, "impurity_rest_length")?;
+        d.start = Real::optional(start, "start")?;
+        d.direction = match direction {
+            "left" => Direction::Left,
+            "right" => Direction::Right,
+            other => return Err(value_error(format!("direction must be one of 'left', 'right', got '{other}'"))),
+        };
+        d.damping = damping.get("damping")?;
+        d.cross_check = cross_check;
         d.check().map_err(|e| errors::config(py, &e))?;
         Ok(Self { d })
     }
@@ -162,6 +182,12 @@ impl PhaseDiagram {
         kwargs.set_item("energy_tolerance", d.energy_tolerance)?;
         kwargs.set_item("recompute", d.recompute)?;
         kwargs.set_item("t_max", d.t_max)?;
+        kwargs.set_item("impurity", d.impurity_spring)?;
+        kwargs.set_item("impurity_rest_length", d.impurity_rest_length)?;
+        kwargs.set_item("start", d.start)?;
+        kwargs.set_item("direction", if d.direction == Direction::Right { "right" } else { "left" })?;
+        kwargs.set_item("damping", d.damping)?;
+        kwargs.set_item("cross_check", d.cross_check)?;
         Ok((args, kwargs))
     }
 }

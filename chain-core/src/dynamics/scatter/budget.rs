@@ -267,7 +267,8 @@ pub enum CrossChecked {
 /// [`CrossChecked::Resolved`] when both decide the same outcome and no wall from a free end
 /// reached the impurity before the decision, else [`CrossChecked::Unresolved`] with the reason
 /// ([`Unresolved::IntegratorsDisagree`] with both outcomes and decision times first, then
-/// Verlet's [`Unresolved::EndWallFirst`]). More than twice the cost of one run;
+/// Verlet's [`Unresolved::EndWallFirst`]). 6.2 times the cost of a Verlet run on the paper's
+/// phase diagrams (docs/dynamics.md §6);
 /// the phase diagrams' honest label where a collision is chaotic (docs/dynamics.md §6: at
 /// `k_i/k ~ 0.01`, `v0 ~ 1` a pair nucleates at the impurity before the antikink arrives, and the
 /// integrators' rounding decides what it becomes).
