@@ -24,8 +24,8 @@ use std::str::FromStr;
 use rotor_chain::dynamics::DynamicsError;
 pub use rotor_chain::dynamics::launch::Direction;
 use rotor_chain::dynamics::run::{ABSORBING_ENDS, RunOptions};
-pub use rotor_chain::dynamics::scatter::budget::{BudgetError, DEFAULT_ENERGY_TOLERANCE, VerletBreach};
 pub use rotor_chain::dynamics::scatter::Unresolved;
+pub use rotor_chain::dynamics::scatter::budget::{BudgetError, DEFAULT_ENERGY_TOLERANCE, VerletBreach};
 use rotor_chain::dynamics::scatter::{
     CrossChecked, EnergyBudget, ScatterSetup, cross_checked, paper_time_unit, scatter_within_budget,
 };
@@ -641,7 +641,9 @@ impl PointRecord {
             Some(reason @ Unresolved::IntegratorsDisagree { dop853, .. }) => {
                 (Some(reason.name()), Some(dop853.0), Some(dop853.1))
             }
-            Some(reason @ Unresolved::EndWallFirst { arrived, .. }) => (Some(reason.name()), None, Some(arrived)),
+            Some(reason @ Unresolved::EndWallFirst { arrived, .. }) => {
+                (Some(reason.name()), None, Some(arrived))
+            }
             // A reason this version does not know how to store (the enum is non-exhaustive).
             Some(reason) => (Some(reason.name()), None, None),
         }
@@ -659,7 +661,9 @@ impl PointRecord {
             (Some("integrators-disagree"), Some(other), Some(t)) => {
                 Some(Unresolved::IntegratorsDisagree { verlet: decided, dop853: (other, t) })
             }
-            (Some("end-wall-first"), None, Some(arrived)) => Some(Unresolved::EndWallFirst { arrived, decided }),
+            (Some("end-wall-first"), None, Some(arrived)) => {
+                Some(Unresolved::EndWallFirst { arrived, decided })
+            }
             _ => {
                 return Err(format!(
                     "unresolved {name:?} with outcome {outcome:?} and time {time:?}: expected nothing, \
@@ -1020,7 +1024,10 @@ mod tests {
             ..base.clone()
         };
         let end_wall = PointRecord {
-            unresolved: Some(Unresolved::EndWallFirst { arrived: 5.25, decided: (Outcome::PairCreation, 11.1) }),
+            unresolved: Some(Unresolved::EndWallFirst {
+                arrived: 5.25,
+                decided: (Outcome::PairCreation, 11.1),
+            }),
             ..base.clone()
         };
         for (record, tail) in [

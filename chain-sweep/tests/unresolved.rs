@@ -7,7 +7,9 @@
 //! arrives. The references are computed here by the library's runs of each integrator, and the
 //! end-born walls are checked against the run's own wall snapshots and against absorbing ends.
 
-use chain_sweep::scattering::{Defect, Ends, Method, Outcome, PhaseDiagram, PointRecord, Unresolved, fake_point};
+use chain_sweep::scattering::{
+    Defect, Ends, Method, Outcome, PhaseDiagram, PointRecord, Unresolved, fake_point,
+};
 use chain_sweep::{Axis, Grid, SweepError, SweepOptions, merge_shards, read_points, read_results, run_sweep};
 use rotor_chain::dynamics::scatter::{EnergyBudget, scatter_within_budget};
 
@@ -22,8 +24,9 @@ fn antikinks() -> PhaseDiagram {
 fn the_chaotic_corners_known_point_is_unresolved_in_a_cross_checked_sweep() {
     let d = PhaseDiagram { cross_check: true, ..antikinks() };
     assert!(d.run_label().ends_with(" cross_check=true"), "{}", d.run_label());
-    let grid = Grid::new(Axis::from_values(vec![0.01, 0.2]).unwrap(), Axis::from_values(vec![1.1, 4.8]).unwrap())
-        .unwrap();
+    let grid =
+        Grid::new(Axis::from_values(vec![0.01, 0.2]).unwrap(), Axis::from_values(vec![1.1, 4.8]).unwrap())
+            .unwrap();
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("antikink.csv");
     run_sweep(&grid, &path, |ki, v0| d.compute_point(ki, v0), &SweepOptions::new("antikink", d.run_label()))
@@ -69,17 +72,15 @@ fn a_wall_from_a_free_end_that_reaches_the_impurity_first_makes_the_point_unreso
     let last = (d.n - 1) as f64;
     let zone = setup.edge_margin + 1.0;
     let snapshots = &run.run.tracker.snapshots;
-    let in_end_zone = snapshots
-        .iter()
-        .filter(|s| s.time > 0.0 && s.time < arrived)
-        .any(|s| {
-            let interior = s.walls.iter().zip(&s.at_boundary).filter(|(_, b)| !**b);
-            interior.into_iter().any(|(w, _)| w.position <= zone || w.position >= last - zone)
-        });
+    let in_end_zone = snapshots.iter().filter(|s| s.time > 0.0 && s.time < arrived).any(|s| {
+        let interior = s.walls.iter().zip(&s.at_boundary).filter(|(_, b)| !**b);
+        interior.into_iter().any(|(w, _)| w.position <= zone || w.position >= last - zone)
+    });
     assert!(in_end_zone, "no wall in an end zone before t = {arrived}");
     let then = snapshots.iter().find(|s| s.time == arrived).unwrap();
     let x_imp = d.impurity() as f64 + 0.5;
-    let interior: Vec<_> = then.walls.iter().zip(&then.at_boundary).filter(|(_, b)| !**b).map(|(w, _)| w).collect();
+    let interior: Vec<_> =
+        then.walls.iter().zip(&then.at_boundary).filter(|(_, b)| !**b).map(|(w, _)| w).collect();
     let near = interior.iter().filter(|w| (w.position - x_imp).abs() <= setup.reach).count();
     assert!(near >= 1 && interior.len() >= 2, "at t = {arrived}: {interior:?}");
 
@@ -92,9 +93,9 @@ fn a_wall_from_a_free_end_that_reaches_the_impurity_first_makes_the_point_unreso
 #[test]
 fn a_file_without_the_unresolved_columns_still_reads_and_merges() {
     let dir = tempfile::tempdir().unwrap();
-    let grid = Grid::new(Axis::linspace(0.1, 0.2, 2).unwrap(), Axis::from_values(vec![1.0]).unwrap()).unwrap();
-    let old_header =
-        "i,j,x,y,outcome,t_decided,confirmed,later,t_later,kinks_final,antikinks_final,energy_error,integrator,error";
+    let grid =
+        Grid::new(Axis::linspace(0.1, 0.2, 2).unwrap(), Axis::from_values(vec![1.0]).unwrap()).unwrap();
+    let old_header = "i,j,x,y,outcome,t_decided,confirmed,later,t_later,kinks_final,antikinks_final,energy_error,integrator,error";
     let line = |i: usize, x: f64| format!("{i},0,{x:?},1.0,trapped,4.25,true,,,1,0,1e-9,verlet,\n");
     let write = |name: &str, shard: &str, lines: &[String]| {
         let path = dir.path().join(name);
@@ -115,11 +116,14 @@ fn a_file_without_the_unresolved_columns_still_reads_and_merges() {
         assert_eq!((record.outcome, record.t_decided, record.unresolved), (Outcome::Trapped, 4.25, None));
     }
 
-    let shards = [write("s0.csv", "; shard 0/2", &[line(0, x0)]), write("s1.csv", "; shard 1/2", &[line(1, x1)])];
+    let shards =
+        [write("s0.csv", "; shard 0/2", &[line(0, x0)]), write("s1.csv", "; shard 1/2", &[line(1, x1)])];
     let merged = dir.path().join("merged.csv");
     merge_shards::<PointRecord>(&shards, &merged).unwrap();
     let text = std::fs::read_to_string(&merged).unwrap();
-    assert!(text.lines().nth(1).unwrap().ends_with("integrator,unresolved,unresolved_outcome,t_unresolved,error"));
+    assert!(
+        text.lines().nth(1).unwrap().ends_with("integrator,unresolved,unresolved_outcome,t_unresolved,error")
+    );
     assert_eq!(
         read_points::<PointRecord>(&merged).unwrap().into_iter().map(|p| p.outcome).collect::<Vec<_>>(),
         points.into_iter().map(|p| p.outcome).collect::<Vec<_>>()

@@ -116,7 +116,12 @@ fn numbers_the_guides_quote_are_the_runs() {
         ("docs/statics.md", "hence its ", 2, "fig:orbit"),
         ("docs/dynamics.md", "(found) | **", 1, "fig:akpntrapprofile"),
         ("docs/dynamics.md", "**14.8 (rotor ", 1, "fig:akpntrapprofile"),
-        ("docs/dynamics.md", "so its closest approaches in\n[`figures/summary.md`](figures/summary.md), ", 2, "fig:orbit"),
+        (
+            "docs/dynamics.md",
+            "so its closest approaches in\n[`figures/summary.md`](figures/summary.md), ",
+            2,
+            "fig:orbit",
+        ),
         ("docs/dynamics.md", "it moves at ", 1, "fig:akpntrapprofile"),
         ("docs/dynamics.md", "the phonon band of the uniform chain\nspans ", 2, "fig:akpntrapprofile"),
     ];

@@ -103,7 +103,9 @@ impl PhaseDiagram {
         d.direction = match direction {
             "left" => Direction::Left,
             "right" => Direction::Right,
-            other => return Err(value_error(format!("direction must be one of 'left', 'right', got '{other}'"))),
+            other => {
+                return Err(value_error(format!("direction must be one of 'left', 'right', got '{other}'")));
+            }
         };
         d.damping = damping.get("damping")?;
         d.cross_check = cross_check;

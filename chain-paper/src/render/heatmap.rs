@@ -254,7 +254,8 @@ where
     }))?;
     // Hatched categories: three diagonal strokes over each such cell.
     let is_hatched = |v: f64| {
-        categorical && category_index(v, map.categories.len()).is_some_and(|i| palette::hatched(&map.categories[i]))
+        categorical
+            && category_index(v, map.categories.len()).is_some_and(|i| palette::hatched(&map.categories[i]))
     };
     let hatched: Vec<((f64, f64), (f64, f64))> = rows
         .iter()
@@ -274,7 +275,9 @@ where
 /// The hatching of a unit square: three strokes parallel to its rising diagonal (`v = u + c`,
 /// `c` in -1/2, 0, 1/2), each clipped to the square, as `[(u, v) start, end]`.
 fn hatch_strokes() -> impl Iterator<Item = [(f64, f64); 2]> {
-    [-0.5f64, 0.0, 0.5].into_iter().map(|c| [(c.min(0.0).abs(), c.max(0.0)), (1.0 - c.max(0.0), 1.0 + c.min(0.0))])
+    [-0.5f64, 0.0, 0.5]
+        .into_iter()
+        .map(|c| [(c.min(0.0).abs(), c.max(0.0)), (1.0 - c.max(0.0), 1.0 + c.min(0.0))])
 }
 
 /// A vertical colour bar of `scale` with ticks, and `label` beside them reading upwards (as the

@@ -298,6 +298,8 @@ pub fn cross_checked<M: ChainModel + ?Sized>(
     };
     Ok(match reason {
         None => CrossChecked::Resolved(Box::new(verlet)),
-        Some(reason) => CrossChecked::Unresolved { reason, verlet: Box::new(verlet), dop853: Box::new(dop853) },
+        Some(reason) => {
+            CrossChecked::Unresolved { reason, verlet: Box::new(verlet), dop853: Box::new(dop853) }
+        }
     })
 }

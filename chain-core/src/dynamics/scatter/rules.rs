@@ -320,7 +320,11 @@ impl Classifier {
         }
         if self.end_wall_at_impurity.is_none() {
             let (x_imp, reach) = (self.x_imp, self.setup.reach);
-            let arrived = self.follower.walls.iter().any(|w| w.origin == Origin::End && (w.position - x_imp).abs() <= reach);
+            let arrived = self
+                .follower
+                .walls
+                .iter()
+                .any(|w| w.origin == Origin::End && (w.position - x_imp).abs() <= reach);
             if arrived {
                 self.end_wall_at_impurity = Some(time);
             }

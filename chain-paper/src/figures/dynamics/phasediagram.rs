@@ -418,9 +418,11 @@ mod tests {
     fn the_diagram_draws_an_unresolved_point_hatched_and_counts_it() {
         let params = Params::default();
         assert!(params.scattering.cross_check);
-        let grid =
-            Grid::new(Axis::from_values(vec![0.01, 0.2]).unwrap(), Axis::from_values(vec![1.1, 4.8]).unwrap())
-                .unwrap();
+        let grid = Grid::new(
+            Axis::from_values(vec![0.01, 0.2]).unwrap(),
+            Axis::from_values(vec![1.1, 4.8]).unwrap(),
+        )
+        .unwrap();
         let outcomes = phase_diagram(&params, Defect::Antikink, &grid, true).unwrap();
         assert!(matches!(outcomes.cells()[0][0], Cell::Unresolved { .. }), "{:?}", outcomes.cells()[0][0]);
         assert_eq!(outcomes.outcome(1, 1), Some(Outcome::Reflected));
