@@ -346,6 +346,12 @@ class PhaseDiagram:
         energy_tolerance: float = ...,
         recompute: bool = True,
         t_max: float = 20.0,
+        impurity: Optional[int] = None,
+        impurity_rest_length: Optional[float] = None,
+        start: Optional[float] = None,
+        direction: Literal["left", "right"] = "left",
+        damping: float = 0.0,
+        cross_check: bool = False,
     ) -> None: ...
     @property
     def run_label(self) -> str: ...
