@@ -260,8 +260,12 @@ impl BondKernels {
     /// Rust source of the kernels: per bond type a module (`joint_joint`, `joint_rotor`,
     /// `rotor_rotor`) holding, for each of [`BOND_FUNCTIONS`], a unit struct implementing
     /// `BondFn<A, M>`, whose `#[inline(always)] eval<L: Lane>(x: [L; A]) -> [L; M]` is generic
-    /// over the lane type and takes [`BondKind::args`]. The caller puts `Lane` and `BondFn` in
-    /// the file's scope; each module imports them from `super`.
+    /// over the lane type and takes [`BondKind::args`], and a unit struct `Kernels` naming them
+    /// all (`BondKernels<A, N, N + 1, H, 1 + N + H>`, `N` degrees of freedom, `H` block
+    /// entries); after the modules, a unit struct `Law` implementing `LawKernels` with the three
+    /// types' `Kernels`: what a network model's drivers are generic over. The caller puts
+    /// `Lane`, `BondFn`, `BondKernels` and `LawKernels` in the file's scope; each module imports
+    /// them from `super`.
     pub fn render(&self) -> Result<String, String> {
         let mut out = String::new();
         for (g, terms) in &self.bonds {
@@ -283,7 +287,7 @@ impl BondKernels {
                 args.join(" ")
             );
             let _ = writeln!(out, "pub mod {} {{", terms.kind.module());
-            let _ = writeln!(out, "use super::{{BondFn, Lane}};\n");
+            let _ = writeln!(out, "use super::{{BondFn, BondKernels, Lane}};\n");
             for f in &BOND_FUNCTIONS {
                 let outputs = (f.outputs)(terms);
                 let program = lower(g, &outputs, &leaf)?;
@@ -298,8 +302,25 @@ impl BondKernels {
                 out.push_str(&crate::chain::render_lanes(&program));
                 let _ = writeln!(out, "}}\n}}\n");
             }
+            let n = terms.dofs.len();
+            let h = n * (n + 1) / 2;
+            let _ = writeln!(out, "/// Every kernel of the bond type, for the model's drivers.");
+            let _ = writeln!(out, "pub struct Kernels;\n");
+            let _ = writeln!(out, "impl BondKernels<{a}, {n}, {}, {h}, {}> for Kernels {{", n + 1, 1 + n + h);
+            for f in &BOND_FUNCTIONS {
+                let _ = writeln!(out, "type {0} = {0};", f.name);
+            }
+            let _ = writeln!(out, "}}\n");
             let _ = writeln!(out, "}}\n");
         }
+        let _ = writeln!(out, "/// The law's kernels of every bond type.");
+        let _ = writeln!(out, "pub struct Law;\n");
+        let _ = writeln!(out, "impl LawKernels for Law {{");
+        for kind in BondKind::ALL {
+            let name = format!("{kind:?}");
+            let _ = writeln!(out, "type {name} = {}::Kernels;", kind.module());
+        }
+        let _ = writeln!(out, "}}");
         Ok(out)
     }
 }

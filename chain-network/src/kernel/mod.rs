@@ -23,6 +23,7 @@
 
 pub use chain_core::simd::Lane;
 
+
 /// The harmonic law `k (l - l0)^2 / 2`.
 #[rustfmt::skip]
 pub mod harmonic;
@@ -35,4 +36,44 @@ pub mod quartic;
 pub trait BondFn<const A: usize, const M: usize> {
     /// The outputs for the arguments `x` (the module doc's table), lane by lane.
     fn eval<L: Lane>(x: [L; A]) -> [L; M];
+}
+
+/// Every rendered kernel of one bond type with `A` arguments, `N` degrees of freedom and `H`
+/// block entries (`N1 = N + 1`, `F = 1 + N + H`: the fused outputs' counts, spelled out because
+/// a const generic cannot be computed from another on stable Rust). Each rendered bond module's
+/// `Kernels` implements it.
+pub trait BondKernels<const A: usize, const N: usize, const N1: usize, const H: usize, const F: usize> {
+    /// The bond's stored energy.
+    type Energy: BondFn<A, 1>;
+    /// The bond's length.
+    type Length: BondFn<A, 1>;
+    /// The bond's tension.
+    type Tension: BondFn<A, 1>;
+    /// The gradient.
+    type Gradient: BondFn<A, N>;
+    /// The Hessian block.
+    type Hessian: BondFn<A, H>;
+    /// The material part of the block.
+    type Material: BondFn<A, H>;
+    /// The stress-matrix part of the block.
+    type Stress: BondFn<A, H>;
+    /// The compatibility row.
+    type Compatibility: BondFn<A, N>;
+    /// Energy and gradient fused.
+    type EnergyGradient: BondFn<A, N1>;
+    /// Energy, gradient and Hessian block fused.
+    type EnergyGradientHessian: BondFn<A, F>;
+}
+
+/// A spring law's kernels for the three bond types: what [`NetworkModel`](crate::NetworkModel)'s
+/// drivers are generic over. Each rendered kernel file's `Law` implements it
+/// ([`harmonic::Law`], [`quartic::Law`], and the `#[rotor_network]` attribute's own, rendered at
+/// compile time for its law).
+pub trait LawKernels: 'static {
+    /// The joint-joint bond's kernels.
+    type JointJoint: BondKernels<8, 4, 5, 10, 15>;
+    /// The joint-rotor bond's kernels.
+    type JointRotor: BondKernels<9, 3, 4, 6, 10>;
+    /// The rotor-rotor bond's kernels.
+    type RotorRotor: BondKernels<10, 2, 3, 3, 6>;
 }

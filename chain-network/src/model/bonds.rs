@@ -95,40 +95,32 @@ impl Group {
     }
 }
 
-/// Evaluates kernel `$f` (a unit type of every bond module) on every bond of every group of
-/// `$model` at `$x`, calling `$body` with the group, the bond's index in it and the outputs as a
-/// slice. `$m` lists the kernel's output count per bond type (joint-joint, joint-rotor,
-/// rotor-rotor).
+/// Evaluates kernel `$f` (a kernel of every bond type of the law's kernels `$K`, a
+/// [`LawKernels`](crate::kernel::LawKernels)) on every bond of every group of `$model` at `$x`,
+/// calling `$body` with the group, the bond's index in it and the outputs as a slice. `$m` lists
+/// the kernel's output count per bond type (joint-joint, joint-rotor, rotor-rotor).
 macro_rules! each_bond {
-    ($model:expr, $x:expr, $trig:expr, $f:ident, [$m1:literal, $m2:literal, $m3:literal], |$g:ident, $i:ident, $out:ident| $body:block) => {{
-        use $crate::kernel::BondFn;
+    ($model:expr, $K:ty, $x:expr, $trig:expr, $f:ident, [$m1:literal, $m2:literal, $m3:literal], |$g:ident, $i:ident, $out:ident| $body:block) => {{
+        use $crate::kernel::{BondFn, BondKernels, LawKernels};
         let model = $model;
         let (x, trig): (&[f64], &[[f64; 2]]) = ($x, $trig);
-        macro_rules! run {
-            ($law:ident) => {{
-                let [jj, jr, rr] = &model.groups;
-                for ($g, which) in [(jj, 0), (jr, 1), (rr, 2)] {
-                    for $i in 0..$g.len() {
-                        let outputs: &[f64] = match which {
-                            0 => &<$crate::kernel::$law::joint_joint::$f as BondFn<8, $m1>>::eval::<f64>(
-                                $g.args::<8>($i, x, trig, &model.rotor_of),
-                            ),
-                            1 => &<$crate::kernel::$law::joint_rotor::$f as BondFn<9, $m2>>::eval::<f64>(
-                                $g.args::<9>($i, x, trig, &model.rotor_of),
-                            ),
-                            _ => &<$crate::kernel::$law::rotor_rotor::$f as BondFn<10, $m3>>::eval::<f64>(
-                                $g.args::<10>($i, x, trig, &model.rotor_of),
-                            ),
-                        };
-                        let $out = outputs;
-                        $body
-                    }
-                }
-            }};
-        }
-        match model.law {
-            chain_core::Law::Quartic => run!(quartic),
-            _ => run!(harmonic),
+        let [jj, jr, rr] = &model.groups;
+        for ($g, which) in [(jj, 0), (jr, 1), (rr, 2)] {
+            for $i in 0..$g.len() {
+                let outputs: &[f64] = match which {
+                    0 => &<<<$K as LawKernels>::JointJoint as BondKernels<8, 4, 5, 10, 15>>::$f as BondFn<8, $m1>>::eval::<f64>(
+                        $g.args::<8>($i, x, trig, &model.rotor_of),
+                    ),
+                    1 => &<<<$K as LawKernels>::JointRotor as BondKernels<9, 3, 4, 6, 10>>::$f as BondFn<9, $m2>>::eval::<f64>(
+                        $g.args::<9>($i, x, trig, &model.rotor_of),
+                    ),
+                    _ => &<<<$K as LawKernels>::RotorRotor as BondKernels<10, 2, 3, 3, 6>>::$f as BondFn<10, $m3>>::eval::<f64>(
+                        $g.args::<10>($i, x, trig, &model.rotor_of),
+                    ),
+                };
+                let $out = outputs;
+                $body
+            }
         }
     }};
 }

@@ -16,6 +16,7 @@ use std::sync::OnceLock;
 pub struct NetworkModelBuilder<'p, 'c> {
     patch: &'p Patch<'c>,
     law: Law,
+    kernels: Option<super::kernels::Kernels>,
     mass: f64,
     node_masses: Vec<([usize; 2], usize, f64)>,
     constants: Vec<(usize, f64)>,
@@ -39,6 +40,7 @@ impl<'p, 'c> NetworkModelBuilder<'p, 'c> {
         Self {
             patch,
             law: Law::Harmonic,
+            kernels: None,
             mass: 1.0,
             node_masses: Vec::new(),
             constants: Vec::new(),
@@ -49,6 +51,16 @@ impl<'p, 'c> NetworkModelBuilder<'p, 'c> {
     /// The spring law of every bond (default harmonic).
     pub fn law(mut self, law: Law) -> Self {
         self.law = law;
+        self
+    }
+
+    /// Evaluates every bond with the kernels `K` instead of the checked-in ones of the law: the
+    /// `#[rotor_network]` attribute's, rendered at compile time for its law (which may be a
+    /// custom one; [`NetworkModel::law`] then still reports the builder's [`Law`]). Not public
+    /// API: the attribute's generated code calls it through `rotor_chain::__private`.
+    #[doc(hidden)]
+    pub fn kernels<K: crate::kernel::LawKernels>(mut self) -> Self {
+        self.kernels = Some(super::kernels::Kernels::of::<K>());
         self
     }
 
@@ -198,8 +210,13 @@ impl<'p, 'c> NetworkModelBuilder<'p, 'c> {
             g.k.push(springs[p][0]);
             g.l0.push(springs[p][1]);
         }
+        let kernels = self.kernels.unwrap_or_else(|| match self.law {
+            Law::Quartic => super::kernels::Kernels::of::<crate::kernel::quartic::Law>(),
+            _ => super::kernels::Kernels::of::<crate::kernel::harmonic::Law>(),
+        });
         Ok(NetworkModel {
             law: self.law,
+            kernels,
             inertia,
             reference,
             rotor_of,

@@ -19,12 +19,14 @@
 //! from its joint end) into structs of arrays, and each group is evaluated with the generated
 //! kernels of [`crate::kernel`] (`bonds.rs`); every rotor's `sin_cos` is taken once per call.
 //! The energy and gradient (every step of a run or a relaxation) evaluate several bonds at once
-//! in vector lanes at the level chain-core's `simd` detects (`lanes.rs`).
+//! in vector lanes at the level chain-core's `simd` detects (`lanes.rs`). The passes are generic
+//! over the law's kernels and chosen when the model is built (`kernels.rs`).
 //! Spring `p` of the model is bond `p` of the patch (`Patch::bonds`).
 
 mod bonds;
 mod build;
 mod chain;
+mod kernels;
 mod lanes;
 mod traits;
 
@@ -40,6 +42,8 @@ use std::sync::OnceLock;
 #[derive(Debug)]
 pub struct NetworkModel {
     law: Law,
+    /// The passes of the law's kernels (the checked-in ones of `law`, or the attribute's).
+    kernels: kernels::Kernels,
     inertia: Vec<f64>,
     reference: Vec<f64>,
     /// The rotor index of each degree of freedom (`u32::MAX` for a joint's).

@@ -1,9 +1,11 @@
 //! Figures of periodic networks (issue 33) for the `network` command: drawings of a patch
 //! ([`NetworkDrawing`], rendered by `render`'s `network` part), the bands along a path, the
 //! phase of `det Q(k)` over the zone, a strip's spectrum with its edge zero modes, a zero mode's
-//! arrows, and the polarization phase diagram ([`diagram`]). Every figure is a [`Figure`](crate::Figure) of
+//! arrows, the polarization phase diagram ([`diagram`]), and issue 36's demonstrations
+//! ([`demonstration`]: the paper's chain declared as a network). Every figure is a [`Figure`](crate::Figure) of
 //! the paper's model, rendered to PNG and SVG by [`crate::render::render`].
 
+pub mod demonstration;
 pub mod diagram;
 mod figures;
 
