@@ -173,10 +173,11 @@ pub fn maxwell_calladine<M: SpringNetwork + ?Sized>(
 }
 
 /// The side of the largest compatibility matrix (its rows or columns, whichever are more) that a
-/// network's counting decomposes densely: 1024, where the SVD with vectors of the padded square
-/// matrix takes about 2 s on one core (nalgebra, AMD EPYC Zen 4), and cannot be stopped. A chain
-/// (the bidiagonal layout) has no such bound: its counting takes O(n) per Sturm count.
-pub const MAX_DENSE_SVD_SIDE: usize = 1024;
+/// network's counting decomposes densely: 512. The SVD with vectors of the padded square matrix
+/// cannot be stopped and grows as the cube of the side: 1.5 s at 512, 12 s at 1024 (nalgebra,
+/// release build, AMD EPYC Zen 4, one core; `examples/counting_time.rs dense N`). A chain (the
+/// bidiagonal layout) has no such bound: its counting takes O(n) per Sturm count.
+pub const MAX_DENSE_SVD_SIDE: usize = 512;
 
 /// [`maxwell_calladine`] with a stop question: a chain's counting (the bidiagonal layout) asks it
 /// before each singular value's bisection and each null vector's inverse iteration (each O(n))

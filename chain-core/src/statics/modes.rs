@@ -150,7 +150,7 @@ pub fn modes<M: ChainModel + ?Sized>(
 
 /// [`modes`] with a stop question, asked inside the eigensolver's loops (every QL iteration,
 /// each bisected eigenvalue, each inverse iteration) of a chain's tridiagonal problem: a yes ends
-/// the call with [`LinalgError::Stopped`](crate::linalg::LinalgError::Stopped) (Python's Ctrl-C
+/// the call with [`LinalgError::Stopped`] (Python's Ctrl-C
 /// stops `Chain.modes` this way).
 ///
 /// # Errors
