@@ -98,7 +98,10 @@ fn parse_cells(cx: &Ctxt, tokens: &[TokenTree]) -> Option<Vec<usize>> {
         [TokenTree::Literal(_)] => vec![tokens.clone()],
         _ => {
             let stream: TokenStream = tokens.into_iter().collect();
-            cx.error_spanned_by(stream, "`cells` takes the patch's size: `cells = (16, 16)`, or `cells = 60` in one dimension");
+            cx.error_spanned_by(
+                stream,
+                "`cells` takes the patch's size: `cells = (16, 16)`, or `cells = 60` in one dimension",
+            );
             return None;
         }
     };
@@ -149,7 +152,9 @@ pub fn parse(cx: &Ctxt, attr: TokenStream) -> Spec {
             continue;
         }
         match &item[1..] {
-            [TokenTree::Punct(eq), value @ ..] if eq.as_char() == '=' && !starts_with_punct(value, &['=', '>']) => {
+            [TokenTree::Punct(eq), value @ ..]
+                if eq.as_char() == '=' && !starts_with_punct(value, &['=', '>']) =>
+            {
                 if value.is_empty() {
                     cx.error_at(eq.span(), format!("`{name}` needs a value after `=`"));
                 } else {
@@ -159,7 +164,9 @@ pub fn parse(cx: &Ctxt, attr: TokenStream) -> Spec {
             [TokenTree::Group(args)] if args.delimiter() == Delimiter::Parenthesis && name == "spring" => {
                 parse_spring(cx, &mut spec, key, args.stream())
             }
-            [] if name == "spring" => cx.error_spanned_by(&key, "`spring` takes arguments: `spring(index, k = ..)`"),
+            [] if name == "spring" => {
+                cx.error_spanned_by(&key, "`spring` takes arguments: `spring(index, k = ..)`")
+            }
             _ => cx.error_spanned_by(&key, format!("`{name}` needs a value: `{name} = ..`")),
         }
     }

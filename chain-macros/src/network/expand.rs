@@ -59,7 +59,12 @@ const METHODS: [Method; 18] = [
     Method { rung: "SpringNetwork", name: "rest_length", params: &[("p", "usize")], returns: "f64" },
     Method { rung: "SpringNetwork", name: "spring_lengths_into", params: &[X, OUT], returns: "()" },
     Method { rung: "SpringNetwork", name: "tensions_into", params: &[X, OUT], returns: "()" },
-    Method { rung: "SpringNetwork", name: "compatibility_layout", params: &[], returns: "CompatibilityLayout<'_>" },
+    Method {
+        rung: "SpringNetwork",
+        name: "compatibility_layout",
+        params: &[],
+        returns: "CompatibilityLayout<'_>",
+    },
     Method { rung: "SpringNetwork", name: "compatibility_into", params: &[X, VALUES], returns: "()" },
     Method { rung: "SpringNetwork", name: "material_stiffness_into", params: &[X, VALUES], returns: "()" },
     Method { rung: "SpringNetwork", name: "stress_matrix_into", params: &[X, VALUES], returns: "()" },

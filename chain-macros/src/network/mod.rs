@@ -86,9 +86,13 @@ mod tests {
         )
         .to_string();
         let dir = env!("CARGO_MANIFEST_DIR");
-        assert!(file.contains(&format!(":: core :: include_str ! (\"{dir}/../docs/cells/kagome.toml\")")), "{file}");
+        assert!(
+            file.contains(&format!(":: core :: include_str ! (\"{dir}/../docs/cells/kagome.toml\")")),
+            "{file}"
+        );
         assert!(!file.contains("compile_error"), "a valid declaration");
-        let ready = super::expand(quote!(ready = "kagome", cells = (2, 2), boundary = "free"), item).to_string();
+        let ready =
+            super::expand(quote!(ready = "kagome", cells = (2, 2), boundary = "free"), item).to_string();
         assert!(!ready.contains("include_str") && ready.contains("CellSource :: Ready (\"kagome\")"));
     }
 }

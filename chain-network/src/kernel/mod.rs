@@ -23,7 +23,6 @@
 
 pub use chain_core::simd::Lane;
 
-
 /// The harmonic law `k (l - l0)^2 / 2`.
 #[rustfmt::skip]
 pub mod harmonic;

@@ -108,15 +108,18 @@ macro_rules! each_bond {
         for ($g, which) in [(jj, 0), (jr, 1), (rr, 2)] {
             for $i in 0..$g.len() {
                 let outputs: &[f64] = match which {
-                    0 => &<<<$K as LawKernels>::JointJoint as BondKernels<8, 4, 5, 10, 15>>::$f as BondFn<8, $m1>>::eval::<f64>(
-                        $g.args::<8>($i, x, trig, &model.rotor_of),
-                    ),
-                    1 => &<<<$K as LawKernels>::JointRotor as BondKernels<9, 3, 4, 6, 10>>::$f as BondFn<9, $m2>>::eval::<f64>(
-                        $g.args::<9>($i, x, trig, &model.rotor_of),
-                    ),
-                    _ => &<<<$K as LawKernels>::RotorRotor as BondKernels<10, 2, 3, 3, 6>>::$f as BondFn<10, $m3>>::eval::<f64>(
-                        $g.args::<10>($i, x, trig, &model.rotor_of),
-                    ),
+                    0 => &<<<$K as LawKernels>::JointJoint as BondKernels<8, 4, 5, 10, 15>>::$f as BondFn<
+                        8,
+                        $m1,
+                    >>::eval::<f64>($g.args::<8>($i, x, trig, &model.rotor_of)),
+                    1 => &<<<$K as LawKernels>::JointRotor as BondKernels<9, 3, 4, 6, 10>>::$f as BondFn<
+                        9,
+                        $m2,
+                    >>::eval::<f64>($g.args::<9>($i, x, trig, &model.rotor_of)),
+                    _ => &<<<$K as LawKernels>::RotorRotor as BondKernels<10, 2, 3, 3, 6>>::$f as BondFn<
+                        10,
+                        $m3,
+                    >>::eval::<f64>($g.args::<10>($i, x, trig, &model.rotor_of)),
                 };
                 let $out = outputs;
                 $body

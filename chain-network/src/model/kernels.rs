@@ -18,18 +18,27 @@ pub(super) enum Block {
     All,
 }
 
+/// The rotors' `[sin, cos]`, rotor by rotor.
+type Trig = [[f64; 2]];
+
+/// A pass over every bond writing one output array.
+type Pass<R> = fn(&NetworkModel, &[f64], &Trig, &mut [f64]) -> R;
+
+/// The block pass: the values, which block, and for the fused block the gradient.
+type BlockPass = fn(&NetworkModel, &[f64], &Trig, &mut [f64], Block, Option<&mut [f64]>) -> f64;
+
 /// One law's passes (each takes the model, `x` and the rotors' `[sin, cos]`).
 #[derive(Clone, Copy, Debug)]
 pub(super) struct Kernels {
-    pub energy: fn(&NetworkModel, &[f64], &[[f64; 2]]) -> f64,
+    pub energy: fn(&NetworkModel, &[f64], &Trig) -> f64,
     /// The gradient into the output (zeroed first), in vector lanes.
-    pub gradient: fn(&NetworkModel, &[f64], &[[f64; 2]], &mut [f64]) -> f64,
+    pub gradient: Pass<f64>,
     /// The energy, and the gradient into the output (zeroed first), in vector lanes.
-    pub energy_gradient: fn(&NetworkModel, &[f64], &[[f64; 2]], &mut [f64]) -> f64,
-    pub blocks: fn(&NetworkModel, &[f64], &[[f64; 2]], &mut [f64], Block, Option<&mut [f64]>) -> f64,
+    pub energy_gradient: Pass<f64>,
+    pub blocks: BlockPass,
     /// One value per spring: tensions (`true`) or lengths.
-    pub per_spring: fn(&NetworkModel, &[f64], &[[f64; 2]], &mut [f64], bool),
-    pub compatibility: fn(&NetworkModel, &[f64], &[[f64; 2]], &mut [f64]),
+    pub per_spring: [Pass<()>; 2],
+    pub compatibility: Pass<()>,
 }
 
 impl Kernels {
@@ -40,7 +49,7 @@ impl Kernels {
             gradient: super::lanes::gradient::<K, false>,
             energy_gradient: super::lanes::gradient::<K, true>,
             blocks: blocks::<K>,
-            per_spring: per_spring::<K>,
+            per_spring: [per_spring::<K, false>, per_spring::<K, true>],
             compatibility: compatibility::<K>,
         }
     }
@@ -96,8 +105,8 @@ fn blocks<K: LawKernels>(
 }
 
 /// One value per spring from a one-output kernel, into `out` by spring index.
-fn per_spring<K: LawKernels>(m: &NetworkModel, x: &[f64], trig: &[[f64; 2]], out: &mut [f64], tension: bool) {
-    if tension {
+fn per_spring<K: LawKernels, const TENSION: bool>(m: &NetworkModel, x: &[f64], trig: &Trig, out: &mut [f64]) {
+    if TENSION {
         each_bond!(m, K, x, trig, Tension, [1, 1, 1], |g, i, v| { out[g.spring[i]] = v[0] });
     } else {
         each_bond!(m, K, x, trig, Length, [1, 1, 1], |g, i, v| { out[g.spring[i]] = v[0] });
