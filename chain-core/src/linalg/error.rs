@@ -108,6 +108,17 @@ pub enum LinalgError {
         /// The pattern's rows.
         found: usize,
     },
+    /// The caller's stop question (Ctrl-C in Python) answered yes: the computation stopped after
+    /// `done` of its `of` steps (eigenvalues, eigenvectors or iterations, as `what` says).
+    #[error("stopped on request after {done} of {of} {what}")]
+    Stopped {
+        /// What the steps are.
+        what: &'static str,
+        /// Steps finished.
+        done: usize,
+        /// Steps there were to do (an upper bound for iterations).
+        of: usize,
+    },
     /// A sparse matrix too large for the dense path (`n x n` numbers above the bound).
     #[error("a {n} x {n} matrix is too large for the dense algorithms: at most {max} numbers")]
     TooLarge {

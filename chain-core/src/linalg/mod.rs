@@ -16,6 +16,13 @@
 //! - [`inverse_iteration`]: [`lowest_eigenpairs`], [`eigenpairs_near`],
 //!   [`eigenpairs_in_index_range`], bisection and then inverse iteration, re-orthogonalised
 //!   within clusters. O(n) per eigenpair outside large clusters.
+//!
+//! The long computations take a stop question (`..._with`), asked at every QL iteration and
+//! before each bisected eigenvalue and each inverse iteration, and end with
+//! [`LinalgError::Stopped`] when it answers yes.
+//! - `golub_kahan`: a bidiagonal's singular values to relative accuracy and its null spaces,
+//!   through the Sturm counts and inverse iteration of its Golub-Kahan tridiagonal. O(n) per
+//!   count (the chain's Maxwell-Calladine counting).
 //! - [`solve`](mod@solve): [`solve`](fn@solve), [`solve_shifted`], Gaussian elimination with
 //!   partial pivoting. O(n).
 //!
@@ -56,6 +63,8 @@ mod bands;
 pub mod bisection;
 pub mod error;
 #[cfg(feature = "alloc")]
+pub(crate) mod golub_kahan;
+#[cfg(feature = "alloc")]
 pub mod inverse_iteration;
 #[cfg(feature = "alloc")]
 pub mod ql;
@@ -72,9 +81,11 @@ mod symmetric;
 pub use bisection::eigenvalues_in_index_range;
 pub use error::{Input, LinalgError};
 #[cfg(feature = "alloc")]
-pub use inverse_iteration::{Eigenpair, eigenpairs_in_index_range, eigenpairs_near, lowest_eigenpairs};
+pub use inverse_iteration::{
+    Eigenpair, eigenpairs_in_index_range, eigenpairs_in_index_range_with, eigenpairs_near, lowest_eigenpairs,
+};
 #[cfg(feature = "alloc")]
-pub use ql::{eigenpairs, eigenvalues, eigenvalues_ql};
+pub use ql::{eigenpairs, eigenpairs_with, eigenvalues, eigenvalues_ql};
 #[cfg(feature = "alloc")]
 pub use solve::{solve, solve_shifted};
 #[cfg(feature = "alloc")]
