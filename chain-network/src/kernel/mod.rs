@@ -31,6 +31,12 @@ pub mod harmonic;
 #[rustfmt::skip]
 pub mod quartic;
 
+/// The polynomial law `k sum_{j=2..6} c_j (l - l0)^j / j` (`chain_cell::Polynomial`), its
+/// coefficients `c2 .. c6` taken after each type's arguments above as `p2 .. p6` (13, 14 and 15
+/// arguments).
+#[rustfmt::skip]
+pub mod polynomial;
+
 /// One rendered per-bond kernel with `A` arguments and `M` outputs, generic over the lane type.
 pub trait BondFn<const A: usize, const M: usize> {
     /// The outputs for the arguments `x` (the module doc's table), lane by lane.
