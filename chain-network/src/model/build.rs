@@ -3,10 +3,10 @@
 
 use super::NetworkModel;
 use super::bonds::{Group, Kind};
-use crate::cell::NodeKind;
+use super::law::{IntoBondLaw, kernel_of};
+use crate::cell::{BondLaw, NodeKind};
 use crate::error::NetworkError;
 use crate::patch::Patch;
-use chain_core::Law;
 use std::sync::OnceLock;
 
 /// A builder for a [`NetworkModel`]; see [`NetworkModel::builder`]. Overrides name a spring by
@@ -15,7 +15,8 @@ use std::sync::OnceLock;
 #[derive(Clone, Debug)]
 pub struct NetworkModelBuilder<'p, 'c> {
     patch: &'p Patch<'c>,
-    law: Law,
+    law: Option<BondLaw>,
+    spring_laws: Vec<(usize, BondLaw)>,
     mass: f64,
     node_masses: Vec<([usize; 2], usize, f64)>,
     constants: Vec<(usize, f64)>,
@@ -38,7 +39,8 @@ impl<'p, 'c> NetworkModelBuilder<'p, 'c> {
     pub(super) fn new(patch: &'p Patch<'c>) -> Self {
         Self {
             patch,
-            law: Law::Harmonic,
+            law: None,
+            spring_laws: Vec::new(),
             mass: 1.0,
             node_masses: Vec::new(),
             constants: Vec::new(),
@@ -46,9 +48,17 @@ impl<'p, 'c> NetworkModelBuilder<'p, 'c> {
         }
     }
 
-    /// The spring law of every bond (default harmonic).
-    pub fn law(mut self, law: Law) -> Self {
-        self.law = law;
+    /// The spring law of every bond (default: each bond's law in the cell, harmonic unless the
+    /// cell says otherwise): a cell's [`BondLaw`] or chain-core's `Law`.
+    pub fn law(mut self, law: impl IntoBondLaw) -> Self {
+        self.law = Some(law.into_bond_law());
+        self
+    }
+
+    /// The spring law of spring `p` (the patch's bond `p`), over [`law`](Self::law) and the
+    /// cell. Quartic springs cannot be mixed with others (the build's error says which).
+    pub fn spring_law(mut self, p: usize, law: impl IntoBondLaw) -> Self {
+        self.spring_laws.push((p, law.into_bond_law()));
         self
     }
 
@@ -117,6 +127,19 @@ impl<'p, 'c> NetworkModelBuilder<'p, 'c> {
                 springs[p][slot] = positive(what, format!("spring {p}"), value)?;
             }
         }
+
+        let mut laws: Vec<BondLaw> =
+            patch.bonds().iter().map(|pb| self.law.unwrap_or(cell.bonds()[pb.bond].law)).collect();
+        for &(p, law) in &self.spring_laws {
+            if p >= springs_count {
+                return Err(NetworkError::Argument {
+                    what: "spring law",
+                    problem: format!("spring {p}: the patch has {springs_count} springs"),
+                });
+            }
+            laws[p] = law;
+        }
+        let (kernel, coefficients) = kernel_of(&laws)?;
 
         let dof = patch.dof();
         let mut inertia = vec![0.0; dof];
@@ -197,9 +220,12 @@ impl<'p, 'c> NetworkModelBuilder<'p, 'c> {
             g.radius.push(radius);
             g.k.push(springs[p][0]);
             g.l0.push(springs[p][1]);
+            if let Some(c) = coefficients.get(p) {
+                g.coefficients.push(*c);
+            }
         }
         Ok(NetworkModel {
-            law: self.law,
+            law: kernel,
             inertia,
             reference,
             rotor_of,

@@ -6,6 +6,7 @@
 
 use super::NetworkModel;
 use super::bonds::Group;
+use super::law::Kernel;
 use crate::kernel::BondFn;
 use chain_core::simd::{Vector, WithLanes, dispatch};
 
@@ -75,13 +76,13 @@ pub(super) struct Gradient<'a, const ENERGY: bool> {
 }
 
 macro_rules! groups {
-    ($self:ident, $V:ident, $law:ident, $f:ident, [$m1:literal, $m2:literal, $m3:literal], $energy:literal) => {{
+    ($self:ident, $V:ident, $law:ident, [$a1:literal, $a2:literal, $a3:literal], $f:ident, [$m1:literal, $m2:literal, $m3:literal], $energy:literal) => {{
         use crate::kernel::$law::{joint_joint, joint_rotor, rotor_rotor};
         let m = $self.model;
         let [jj, jr, rr] = &m.groups;
-        group::<$V, 8, $m1, joint_joint::$f, $energy>(jj, $self.x, $self.trig, &m.rotor_of, $self.out)
-            + group::<$V, 9, $m2, joint_rotor::$f, $energy>(jr, $self.x, $self.trig, &m.rotor_of, $self.out)
-            + group::<$V, 10, $m3, rotor_rotor::$f, $energy>(rr, $self.x, $self.trig, &m.rotor_of, $self.out)
+        group::<$V, $a1, $m1, joint_joint::$f, $energy>(jj, $self.x, $self.trig, &m.rotor_of, $self.out)
+            + group::<$V, $a2, $m2, joint_rotor::$f, $energy>(jr, $self.x, $self.trig, &m.rotor_of, $self.out)
+            + group::<$V, $a3, $m3, rotor_rotor::$f, $energy>(rr, $self.x, $self.trig, &m.rotor_of, $self.out)
     }};
 }
 
@@ -90,8 +91,9 @@ impl WithLanes for Gradient<'_, true> {
     #[inline(always)]
     fn run<V: Vector>(self) -> f64 {
         match self.model.law {
-            chain_core::Law::Quartic => groups!(self, V, quartic, EnergyGradient, [5, 4, 3], true),
-            _ => groups!(self, V, harmonic, EnergyGradient, [5, 4, 3], true),
+            Kernel::Harmonic => groups!(self, V, harmonic, [8, 9, 10], EnergyGradient, [5, 4, 3], true),
+            Kernel::Quartic => groups!(self, V, quartic, [8, 9, 10], EnergyGradient, [5, 4, 3], true),
+            Kernel::Polynomial => groups!(self, V, polynomial, [13, 14, 15], EnergyGradient, [5, 4, 3], true),
         }
     }
 }
@@ -101,8 +103,9 @@ impl WithLanes for Gradient<'_, false> {
     #[inline(always)]
     fn run<V: Vector>(self) -> f64 {
         match self.model.law {
-            chain_core::Law::Quartic => groups!(self, V, quartic, Gradient, [4, 3, 2], false),
-            _ => groups!(self, V, harmonic, Gradient, [4, 3, 2], false),
+            Kernel::Harmonic => groups!(self, V, harmonic, [8, 9, 10], Gradient, [4, 3, 2], false),
+            Kernel::Quartic => groups!(self, V, quartic, [8, 9, 10], Gradient, [4, 3, 2], false),
+            Kernel::Polynomial => groups!(self, V, polynomial, [13, 14, 15], Gradient, [4, 3, 2], false),
         }
     }
 }

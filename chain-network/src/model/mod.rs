@@ -26,20 +26,24 @@ mod bonds;
 mod build;
 mod chain;
 mod lanes;
+mod law;
 mod traits;
 
 pub use build::NetworkModelBuilder;
 pub use chain::ChainView;
+pub use law::IntoBondLaw;
 
 use crate::patch::Patch;
+use crate::cell::{BondLaw, Polynomial};
 use bonds::Group;
-use chain_core::Law;
+use law::Kernel;
 use std::sync::OnceLock;
 
 /// A finite patch of a network as a mechanical model. Build one with [`NetworkModel::builder`].
 #[derive(Debug)]
 pub struct NetworkModel {
-    law: Law,
+    /// The kernel module every bond is evaluated with (`law.rs`).
+    law: Kernel,
     inertia: Vec<f64>,
     reference: Vec<f64>,
     /// The rotor index of each degree of freedom (`u32::MAX` for a joint's).
@@ -55,8 +59,8 @@ pub struct NetworkModel {
 }
 
 impl NetworkModel {
-    /// A builder for the model of `patch` (harmonic law, unit masses, the cell's constants and
-    /// rest lengths, until changed).
+    /// A builder for the model of `patch` (unit masses, the cell's laws, constants and rest
+    /// lengths, until changed).
     pub fn builder<'p, 'c>(patch: &'p Patch<'c>) -> NetworkModelBuilder<'p, 'c> {
         NetworkModelBuilder::new(patch)
     }
@@ -67,9 +71,16 @@ impl NetworkModel {
         self.reference.clone()
     }
 
-    /// The spring law.
-    pub fn law(&self) -> Law {
-        self.law
+    /// The law of spring `p` (the patch's bond `p`), or `None` past the last spring. A harmonic
+    /// spring of a model that also has polynomial springs is reported as the polynomial `c2 = 1`
+    /// it is evaluated as. Looks the spring up among the bonds: O(bonds).
+    pub fn spring_law(&self, p: usize) -> Option<BondLaw> {
+        let (g, i) = self.groups.iter().find_map(|g| g.spring.iter().position(|&s| s == p).map(|i| (g, i)))?;
+        Some(match self.law {
+            Kernel::Harmonic => BondLaw::Harmonic,
+            Kernel::Quartic => BondLaw::Quartic,
+            Kernel::Polynomial => BondLaw::Polynomial(Polynomial { coefficients: g.coefficients[i] }),
+        })
     }
 
     /// The number of rotors.
