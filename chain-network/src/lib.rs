@@ -35,6 +35,7 @@ pub mod guest;
 pub mod kernel;
 pub mod linalg;
 pub mod model;
+pub mod motion;
 pub mod patch;
 pub mod strip;
 pub mod winding;
