@@ -1,13 +1,16 @@
 //! Figures of periodic networks (issue 33) for the `network` command: drawings of a patch
 //! ([`NetworkDrawing`], rendered by `render`'s `network` part), the bands along a path, the
 //! phase of `det Q(k)` over the zone, a strip's spectrum with its edge zero modes, a zero mode's
-//! arrows, and the polarization phase diagram ([`diagram`]). Every figure is a [`Figure`](crate::Figure) of
+//! arrows, the polarization phase diagram ([`diagram`]), and the networks in motion: a
+//! transition wave in a bistable chain ([`transition_figure`]). Every figure is a [`Figure`](crate::Figure) of
 //! the paper's model, rendered to PNG and SVG by [`crate::render::render`].
 
 pub mod diagram;
 mod figures;
+mod transition;
 
 pub use figures::{bands_figure, cell_figure};
+pub use transition::transition_figure;
 
 use std::fmt::Write as _;
 
