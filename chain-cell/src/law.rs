@@ -32,11 +32,13 @@ pub struct Polynomial {
 
 /// Why a list of coefficients is not a polynomial law (the cell reader turns it into a
 /// `CellError` at the key's line).
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum PolynomialProblem {
     /// Empty, or more than the five coefficients `c2 .. c6`.
+    #[error("{0} coefficients: a polynomial law takes one to five (c2 .. c6)")]
     Count(usize),
     /// Coefficient `c_{index + 2}` is NaN or infinite.
+    #[error("coefficient c{} = {value} is not a finite number", index + 2)]
     NotFinite {
         /// The coefficient's index in the list (0 for `c2`).
         index: usize,
