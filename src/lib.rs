@@ -190,6 +190,10 @@ pub use chain_network as network;
 #[doc = include_str!("attribute.md")]
 #[doc(inline)]
 pub use chain_macros::rotor_chain;
+// A patch of a periodic network as a struct; its page is written here for the same reason.
+#[doc = include_str!("network_attribute.md")]
+#[doc(inline)]
+pub use chain_macros::rotor_network;
 /// The paper's figures as functions of any chain's parameters, outcome grids of your own sweeps,
 /// and their PNG, SVG and CSV output (feature `figures`; the crate rotor-chain-paper).
 #[cfg(feature = "figures")]
@@ -236,8 +240,79 @@ pub mod __private {
     /// invalid chain add no "no method named `energy`" errors). Those stubs exist only in a crate
     /// that fails to compile, so this is never called.
     pub fn invalid_chain<T>() -> T {
-        panic!("#[rotor_chain] stub called: the chain's declaration has compile errors")
+        panic!("#[rotor_chain] or #[rotor_network] stub called: the declaration has compile errors")
     }
+
+    /// The network support of `#[rotor_network]` (feature `network`).
+    #[cfg(feature = "network")]
+    pub mod network {
+        pub use chain_network::NetworkModel;
+        pub use chain_network::kernel::{BondFn, BondKernels, Lane, LawKernels};
+        pub use std::sync::OnceLock;
+
+        use chain_network::cell::{Cell, ready};
+        use chain_network::patch::{Boundary, Patch};
+
+        /// Where a `#[rotor_network]` struct's cell comes from.
+        pub enum CellSource {
+            /// The text of a cell file (taken in with `include_str!`).
+            Toml(&'static str),
+            /// A ready cell without parameters, by name (`ready::by_name`).
+            Ready(&'static str),
+        }
+
+        /// The model of a `#[rotor_network]` struct with the kernels `K` its attribute derived:
+        /// the cell, the patch of `cells` and the overrides `(spring, k, l0)`. The attribute
+        /// checked the cell, the size against the dimension, the boundary's minimum and the
+        /// overrides at compile time; what it cannot check (a patch beyond
+        /// `patch::MAX_PATCH_BONDS`, periodic images of a bond that meet once wrapped) panics here,
+        /// at the first use, with the library's error.
+        pub fn model<K: LawKernels>(
+            source: CellSource,
+            cells: [usize; 2],
+            periodic: bool,
+            mass: f64,
+            springs: &[(usize, Option<f64>, Option<f64>)],
+        ) -> NetworkModel {
+            let fail = |e: &dyn std::fmt::Display| -> ! { panic!("#[rotor_network]: {e}") };
+            let cell: Cell = match source {
+                CellSource::Toml(text) => Cell::from_toml_str(text).unwrap_or_else(|e| fail(&e)),
+                CellSource::Ready(name) => ready::by_name(name, &[]).unwrap_or_else(|e| fail(&e)),
+            };
+            let boundary = if periodic { Boundary::Periodic } else { Boundary::Free };
+            let patch = Patch::new(&cell, cells, boundary).unwrap_or_else(|e| fail(&e));
+            let mut builder = NetworkModel::builder(&patch).kernels::<K>().mass(mass);
+            for &(p, k, l0) in springs {
+                if let Some(k) = k {
+                    builder = builder.spring_constant(p, k);
+                }
+                if let Some(l0) = l0 {
+                    builder = builder.rest_length(p, l0);
+                }
+            }
+            builder.build().unwrap_or_else(|e| fail(&e))
+        }
+    }
+
+    /// Nothing with the `network` feature; without it, the error that says a `#[rotor_network]`
+    /// struct needs it.
+    #[cfg(feature = "network")]
+    #[doc(hidden)]
+    #[macro_export]
+    macro_rules! __rotor_chain_require_network {
+        () => {};
+    }
+    #[cfg(not(feature = "network"))]
+    #[doc(hidden)]
+    #[macro_export]
+    macro_rules! __rotor_chain_require_network {
+        () => {
+            ::core::compile_error!(
+                "#[rotor_network] needs the `network` feature of rotor-chain (on by default)"
+            );
+        };
+    }
+    pub use crate::__rotor_chain_require_network as require_network;
 
     /// `theta` as a fixed-size array, for the slice-based model-trait methods.
     ///

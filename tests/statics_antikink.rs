@@ -107,6 +107,10 @@ fn antikink_at_the_printed_angle_is_a_minimum_and_a_saddle_of_the_reference() {
     let v_saddle = reference_equilibrium(0.58, &saddle.theta, 1, "saddle");
     assert_close(min.energy, v_min, 1e-12, "V_min");
     assert_close(pn.barrier, v_saddle - v_min, 1e-9, "barrier");
+    // The numbers docs/statics.md §3 and the paper figures' test (chain-paper/tests/statics_a.rs)
+    // quote, rounded to 1e-6: the reference model's own energies.
+    assert!((v_min - 1392.029215).abs() <= 5e-7, "V_min = {v_min}");
+    assert!((v_saddle - v_min - 0.668267).abs() <= 5e-7, "barrier = {}", v_saddle - v_min);
     // Below the continuum's Eq. (eq:akenergy), 1.61e3: discreteness lowers it.
     let continuum = K * continuum_antikink_energy(0.58);
     assert!(v_min < continuum, "{v_min} vs {continuum}");

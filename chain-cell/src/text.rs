@@ -57,7 +57,8 @@ fn raw_law(value: toml::Value) -> RawLaw {
                             _ => None,
                         })
                         .collect();
-                    numbers.map_or_else(|| RawLaw::Other("a list with a non-number".into()), RawLaw::Polynomial)
+                    numbers
+                        .map_or_else(|| RawLaw::Other("a list with a non-number".into()), RawLaw::Polynomial)
                 }
                 other => RawLaw::Other(format!("`polynomial = ` a {}", other.type_str())),
             }

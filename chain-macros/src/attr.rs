@@ -102,7 +102,7 @@ pub fn suggest<'a>(unknown: &str, known: &[&'a str]) -> Option<&'a str> {
 }
 
 /// Reports an unknown key; returns the suggested key, if any.
-fn unknown_key<'a>(cx: &Ctxt, ident: &Ident, known: &[&'a str], context: &str) -> Option<&'a str> {
+pub(crate) fn unknown_key<'a>(cx: &Ctxt, ident: &Ident, known: &[&'a str], context: &str) -> Option<&'a str> {
     let name = ident.unraw().to_string();
     let list = quoted(known);
     let suggestion = suggest(&name, known);
@@ -114,7 +114,7 @@ fn unknown_key<'a>(cx: &Ctxt, ident: &Ident, known: &[&'a str], context: &str) -
 }
 
 /// Sets `slot` unless it is already set, in which case reports a duplicate.
-fn set_once<T>(cx: &Ctxt, slot: &mut Option<Keyed<T>>, keyed: Keyed<T>, context: &str) {
+pub(crate) fn set_once<T>(cx: &Ctxt, slot: &mut Option<Keyed<T>>, keyed: Keyed<T>, context: &str) {
     if slot.is_some() {
         cx.error_spanned_by(&keyed.key, format!("duplicate key `{}`{context}", keyed.key.unraw()));
     } else {
@@ -124,7 +124,7 @@ fn set_once<T>(cx: &Ctxt, slot: &mut Option<Keyed<T>>, keyed: Keyed<T>, context:
 
 /// The items of an attribute or of an override's arguments: the tokens between top-level commas
 /// (empty items, as after a trailing comma, are dropped).
-fn split_commas(tokens: TokenStream) -> Vec<Vec<TokenTree>> {
+pub(crate) fn split_commas(tokens: TokenStream) -> Vec<Vec<TokenTree>> {
     let mut items = vec![Vec::new()];
     for tt in tokens {
         match &tt {
@@ -137,7 +137,7 @@ fn split_commas(tokens: TokenStream) -> Vec<Vec<TokenTree>> {
 }
 
 /// `tokens` without the invisible groups a `macro_rules!` expansion wraps around a fragment.
-fn unwrap_invisible(mut tokens: Vec<TokenTree>) -> Vec<TokenTree> {
+pub(crate) fn unwrap_invisible(mut tokens: Vec<TokenTree>) -> Vec<TokenTree> {
     while let [TokenTree::Group(g)] = tokens.as_slice() {
         if g.delimiter() != Delimiter::None {
             break;
@@ -258,7 +258,7 @@ fn compact_path(names: &[&str]) -> String {
     names.join("::")
 }
 
-fn parse_usize(cx: &Ctxt, tokens: &[TokenTree], what: &str) -> Option<usize> {
+pub(crate) fn parse_usize(cx: &Ctxt, tokens: &[TokenTree], what: &str) -> Option<usize> {
     let tokens = unwrap_invisible(tokens.to_vec());
     let mut message = format!("{what} must be a non-negative integer literal");
     if let [TokenTree::Literal(lit)] = tokens.as_slice()
@@ -277,12 +277,12 @@ fn parse_usize(cx: &Ctxt, tokens: &[TokenTree], what: &str) -> Option<usize> {
 
 /// Whether `tokens` starts with one of the punctuation characters `chars` (`==` and `=>` are
 /// not `=`).
-fn starts_with_punct(tokens: &[TokenTree], chars: &[char]) -> bool {
+pub(crate) fn starts_with_punct(tokens: &[TokenTree], chars: &[char]) -> bool {
     matches!(tokens.first(), Some(TokenTree::Punct(p)) if chars.contains(&p.as_char()))
 }
 
 /// The span of a token list (its first token), or `fallback` for an empty one.
-fn first_span(tokens: &[TokenTree], fallback: Span) -> Span {
+pub(crate) fn first_span(tokens: &[TokenTree], fallback: Span) -> Span {
     tokens.first().map_or(fallback, TokenTree::span)
 }
 
@@ -456,7 +456,7 @@ fn parse_override(cx: &Ctxt, spec: &mut Spec, key: Ident, args: TokenStream) {
     }
 }
 
-fn quoted(keys: &[&str]) -> String {
+pub(crate) fn quoted(keys: &[&str]) -> String {
     keys.iter().map(|k| format!("`{k}`")).collect::<Vec<_>>().join(", ")
 }
 

@@ -17,6 +17,7 @@ mod fallback;
 mod fuzz;
 mod law;
 mod model;
+mod network;
 mod traits;
 mod valid;
 
@@ -29,4 +30,11 @@ use proc_macro::TokenStream;
 #[proc_macro_attribute]
 pub fn rotor_chain(attr: TokenStream, item: TokenStream) -> TokenStream {
     expand::expand(attr.into(), item.into()).into()
+}
+
+/// *Defined in the `chain-macros` crate; documented, with runnable examples, on its re-export
+/// `rotor_chain::rotor_network` (docs/network.md §10.1 and the facade's doctests).*
+#[proc_macro_attribute]
+pub fn rotor_network(attr: TokenStream, item: TokenStream) -> TokenStream {
+    network::expand(attr.into(), item.into()).into()
 }

@@ -20,8 +20,14 @@ fn the_front_moves_at_the_continuums_speed() {
     let by_hand = 4.0 * (1.0f64 / 3.0).sqrt();
     assert!((wave.predicted - by_hand).abs() < 1e-12, "{}", wave.predicted);
     let (v, fit) = (wave.speed(), wave.fit);
-    eprintln!("measured {v:.5}, continuum {:.5}, relative {:+.3e}, rms {:.2e} over {} points, width {:.3}",
-        wave.predicted, wave.relative_difference(), fit.rms_residual, fit.points, chain.continuum_width());
+    eprintln!(
+        "measured {v:.5}, continuum {:.5}, relative {:+.3e}, rms {:.2e} over {} points, width {:.3}",
+        wave.predicted,
+        wave.relative_difference(),
+        fit.rms_residual,
+        fit.points,
+        chain.continuum_width()
+    );
     // A steady front: the positions lie on the line to a few hundredths of a site (what is left
     // is the launch's decaying oscillation of the speed).
     assert!(fit.rms_residual < 0.06, "rms residual {}", fit.rms_residual);
@@ -35,7 +41,12 @@ fn the_speed_follows_the_damping_as_the_closed_form_says() {
     let wave = chain.run().unwrap();
     eprintln!("gamma 1: measured {:.5}, continuum {:.5}", wave.speed(), wave.predicted);
     assert!((wave.predicted - 4.0 * (1.0f64 / 9.0).sqrt()).abs() < 1e-12);
-    assert!(wave.relative_difference().abs() < 0.02, "measured {}, continuum {}", wave.speed(), wave.predicted);
+    assert!(
+        wave.relative_difference().abs() < 0.02,
+        "measured {}, continuum {}",
+        wave.speed(),
+        wave.predicted
+    );
 }
 
 #[test]

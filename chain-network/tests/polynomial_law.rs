@@ -157,7 +157,11 @@ fn the_cell_files_laws_reach_the_model_and_its_derivatives_are_the_energys() {
                 let (gu, gd) = (model.gradient(&up), model.gradient(&down));
                 for i in 0..n {
                     let fd = (gu[i] - gd[i]) / (2.0 * h);
-                    assert!((k[i][j] - fd).abs() < 1e-6 * (1.0 + fd.abs()), "K[{i}][{j}]: {} vs {fd}", k[i][j]);
+                    assert!(
+                        (k[i][j] - fd).abs() < 1e-6 * (1.0 + fd.abs()),
+                        "K[{i}][{j}]: {} vs {fd}",
+                        k[i][j]
+                    );
                 }
             }
         }

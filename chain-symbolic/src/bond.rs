@@ -310,8 +310,13 @@ impl BondKernels {
     /// Rust source of the kernels: per bond type a module (`joint_joint`, `joint_rotor`,
     /// `rotor_rotor`) holding, for each of [`BOND_FUNCTIONS`], a unit struct implementing
     /// `BondFn<A, M>`, whose `#[inline(always)] eval<L: Lane>(x: [L; A]) -> [L; M]` is generic
-    /// over the lane type and takes [`BondKind::args`] (then the law's parameters). The caller puts `Lane` and `BondFn` in
-    /// the file's scope; each module imports them from `super`.
+    /// over the lane type and takes [`BondKind::args`] (then the law's parameters), and a unit
+    /// struct `Kernels` naming them all (`BondKernels<A, N, N + 1, H, 1 + N + H>`, `N` degrees
+    /// of freedom, `H` block entries); after the modules, a unit struct `Law` implementing
+    /// `LawKernels` with the three types' `Kernels` (`LawKernels<A1, A2, A3>` with the three
+    /// types' argument counts, for a law with parameters): what a network model's drivers are
+    /// generic over. The caller puts `Lane`, `BondFn`, `BondKernels` and `LawKernels` in the
+    /// file's scope; each module imports them from `super`.
     pub fn render(&self) -> Result<String, String> {
         let mut out = String::new();
         for (g, terms) in &self.bonds {
@@ -333,7 +338,7 @@ impl BondKernels {
                 args.join(" ")
             );
             let _ = writeln!(out, "pub mod {} {{", terms.kind.module());
-            let _ = writeln!(out, "use super::{{BondFn, Lane}};\n");
+            let _ = writeln!(out, "use super::{{BondFn, BondKernels, Lane}};\n");
             for f in &BOND_FUNCTIONS {
                 let outputs = (f.outputs)(terms);
                 let program = lower(g, &outputs, &leaf)?;
@@ -348,8 +353,34 @@ impl BondKernels {
                 out.push_str(&crate::chain::render_lanes(&program));
                 let _ = writeln!(out, "}}\n}}\n");
             }
+            let n = terms.dofs.len();
+            let h = n * (n + 1) / 2;
+            let _ = writeln!(out, "/// Every kernel of the bond type, for the model's drivers.");
+            let _ = writeln!(out, "pub struct Kernels;\n");
+            let _ = writeln!(out, "impl BondKernels<{a}, {n}, {}, {h}, {}> for Kernels {{", n + 1, 1 + n + h);
+            for f in &BOND_FUNCTIONS {
+                let _ = writeln!(out, "type {0} = {0};", f.name);
+            }
+            let _ = writeln!(out, "}}\n");
             let _ = writeln!(out, "}}\n");
         }
+        let _ = writeln!(out, "/// The law's kernels of every bond type.");
+        let _ = writeln!(out, "pub struct Law;\n");
+        // A law with parameters of its own names its argument counts; the others take the
+        // trait's defaults (8, 9, 10), so their files stay as they were.
+        let arities = if self.parameters.is_empty() {
+            String::new()
+        } else {
+            let a: Vec<String> =
+                BondKind::ALL.iter().map(|k| (k.args().len() + self.parameters.len()).to_string()).collect();
+            format!("<{}>", a.join(", "))
+        };
+        let _ = writeln!(out, "impl LawKernels{arities} for Law {{");
+        for kind in BondKind::ALL {
+            let name = format!("{kind:?}");
+            let _ = writeln!(out, "type {name} = {}::Kernels;", kind.module());
+        }
+        let _ = writeln!(out, "}}");
         Ok(out)
     }
 }
@@ -455,7 +486,9 @@ mod tests {
         (SpringLaw::quartic, |l| K * (l * l - L0 * L0).powi(2) / (8.0 * L0 * L0)),
         (exponential, |l| K * ((l - L0).exp() - 1.0 - (l - L0))),
         // The sum of powers as written in the law's definition, not the engine's Horner form.
-        (polynomial, |l| K * (0..5).map(|j| C[j] * (l - L0).powi(j as i32 + 2) / (j + 2) as f64).sum::<f64>()),
+        (polynomial, |l| {
+            K * (0..5).map(|j| C[j] * (l - L0).powi(j as i32 + 2) / (j + 2) as f64).sum::<f64>()
+        }),
     ];
 
     /// Length, energy, gradient, Hessian block and compatibility row of every bond type and law

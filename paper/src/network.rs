@@ -28,11 +28,11 @@ use rotor_chain::network::bloch::parse_path;
 use rotor_chain::network::cell::ready;
 use rotor_chain::network::counts::{Method, counts};
 use rotor_chain::network::guest::guest_modes;
+use rotor_chain::network::motion::MotionError;
+use rotor_chain::network::motion::transition::BistableChain;
 use rotor_chain::network::patch::{Boundary, Patch};
 use rotor_chain::network::strip::{DEFAULT_Q, Strip, strip_modes};
 use rotor_chain::network::winding::{WindingOptions, winding};
-use rotor_chain::network::motion::MotionError;
-use rotor_chain::network::motion::transition::BistableChain;
 use rotor_chain::network::{Cell, CellError, NetworkError};
 use serde_json::json;
 
@@ -222,7 +222,9 @@ impl From<MotionError> for Failure {
     fn from(e: MotionError) -> Self {
         match e {
             MotionError::Network(e) => e.into(),
-            MotionError::Parameter { .. } | MotionError::Cell(_) => Failure { status: 2, message: e.to_string() },
+            MotionError::Parameter { .. } | MotionError::Cell(_) => {
+                Failure { status: 2, message: e.to_string() }
+            }
             _ => Failure { status: 1, message: e.to_string() },
         }
     }

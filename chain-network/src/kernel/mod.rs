@@ -42,3 +42,45 @@ pub trait BondFn<const A: usize, const M: usize> {
     /// The outputs for the arguments `x` (the module doc's table), lane by lane.
     fn eval<L: Lane>(x: [L; A]) -> [L; M];
 }
+
+/// Every rendered kernel of one bond type with `A` arguments, `N` degrees of freedom and `H`
+/// block entries (`N1 = N + 1`, `F = 1 + N + H`: the fused outputs' counts, spelled out because
+/// a const generic cannot be computed from another on stable Rust). Each rendered bond module's
+/// `Kernels` implements it.
+pub trait BondKernels<const A: usize, const N: usize, const N1: usize, const H: usize, const F: usize> {
+    /// The bond's stored energy.
+    type Energy: BondFn<A, 1>;
+    /// The bond's length.
+    type Length: BondFn<A, 1>;
+    /// The bond's tension.
+    type Tension: BondFn<A, 1>;
+    /// The gradient.
+    type Gradient: BondFn<A, N>;
+    /// The Hessian block.
+    type Hessian: BondFn<A, H>;
+    /// The material part of the block.
+    type Material: BondFn<A, H>;
+    /// The stress-matrix part of the block.
+    type Stress: BondFn<A, H>;
+    /// The compatibility row.
+    type Compatibility: BondFn<A, N>;
+    /// Energy and gradient fused.
+    type EnergyGradient: BondFn<A, N1>;
+    /// Energy, gradient and Hessian block fused.
+    type EnergyGradientHessian: BondFn<A, F>;
+}
+
+/// A spring law's kernels for the three bond types: what [`NetworkModel`](crate::NetworkModel)'s
+/// drivers are generic over. Each rendered kernel file's `Law` implements it
+/// ([`harmonic::Law`], [`quartic::Law`], [`polynomial::Law`], and the `#[rotor_network]`
+/// attribute's own, rendered at compile time for its law). `A1, A2, A3` are the three types'
+/// argument counts: the table's 8, 9 and 10, more for a law with parameters of its own (the
+/// polynomial's 13, 14 and 15).
+pub trait LawKernels<const A1: usize = 8, const A2: usize = 9, const A3: usize = 10>: 'static {
+    /// The joint-joint bond's kernels.
+    type JointJoint: BondKernels<A1, 4, 5, 10, 15>;
+    /// The joint-rotor bond's kernels.
+    type JointRotor: BondKernels<A2, 3, 4, 6, 10>;
+    /// The rotor-rotor bond's kernels.
+    type RotorRotor: BondKernels<A3, 2, 3, 3, 6>;
+}

@@ -114,41 +114,52 @@ impl Group {
     }
 }
 
-/// Evaluates kernel `$f` (a unit type of every bond module) on every bond of every group of
-/// `$model` at `$x`, calling `$body` with the group, the bond's index in it and the outputs as a
-/// slice. `$m` lists the kernel's output count per bond type (joint-joint, joint-rotor,
-/// rotor-rotor).
+/// Evaluates kernel `$f` (a kernel of every bond type of the law's kernels `$K`, a
+/// [`LawKernels`](crate::kernel::LawKernels)) on every bond of every group of `$model` at `$x`,
+/// calling `$body` with the group, the bond's index in it and the outputs as a slice. `$m` lists
+/// the kernel's output count per bond type (joint-joint, joint-rotor, rotor-rotor), `$a` the law's
+/// argument counts (`LawKernels<A1, A2, A3>`).
 macro_rules! each_bond {
-    ($model:expr, $x:expr, $trig:expr, $f:ident, [$m1:literal, $m2:literal, $m3:literal], |$g:ident, $i:ident, $out:ident| $body:block) => {{
-        use $crate::kernel::BondFn;
+    ($model:expr, $K:ty, [$a1:ident, $a2:ident, $a3:ident], $x:expr, $trig:expr, $f:ident, [$m1:literal, $m2:literal, $m3:literal], |$g:ident, $i:ident, $out:ident| $body:block) => {{
+        use $crate::kernel::{BondFn, BondKernels, LawKernels};
         let model = $model;
         let (x, trig): (&[f64], &[[f64; 2]]) = ($x, $trig);
-        macro_rules! run {
-            ($law:ident, $a1:literal, $a2:literal, $a3:literal) => {{
-                let [jj, jr, rr] = &model.groups;
-                for ($g, which) in [(jj, 0), (jr, 1), (rr, 2)] {
-                    for $i in 0..$g.len() {
-                        let outputs: &[f64] = match which {
-                            0 => &<$crate::kernel::$law::joint_joint::$f as BondFn<$a1, $m1>>::eval::<f64>(
-                                $g.args::<$a1>($i, x, trig, &model.rotor_of),
-                            ),
-                            1 => &<$crate::kernel::$law::joint_rotor::$f as BondFn<$a2, $m2>>::eval::<f64>(
-                                $g.args::<$a2>($i, x, trig, &model.rotor_of),
-                            ),
-                            _ => &<$crate::kernel::$law::rotor_rotor::$f as BondFn<$a3, $m3>>::eval::<f64>(
-                                $g.args::<$a3>($i, x, trig, &model.rotor_of),
-                            ),
-                        };
-                        let $out = outputs;
-                        $body
-                    }
-                }
-            }};
-        }
-        match model.law {
-            super::law::Kernel::Harmonic => run!(harmonic, 8, 9, 10),
-            super::law::Kernel::Quartic => run!(quartic, 8, 9, 10),
-            super::law::Kernel::Polynomial => run!(polynomial, 13, 14, 15),
+        let [jj, jr, rr] = &model.groups;
+        for ($g, which) in [(jj, 0), (jr, 1), (rr, 2)] {
+            for $i in 0..$g.len() {
+                let outputs: &[f64] =
+                    match which {
+                        0 => &<<<$K as LawKernels<$a1, $a2, $a3>>::JointJoint as BondKernels<
+                            $a1,
+                            4,
+                            5,
+                            10,
+                            15,
+                        >>::$f as BondFn<$a1, $m1>>::eval::<f64>(
+                            $g.args::<$a1>($i, x, trig, &model.rotor_of),
+                        ),
+                        1 => &<<<$K as LawKernels<$a1, $a2, $a3>>::JointRotor as BondKernels<
+                            $a2,
+                            3,
+                            4,
+                            6,
+                            10,
+                        >>::$f as BondFn<$a2, $m2>>::eval::<f64>(
+                            $g.args::<$a2>($i, x, trig, &model.rotor_of),
+                        ),
+                        _ => &<<<$K as LawKernels<$a1, $a2, $a3>>::RotorRotor as BondKernels<
+                            $a3,
+                            2,
+                            3,
+                            3,
+                            6,
+                        >>::$f as BondFn<$a3, $m3>>::eval::<f64>(
+                            $g.args::<$a3>($i, x, trig, &model.rotor_of),
+                        ),
+                    };
+                let $out = outputs;
+                $body
+            }
         }
     }};
 }

@@ -3,7 +3,8 @@
 
 use super::NetworkModel;
 use super::bonds::{Group, Kind};
-use super::law::{IntoBondLaw, kernel_of};
+use super::kernels::Kernels;
+use super::law::{IntoBondLaw, Kernel, kernel_of};
 use crate::cell::{BondLaw, NodeKind};
 use crate::error::NetworkError;
 use crate::patch::Patch;
@@ -17,6 +18,7 @@ pub struct NetworkModelBuilder<'p, 'c> {
     patch: &'p Patch<'c>,
     law: Option<BondLaw>,
     spring_laws: Vec<(usize, BondLaw)>,
+    kernels: Option<super::kernels::Kernels>,
     mass: f64,
     node_masses: Vec<([usize; 2], usize, f64)>,
     constants: Vec<(usize, f64)>,
@@ -41,6 +43,7 @@ impl<'p, 'c> NetworkModelBuilder<'p, 'c> {
             patch,
             law: None,
             spring_laws: Vec::new(),
+            kernels: None,
             mass: 1.0,
             node_masses: Vec::new(),
             constants: Vec::new(),
@@ -59,6 +62,16 @@ impl<'p, 'c> NetworkModelBuilder<'p, 'c> {
     /// cell. Quartic springs cannot be mixed with others (the build's error says which).
     pub fn spring_law(mut self, p: usize, law: impl IntoBondLaw) -> Self {
         self.spring_laws.push((p, law.into_bond_law()));
+        self
+    }
+
+    /// Evaluates every bond with the kernels `K` instead of the checked-in ones of the law: the
+    /// `#[rotor_network]` attribute's, rendered at compile time for its law (which may be a
+    /// custom one; [`NetworkModel::spring_law`] then still reports the builder's laws). Not public
+    /// API: the attribute's generated code calls it through `rotor_chain::__private`.
+    #[doc(hidden)]
+    pub fn kernels<K: crate::kernel::LawKernels>(mut self) -> Self {
+        self.kernels = Some(Kernels::of::<K>());
         self
     }
 
@@ -224,8 +237,14 @@ impl<'p, 'c> NetworkModelBuilder<'p, 'c> {
                 g.coefficients.push(*c);
             }
         }
+        let kernels = self.kernels.unwrap_or_else(|| match kernel {
+            Kernel::Harmonic => Kernels::of::<crate::kernel::harmonic::Law>(),
+            Kernel::Quartic => Kernels::of::<crate::kernel::quartic::Law>(),
+            Kernel::Polynomial => Kernels::with_arguments::<crate::kernel::polynomial::Law, 13, 14, 15>(),
+        });
         Ok(NetworkModel {
             law: kernel,
+            kernels,
             inertia,
             reference,
             rotor_of,

@@ -6,8 +6,7 @@
 
 use super::NetworkModel;
 use super::bonds::Group;
-use super::law::Kernel;
-use crate::kernel::BondFn;
+use crate::kernel::{BondFn, BondKernels, LawKernels};
 use chain_core::simd::{Vector, WithLanes, dispatch};
 
 /// The widest lane count of any level (AVX-512's 8).
@@ -67,58 +66,81 @@ fn group<V: Vector, const A: usize, const M: usize, K: BondFn<A, M>, const ENERG
     energy
 }
 
-/// The work handed to `dispatch`: the fused energy and gradient (`ENERGY`) or the gradient.
-pub(super) struct Gradient<'a, const ENERGY: bool> {
+/// The work handed to `dispatch`: the fused energy and gradient (`ENERGY`) or the gradient,
+/// with the law's kernels `K`.
+pub(super) struct Gradient<'a, K, const A1: usize, const A2: usize, const A3: usize, const ENERGY: bool> {
     pub model: &'a NetworkModel,
     pub x: &'a [f64],
     pub trig: &'a [[f64; 2]],
     pub out: &'a mut [f64],
+    pub kernels: core::marker::PhantomData<K>,
 }
 
 macro_rules! groups {
-    ($self:ident, $V:ident, $law:ident, [$a1:literal, $a2:literal, $a3:literal], $f:ident, [$m1:literal, $m2:literal, $m3:literal], $energy:literal) => {{
-        use crate::kernel::$law::{joint_joint, joint_rotor, rotor_rotor};
+    ($self:ident, $V:ident, $K:ty, $f:ident, [$m1:literal, $m2:literal, $m3:literal], $energy:literal) => {{
         let m = $self.model;
         let [jj, jr, rr] = &m.groups;
-        group::<$V, $a1, $m1, joint_joint::$f, $energy>(jj, $self.x, $self.trig, &m.rotor_of, $self.out)
-            + group::<$V, $a2, $m2, joint_rotor::$f, $energy>(jr, $self.x, $self.trig, &m.rotor_of, $self.out)
-            + group::<$V, $a3, $m3, rotor_rotor::$f, $energy>(rr, $self.x, $self.trig, &m.rotor_of, $self.out)
+        group::<
+            $V,
+            A1,
+            $m1,
+            <<$K as LawKernels<A1, A2, A3>>::JointJoint as BondKernels<A1, 4, 5, 10, 15>>::$f,
+            $energy,
+        >(jj, $self.x, $self.trig, &m.rotor_of, $self.out)
+            + group::<
+                $V,
+                A2,
+                $m2,
+                <<$K as LawKernels<A1, A2, A3>>::JointRotor as BondKernels<A2, 3, 4, 6, 10>>::$f,
+                $energy,
+            >(jr, $self.x, $self.trig, &m.rotor_of, $self.out)
+            + group::<
+                $V,
+                A3,
+                $m3,
+                <<$K as LawKernels<A1, A2, A3>>::RotorRotor as BondKernels<A3, 2, 3, 3, 6>>::$f,
+                $energy,
+            >(rr, $self.x, $self.trig, &m.rotor_of, $self.out)
     }};
 }
 
-impl WithLanes for Gradient<'_, true> {
+impl<K: LawKernels<A1, A2, A3>, const A1: usize, const A2: usize, const A3: usize> WithLanes
+    for Gradient<'_, K, A1, A2, A3, true>
+{
     type Output = f64;
     #[inline(always)]
     fn run<V: Vector>(self) -> f64 {
-        match self.model.law {
-            Kernel::Harmonic => groups!(self, V, harmonic, [8, 9, 10], EnergyGradient, [5, 4, 3], true),
-            Kernel::Quartic => groups!(self, V, quartic, [8, 9, 10], EnergyGradient, [5, 4, 3], true),
-            Kernel::Polynomial => groups!(self, V, polynomial, [13, 14, 15], EnergyGradient, [5, 4, 3], true),
-        }
+        groups!(self, V, K, EnergyGradient, [5, 4, 3], true)
     }
 }
 
-impl WithLanes for Gradient<'_, false> {
+impl<K: LawKernels<A1, A2, A3>, const A1: usize, const A2: usize, const A3: usize> WithLanes
+    for Gradient<'_, K, A1, A2, A3, false>
+{
     type Output = f64;
     #[inline(always)]
     fn run<V: Vector>(self) -> f64 {
-        match self.model.law {
-            Kernel::Harmonic => groups!(self, V, harmonic, [8, 9, 10], Gradient, [4, 3, 2], false),
-            Kernel::Quartic => groups!(self, V, quartic, [8, 9, 10], Gradient, [4, 3, 2], false),
-            Kernel::Polynomial => groups!(self, V, polynomial, [13, 14, 15], Gradient, [4, 3, 2], false),
-        }
+        groups!(self, V, K, Gradient, [4, 3, 2], false)
     }
 }
 
-impl NetworkModel {
-    /// The gradient into `out` (zeroed first) and, with `ENERGY`, the energy, at the detected
-    /// vector level.
-    pub(super) fn gradient_lanes<const ENERGY: bool>(&self, x: &[f64], out: &mut [f64]) -> f64
-    where
-        for<'a> Gradient<'a, ENERGY>: WithLanes<Output = f64>,
-    {
-        let trig = self.trig(x);
-        out.fill(0.0);
-        dispatch(Gradient::<ENERGY> { model: self, x, trig: &trig, out })
-    }
+/// The gradient into `out` (zeroed first) and, with `ENERGY`, the energy, at the detected
+/// vector level, with the law's kernels `K`.
+pub(super) fn gradient<
+    K: LawKernels<A1, A2, A3>,
+    const A1: usize,
+    const A2: usize,
+    const A3: usize,
+    const ENERGY: bool,
+>(
+    model: &NetworkModel,
+    x: &[f64],
+    trig: &[[f64; 2]],
+    out: &mut [f64],
+) -> f64
+where
+    for<'a> Gradient<'a, K, A1, A2, A3, ENERGY>: WithLanes<Output = f64>,
+{
+    out.fill(0.0);
+    dispatch(Gradient::<K, A1, A2, A3, ENERGY> { model, x, trig, out, kernels: core::marker::PhantomData })
 }

@@ -19,12 +19,14 @@
 //! from its joint end) into structs of arrays, and each group is evaluated with the generated
 //! kernels of [`crate::kernel`] (`bonds.rs`); every rotor's `sin_cos` is taken once per call.
 //! The energy and gradient (every step of a run or a relaxation) evaluate several bonds at once
-//! in vector lanes at the level chain-core's `simd` detects (`lanes.rs`).
+//! in vector lanes at the level chain-core's `simd` detects (`lanes.rs`). The passes are generic
+//! over the law's kernels and chosen when the model is built (`kernels.rs`).
 //! Spring `p` of the model is bond `p` of the patch (`Patch::bonds`).
 
 mod bonds;
 mod build;
 mod chain;
+mod kernels;
 mod lanes;
 mod law;
 mod traits;
@@ -33,8 +35,8 @@ pub use build::NetworkModelBuilder;
 pub use chain::ChainView;
 pub use law::IntoBondLaw;
 
-use crate::patch::Patch;
 use crate::cell::{BondLaw, Polynomial};
+use crate::patch::Patch;
 use bonds::Group;
 use law::Kernel;
 use std::sync::OnceLock;
@@ -42,8 +44,10 @@ use std::sync::OnceLock;
 /// A finite patch of a network as a mechanical model. Build one with [`NetworkModel::builder`].
 #[derive(Debug)]
 pub struct NetworkModel {
-    /// The kernel module every bond is evaluated with (`law.rs`).
+    /// The checked-in kernel module of the springs' laws (`law.rs`).
     law: Kernel,
+    /// The passes of the law's kernels (the checked-in ones of `law`, or the attribute's).
+    kernels: kernels::Kernels,
     inertia: Vec<f64>,
     reference: Vec<f64>,
     /// The rotor index of each degree of freedom (`u32::MAX` for a joint's).
@@ -73,9 +77,11 @@ impl NetworkModel {
 
     /// The law of spring `p` (the patch's bond `p`), or `None` past the last spring. A harmonic
     /// spring of a model that also has polynomial springs is reported as the polynomial `c2 = 1`
-    /// it is evaluated as. Looks the spring up among the bonds: O(bonds).
+    /// it is evaluated as. A model built with the `#[rotor_network]` attribute's kernels reports
+    /// the builder's law, not the attribute's. Looks the spring up among the bonds: O(bonds).
     pub fn spring_law(&self, p: usize) -> Option<BondLaw> {
-        let (g, i) = self.groups.iter().find_map(|g| g.spring.iter().position(|&s| s == p).map(|i| (g, i)))?;
+        let (g, i) =
+            self.groups.iter().find_map(|g| g.spring.iter().position(|&s| s == p).map(|i| (g, i)))?;
         Some(match self.law {
             Kernel::Harmonic => BondLaw::Harmonic,
             Kernel::Quartic => BondLaw::Quartic,

@@ -2,81 +2,30 @@
 //! one generated kernel (the fused ones where the trait has a fused method).
 
 use super::NetworkModel;
-use super::bonds::{Rows, Upper, each_bond};
+use super::bonds::{Rows, Upper};
+use super::kernels::Block;
 use chain_core::model::{CompatibilityLayout, StiffnessLayout};
 use chain_core::{Potential, SpringNetwork, Stiffness};
 
 impl NetworkModel {
-    fn upper(&self) -> &Upper {
+    pub(super) fn upper(&self) -> &Upper {
         self.stiffness.get_or_init(|| Upper::new(self.inertia.len(), &self.groups))
     }
 
-    fn rows(&self) -> &Rows {
+    pub(super) fn rows(&self) -> &Rows {
         self.compatibility.get_or_init(|| Rows::new(self.inertia.len(), self.springs.len(), &self.groups))
     }
 
-    /// Assembles `which` block of every bond into `values` (zeroed first) at its slots; for the
-    /// fused [`Block::All`], also the gradient into `grad`, returning the energy (else 0).
+    /// Assembles `which` block (and for [`Block::All`] the gradient into `grad`, returning the
+    /// energy) with the model's kernels.
     fn blocks_into(&self, x: &[f64], values: &mut [f64], which: Block, grad: Option<&mut [f64]>) -> f64 {
-        let slots = &self.upper().slots;
-        let trig = self.trig(x);
-        values.fill(0.0);
-        let mut energy = 0.0;
-        let mut grad = grad;
-        if let Some(g) = grad.as_deref_mut() {
-            g.fill(0.0);
-        }
-        let mut add = |g: &super::bonds::Group, i: usize, out: &[f64], from: usize| {
-            let h = out.len() - from;
-            let slot = &slots[g.kind as usize][i * h..(i + 1) * h];
-            for (&s, &v) in slot.iter().zip(&out[from..]) {
-                values[s] += v;
-            }
-        };
-        match which {
-            Block::Hessian => {
-                each_bond!(self, x, &trig, Hessian, [10, 6, 3], |g, i, out| { add(g, i, out, 0) })
-            }
-            Block::Material => {
-                each_bond!(self, x, &trig, Material, [10, 6, 3], |g, i, out| { add(g, i, out, 0) })
-            }
-            Block::Stress => {
-                each_bond!(self, x, &trig, Stress, [10, 6, 3], |g, i, out| { add(g, i, out, 0) })
-            }
-            Block::All => {
-                let grad = grad.expect("the fused call passes the gradient");
-                each_bond!(self, x, &trig, EnergyGradientHessian, [15, 10, 6], |g, i, out| {
-                    let d = g.bond_dofs(i);
-                    energy += out[0];
-                    for (&dof, &v) in d.iter().zip(&out[1..]) {
-                        grad[dof] += v;
-                    }
-                    add(g, i, out, 1 + d.len());
-                })
-            }
-        }
-        energy
+        (self.kernels.blocks)(self, x, &self.trig(x), values, which, grad)
     }
 
-    /// One value per spring from a one-output kernel, into `out` by spring index.
+    /// One value per spring: tensions (`true`) or lengths.
     fn per_spring(&self, x: &[f64], out: &mut [f64], tension: bool) {
-        let trig = self.trig(x);
-        if tension {
-            each_bond!(self, x, &trig, Tension, [1, 1, 1], |g, i, v| { out[g.spring[i]] = v[0] });
-        } else {
-            each_bond!(self, x, &trig, Length, [1, 1, 1], |g, i, v| { out[g.spring[i]] = v[0] });
-        }
+        (self.kernels.per_spring)(self, x, &self.trig(x), out, tension)
     }
-}
-
-/// Which block a pass assembles.
-#[derive(Clone, Copy)]
-enum Block {
-    Hessian,
-    Material,
-    Stress,
-    /// Energy, gradient and Hessian fused.
-    All,
 }
 
 impl Potential for NetworkModel {
@@ -91,22 +40,19 @@ impl Potential for NetworkModel {
     #[track_caller]
     fn energy(&self, x: &[f64]) -> f64 {
         self.check(x.len(), &[]);
-        let trig = self.trig(x);
-        let mut energy = 0.0;
-        each_bond!(self, x, &trig, Energy, [1, 1, 1], |_g, _i, out| { energy += out[0] });
-        energy
+        (self.kernels.energy)(self, x, &self.trig(x))
     }
 
     #[track_caller]
     fn gradient_into(&self, x: &[f64], out: &mut [f64]) {
         self.check(x.len(), &[("gradient", out.len(), x.len())]);
-        self.gradient_lanes::<false>(x, out);
+        (self.kernels.gradient)(self, x, &self.trig(x), out);
     }
 
     #[track_caller]
     fn energy_and_gradient_into(&self, x: &[f64], out: &mut [f64]) -> f64 {
         self.check(x.len(), &[("gradient", out.len(), x.len())]);
-        self.gradient_lanes::<true>(x, out)
+        (self.kernels.energy_gradient)(self, x, &self.trig(x), out)
     }
 
     /// `1e-12 k_max s^2` with `s` the cell's length scale: the energy of the stiffest bond
@@ -172,13 +118,7 @@ impl SpringNetwork for NetworkModel {
     fn compatibility_into(&self, x: &[f64], values: &mut [f64]) {
         let rows = self.rows();
         self.check(x.len(), &[("compatibility values", values.len(), rows.columns.len())]);
-        let trig = self.trig(x);
-        each_bond!(self, x, &trig, Compatibility, [4, 3, 2], |g, i, v| {
-            let n = v.len();
-            for (&s, &c) in rows.slots[g.kind as usize][i * n..(i + 1) * n].iter().zip(v) {
-                values[s] = c;
-            }
-        });
+        (self.kernels.compatibility)(self, x, &self.trig(x), values);
     }
 
     #[track_caller]

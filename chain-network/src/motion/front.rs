@@ -44,7 +44,8 @@ pub fn fit_line(points: &[(f64, f64)]) -> Option<LineFit> {
         return None;
     }
     let (mt, mx) = points.iter().fold((0.0, 0.0), |(a, b), &(t, x)| (a + t / n, b + x / n));
-    let (stt, stx) = points.iter().fold((0.0, 0.0), |(a, b), &(t, x)| (a + (t - mt).powi(2), b + (t - mt) * (x - mx)));
+    let (stt, stx) =
+        points.iter().fold((0.0, 0.0), |(a, b), &(t, x)| (a + (t - mt).powi(2), b + (t - mt) * (x - mx)));
     if stt <= 0.0 {
         return None;
     }

@@ -144,7 +144,11 @@ impl BistableChain {
             });
         }
         if !(self.fit_from >= 0.0 && self.fit_from < self.duration) {
-            return Err(MotionError::Parameter { name: "fit_from", value: self.fit_from, rule: "in [0, duration)" });
+            return Err(MotionError::Parameter {
+                name: "fit_from",
+                value: self.fit_from,
+                rule: "in [0, duration)",
+            });
         }
         if self.sites < 8 || self.launch_sites == 0 || self.launch_sites >= self.sites / 2 {
             return Err(MotionError::Parameter {
@@ -154,7 +158,11 @@ impl BistableChain {
             });
         }
         if self.samples < 2 {
-            return Err(MotionError::Parameter { name: "samples", value: self.samples as f64, rule: "at least 2" });
+            return Err(MotionError::Parameter {
+                name: "samples",
+                value: self.samples as f64,
+                rule: "at least 2",
+            });
         }
         Ok(())
     }
@@ -253,10 +261,8 @@ impl BistableChain {
         // (near the free end the missing neighbour changes the front).
         let margin = (n - 1) as f64 - 2.0 * self.continuum_width().max(1.0);
         let window: Vec<usize> = (0..times.len()).filter(|&k| times[k] >= self.fit_from).collect();
-        let points: Vec<(f64, f64)> = window
-            .iter()
-            .filter_map(|&k| fronts[k].filter(|&x| x < margin).map(|x| (times[k], x)))
-            .collect();
+        let points: Vec<(f64, f64)> =
+            window.iter().filter_map(|&k| fronts[k].filter(|&x| x < margin).map(|x| (times[k], x))).collect();
         let needed = (window.len() / 4).max(3);
         let fit = fit_line(&points)
             .filter(|_| points.len() >= needed)

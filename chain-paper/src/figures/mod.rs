@@ -141,6 +141,12 @@ pub enum Cause {
     /// The points of a sweep do not fit its grid.
     #[error(transparent)]
     OutcomeGrid(#[from] crate::outcomes::OutcomeGridError),
+    /// A network (chain-network: a cell, a patch, a network model); boxed, as it is large.
+    #[error(transparent)]
+    Network(Box<chain_network::NetworkError>),
+    /// A network's cell (chain-network's ready cells); boxed, as it is large.
+    #[error(transparent)]
+    Cell(Box<chain_network::CellError>),
     /// A fit or a figure needs more resolved points than the computation gave.
     #[error("{what}: {found} resolved, at least {needed} needed")]
     TooFewPoints {
@@ -167,6 +173,18 @@ pub enum Cause {
         /// The label it returned.
         returned: &'static str,
     },
+}
+
+impl From<chain_network::NetworkError> for Cause {
+    fn from(e: chain_network::NetworkError) -> Self {
+        Cause::Network(Box::new(e))
+    }
+}
+
+impl From<chain_network::CellError> for Cause {
+    fn from(e: chain_network::CellError) -> Self {
+        Cause::Cell(Box::new(e))
+    }
 }
 
 impl FigureError {

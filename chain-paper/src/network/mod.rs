@@ -1,10 +1,12 @@
 //! Figures of periodic networks (issue 33) for the `network` command: drawings of a patch
 //! ([`NetworkDrawing`], rendered by `render`'s `network` part), the bands along a path, the
 //! phase of `det Q(k)` over the zone, a strip's spectrum with its edge zero modes, a zero mode's
-//! arrows, the polarization phase diagram ([`diagram`]), and the networks in motion: a
-//! transition wave in a bistable chain ([`transition_figure`]). Every figure is a [`Figure`](crate::Figure) of
+//! arrows, the polarization phase diagram ([`diagram`]), and issue 36's demonstrations
+//! ([`demonstration`]: the paper's chain declared as a network; [`transition_figure`]: a
+//! transition wave in a bistable chain). Every figure is a [`Figure`](crate::Figure) of
 //! the paper's model, rendered to PNG and SVG by [`crate::render::render`].
 
+pub mod demonstration;
 pub mod diagram;
 mod figures;
 mod transition;

@@ -41,7 +41,12 @@ pub fn transition_figure(chain: &BistableChain) -> Result<(Figure, TransitionWav
         "front position (sites)",
         vec![
             Series::new(Quantity::Lattice, "lattice front", fronts, Style::Points),
-            Series::new(Quantity::Fit, format!("fit from t = {t0}: v = {:.4}", fit.slope), line(fit.slope), Style::Line),
+            Series::new(
+                Quantity::Fit,
+                format!("fit from t = {t0}: v = {:.4}", fit.slope),
+                line(fit.slope),
+                Style::Line,
+            ),
             Series::new(
                 Quantity::Continuum,
                 format!("continuum v = {:.4}", wave.predicted),
