@@ -19,6 +19,8 @@ pub(super) enum Block {
 }
 
 /// One law's passes (each takes the model, `x` and the rotors' `[sin, cos]`).
+// A table of function pointers: their signatures are the passes', spelled out once here.
+#[allow(clippy::type_complexity)]
 #[derive(Clone, Copy, Debug)]
 pub(super) struct Kernels {
     pub energy: fn(&NetworkModel, &[f64], &[[f64; 2]]) -> f64,
