@@ -263,10 +263,9 @@ pub mod __private {
 
         /// The model of a `#[rotor_network]` struct with the kernels `K` its attribute derived:
         /// the cell, the patch of `cells` and the overrides `(spring, k, l0)`. The attribute
-        /// checked the cell, the size against the dimension, the boundary's minimum and the
-        /// overrides at compile time; what it cannot check (a patch beyond
-        /// `patch::MAX_PATCH_BONDS`, periodic images of a bond that meet once wrapped) panics here,
-        /// at the first use, with the library's error.
+        /// checked the cell, the size against the dimension, the boundary's minimum, the patch
+        /// bound and the overrides at compile time; what it cannot check (periodic images of a
+        /// bond that meet once wrapped) panics here, at the first use, with the library's error.
         pub fn model<K: LawKernels>(
             source: CellSource,
             cells: [usize; 2],

@@ -189,9 +189,9 @@ fn custom_law_energy_gradient_and_stiffness_match_finite_differences_and_its_len
     let mut grad = vec![0.0; n];
     m.gradient_into(&x, &mut grad);
     let gnorm = grad.iter().fold(0.0f64, |a, g| a.max(g.abs()));
-    for i in 0..n {
+    for (i, &g) in grad.iter().enumerate() {
         let fd = (m.energy(&at(i, h)) - m.energy(&at(i, -h))) / (2.0 * h);
-        assert!((grad[i] - fd).abs() <= 1e-7 * gnorm, "gradient {i}: {} vs {fd}", grad[i]);
+        assert!((g - fd).abs() <= 1e-7 * gnorm, "gradient {i}: {g} vs {fd}");
     }
     // The stiffness against central differences of the gradient, entry by entry of the pattern.
     let mut values = vec![0.0; m.stiffness_values()];
@@ -205,10 +205,11 @@ fn custom_law_energy_gradient_and_stiffness_match_finite_differences_and_its_len
         m.gradient_into(&at(j, h), &mut gp);
         m.gradient_into(&at(j, -h), &mut gm);
         for r in 0..n {
-            for s in pattern.row_starts[r]..pattern.row_starts[r + 1] {
-                if pattern.columns[s] == j {
+            let row = pattern.row_starts[r]..pattern.row_starts[r + 1];
+            for (&column, &value) in pattern.columns[row.clone()].iter().zip(&values[row]) {
+                if column == j {
                     let fd = (gp[r] - gm[r]) / (2.0 * h);
-                    assert!((values[s] - fd).abs() <= 1e-6 * knorm, "K[{r}, {j}]: {} vs {fd}", values[s]);
+                    assert!((value - fd).abs() <= 1e-6 * knorm, "K[{r}, {j}]: {value} vs {fd}");
                 }
             }
         }
@@ -257,4 +258,12 @@ fn the_attribute_counts_a_free_patch_s_bonds_as_the_patch_does() {
     assert_eq!((LastSpring.spring_constant(65), LastSpring.rest_length(65)), (2.0, 0.6));
     assert_eq!(LastSpring.spring_constant(64), 1.0);
     assert!((LastSpring.rest_length(64) - 0.5).abs() < 1e-15);
+}
+
+/// The attribute checks the patch's rules at compile time with these values of its own
+/// (chain-macros/src/network/valid.rs): they must stay the library's.
+#[test]
+fn the_attribute_s_patch_rules_are_the_library_s() {
+    use rotor_chain::network::patch::{MAX_PATCH_BONDS, MIN_PERIODIC_CELLS};
+    assert_eq!((MAX_PATCH_BONDS, MIN_PERIODIC_CELLS), (1 << 25, 3));
 }

@@ -21,6 +21,11 @@ use crate::law::{self, Law};
 /// with fewer, a bond to the neighbouring cell joins a node to itself or doubles another bond).
 const MIN_PERIODIC_CELLS: usize = 3;
 
+/// The most bonds, and degrees of freedom, a patch may have (`chain_network::patch::MAX_PATCH_BONDS`,
+/// whose rule `Patch::new` applies at run time: 2^25, a mistyped size is an error, not an
+/// allocation the machine cannot give).
+const MAX_PATCH_BONDS: usize = 1 << 25;
+
 /// The ready cells without parameters, by the names of `chain_network::cell::ready::by_name`.
 const READY: [&str; 4] = ["square", "kagome", "paper-chain-right", "paper-chain-left"];
 
@@ -54,15 +59,15 @@ pub fn patch_bonds(cell: &Cell, cells: [usize; 2], periodic: bool) -> usize {
         .iter()
         .map(|b| {
             if periodic {
-                cells[0] * cells[1]
+                cells[0].saturating_mul(cells[1])
             } else {
                 let fit = |n: usize, c: i64| {
                     n.saturating_sub(usize::try_from(c.unsigned_abs()).unwrap_or(usize::MAX))
                 };
-                fit(cells[0], b.cell[0]) * fit(cells[1], b.cell[1])
+                fit(cells[0], b.cell[0]).saturating_mul(fit(cells[1], b.cell[1]))
             }
         })
-        .sum()
+        .fold(0, usize::saturating_add)
 }
 
 fn manifest_dir() -> Option<PathBuf> {
@@ -193,6 +198,25 @@ fn check_cells(cx: &Ctxt, spec: &Spec, cell: Option<&Cell>, periodic: Option<boo
         };
         if let Some(rule) = rule {
             cx.error_spanned_by(&keyed.tokens, format!("{n} cells along lattice vector {}: {rule}", i + 1));
+            ok = false;
+        }
+    }
+    if ok && let Some(cell) = cell {
+        // Patch::new's bound, on bonds and degrees of freedom both.
+        let per_cell = cell.bonds().len().max(cell.dof());
+        let size = cells[0].saturating_mul(cells[1]).saturating_mul(per_cell);
+        if size > MAX_PATCH_BONDS {
+            cx.error_spanned_by(
+                &keyed.tokens,
+                format!(
+                    "a patch has at most {MAX_PATCH_BONDS} bonds and as many degrees of freedom: {} x {} cells of \
+                     {} bonds and {} degrees of freedom ask for more",
+                    cells[0],
+                    cells[1],
+                    cell.bonds().len(),
+                    cell.dof()
+                ),
+            );
             ok = false;
         }
     }

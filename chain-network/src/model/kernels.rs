@@ -18,20 +18,27 @@ pub(super) enum Block {
     All,
 }
 
+/// The rotors' `[sin, cos]`, rotor by rotor.
+type Trig = [[f64; 2]];
+
+/// A pass over every bond writing one output array.
+type Pass<R> = fn(&NetworkModel, &[f64], &Trig, &mut [f64]) -> R;
+
+/// The block pass: the values, which block, and for the fused block the gradient.
+type BlockPass = fn(&NetworkModel, &[f64], &Trig, &mut [f64], Block, Option<&mut [f64]>) -> f64;
+
 /// One law's passes (each takes the model, `x` and the rotors' `[sin, cos]`).
-// A table of function pointers: their signatures are the passes', spelled out once here.
-#[allow(clippy::type_complexity)]
 #[derive(Clone, Copy, Debug)]
 pub(super) struct Kernels {
-    pub energy: fn(&NetworkModel, &[f64], &[[f64; 2]]) -> f64,
+    pub energy: fn(&NetworkModel, &[f64], &Trig) -> f64,
     /// The gradient into the output (zeroed first), in vector lanes.
-    pub gradient: fn(&NetworkModel, &[f64], &[[f64; 2]], &mut [f64]) -> f64,
+    pub gradient: Pass<f64>,
     /// The energy, and the gradient into the output (zeroed first), in vector lanes.
-    pub energy_gradient: fn(&NetworkModel, &[f64], &[[f64; 2]], &mut [f64]) -> f64,
-    pub blocks: fn(&NetworkModel, &[f64], &[[f64; 2]], &mut [f64], Block, Option<&mut [f64]>) -> f64,
+    pub energy_gradient: Pass<f64>,
+    pub blocks: BlockPass,
     /// One value per spring: tensions (`true`) or lengths.
-    pub per_spring: fn(&NetworkModel, &[f64], &[[f64; 2]], &mut [f64], bool),
-    pub compatibility: fn(&NetworkModel, &[f64], &[[f64; 2]], &mut [f64]),
+    pub per_spring: [Pass<()>; 2],
+    pub compatibility: Pass<()>,
 }
 
 impl Kernels {
@@ -49,7 +56,7 @@ impl Kernels {
             gradient: super::lanes::gradient::<K, A1, A2, A3, false>,
             energy_gradient: super::lanes::gradient::<K, A1, A2, A3, true>,
             blocks: blocks::<K, A1, A2, A3>,
-            per_spring: per_spring::<K, A1, A2, A3>,
+            per_spring: [per_spring::<K, A1, A2, A3, false>, per_spring::<K, A1, A2, A3, true>],
             compatibility: compatibility::<K, A1, A2, A3>,
         }
     }
@@ -115,14 +122,19 @@ fn blocks<K: LawKernels<A1, A2, A3>, const A1: usize, const A2: usize, const A3:
 }
 
 /// One value per spring from a one-output kernel, into `out` by spring index.
-fn per_spring<K: LawKernels<A1, A2, A3>, const A1: usize, const A2: usize, const A3: usize>(
+fn per_spring<
+    K: LawKernels<A1, A2, A3>,
+    const A1: usize,
+    const A2: usize,
+    const A3: usize,
+    const TENSION: bool,
+>(
     m: &NetworkModel,
     x: &[f64],
-    trig: &[[f64; 2]],
+    trig: &Trig,
     out: &mut [f64],
-    tension: bool,
 ) {
-    if tension {
+    if TENSION {
         each_bond!(m, K, [A1, A2, A3], x, trig, Tension, [1, 1, 1], |g, i, v| { out[g.spring[i]] = v[0] });
     } else {
         each_bond!(m, K, [A1, A2, A3], x, trig, Length, [1, 1, 1], |g, i, v| { out[g.spring[i]] = v[0] });

@@ -24,7 +24,7 @@ impl NetworkModel {
 
     /// One value per spring: tensions (`true`) or lengths.
     fn per_spring(&self, x: &[f64], out: &mut [f64], tension: bool) {
-        (self.kernels.per_spring)(self, x, &self.trig(x), out, tension)
+        (self.kernels.per_spring[usize::from(tension)])(self, x, &self.trig(x), out)
     }
 }
 

@@ -76,6 +76,10 @@ mod bad_cells {
     #[rotor_chain::rotor_network(ready = "paper-chain-right", cells = (20, 2), boundary = "free")]
     pub struct OneDimensional;
 
+    // More than a patch may have (2^25 bonds).
+    #[rotor_chain::rotor_network(ready = "kagome", cells = (100000, 100000), boundary = "free")]
+    pub struct TooLarge;
+
     // Not a size at all.
     #[rotor_chain::rotor_network(ready = "kagome", cells = "4x4", boundary = "free")]
     pub struct Text;
