@@ -68,7 +68,7 @@ fn group<V: Vector, const A: usize, const M: usize, K: BondFn<A, M>, const ENERG
 
 /// The work handed to `dispatch`: the fused energy and gradient (`ENERGY`) or the gradient,
 /// with the law's kernels `K`.
-pub(super) struct Gradient<'a, K, const ENERGY: bool> {
+pub(super) struct Gradient<'a, K, const A1: usize, const A2: usize, const A3: usize, const ENERGY: bool> {
     pub model: &'a NetworkModel,
     pub x: &'a [f64],
     pub trig: &'a [[f64; 2]],
@@ -80,16 +80,33 @@ macro_rules! groups {
     ($self:ident, $V:ident, $K:ty, $f:ident, [$m1:literal, $m2:literal, $m3:literal], $energy:literal) => {{
         let m = $self.model;
         let [jj, jr, rr] = &m.groups;
-        type Jj<K> = <<K as LawKernels>::JointJoint as BondKernels<8, 4, 5, 10, 15>>::$f;
-        type Jr<K> = <<K as LawKernels>::JointRotor as BondKernels<9, 3, 4, 6, 10>>::$f;
-        type Rr<K> = <<K as LawKernels>::RotorRotor as BondKernels<10, 2, 3, 3, 6>>::$f;
-        group::<$V, 8, $m1, Jj<$K>, $energy>(jj, $self.x, $self.trig, &m.rotor_of, $self.out)
-            + group::<$V, 9, $m2, Jr<$K>, $energy>(jr, $self.x, $self.trig, &m.rotor_of, $self.out)
-            + group::<$V, 10, $m3, Rr<$K>, $energy>(rr, $self.x, $self.trig, &m.rotor_of, $self.out)
+        group::<
+            $V,
+            A1,
+            $m1,
+            <<$K as LawKernels<A1, A2, A3>>::JointJoint as BondKernels<A1, 4, 5, 10, 15>>::$f,
+            $energy,
+        >(jj, $self.x, $self.trig, &m.rotor_of, $self.out)
+            + group::<
+                $V,
+                A2,
+                $m2,
+                <<$K as LawKernels<A1, A2, A3>>::JointRotor as BondKernels<A2, 3, 4, 6, 10>>::$f,
+                $energy,
+            >(jr, $self.x, $self.trig, &m.rotor_of, $self.out)
+            + group::<
+                $V,
+                A3,
+                $m3,
+                <<$K as LawKernels<A1, A2, A3>>::RotorRotor as BondKernels<A3, 2, 3, 3, 6>>::$f,
+                $energy,
+            >(rr, $self.x, $self.trig, &m.rotor_of, $self.out)
     }};
 }
 
-impl<K: LawKernels> WithLanes for Gradient<'_, K, true> {
+impl<K: LawKernels<A1, A2, A3>, const A1: usize, const A2: usize, const A3: usize> WithLanes
+    for Gradient<'_, K, A1, A2, A3, true>
+{
     type Output = f64;
     #[inline(always)]
     fn run<V: Vector>(self) -> f64 {
@@ -97,7 +114,9 @@ impl<K: LawKernels> WithLanes for Gradient<'_, K, true> {
     }
 }
 
-impl<K: LawKernels> WithLanes for Gradient<'_, K, false> {
+impl<K: LawKernels<A1, A2, A3>, const A1: usize, const A2: usize, const A3: usize> WithLanes
+    for Gradient<'_, K, A1, A2, A3, false>
+{
     type Output = f64;
     #[inline(always)]
     fn run<V: Vector>(self) -> f64 {
@@ -107,15 +126,21 @@ impl<K: LawKernels> WithLanes for Gradient<'_, K, false> {
 
 /// The gradient into `out` (zeroed first) and, with `ENERGY`, the energy, at the detected
 /// vector level, with the law's kernels `K`.
-pub(super) fn gradient<K: LawKernels, const ENERGY: bool>(
+pub(super) fn gradient<
+    K: LawKernels<A1, A2, A3>,
+    const A1: usize,
+    const A2: usize,
+    const A3: usize,
+    const ENERGY: bool,
+>(
     model: &NetworkModel,
     x: &[f64],
     trig: &[[f64; 2]],
     out: &mut [f64],
 ) -> f64
 where
-    for<'a> Gradient<'a, K, ENERGY>: WithLanes<Output = f64>,
+    for<'a> Gradient<'a, K, A1, A2, A3, ENERGY>: WithLanes<Output = f64>,
 {
     out.fill(0.0);
-    dispatch(Gradient::<K, ENERGY> { model, x, trig, out, kernels: core::marker::PhantomData })
+    dispatch(Gradient::<K, A1, A2, A3, ENERGY> { model, x, trig, out, kernels: core::marker::PhantomData })
 }
