@@ -1,4 +1,4 @@
-"""docs/network.md §10.4: the Python script of the networks-in-motion guide runs and prints what
+"""docs/network.md §10.6: the Python script of the networks-in-motion guide runs and prints what
 the page says it does (force balance, the stressed square lattice's closed-form modes, Verlet's
 energy)."""
 

@@ -41,7 +41,7 @@ pub const MAX_DENSE_VALUES: usize = 1 << 26;
 /// The largest sparse [`SymmetricMatrix`] whose eigenpairs are computed densely by default; larger
 /// ones take shift-invert subspace iteration. Why 384: the lowest 12 eigenpairs of a 2D lattice's
 /// pattern cost 9.2 ms dense and 14.8 ms sparse at 256 rows, 100 ms and 29 ms at 576 (the
-/// crossover near 350; `benches/sparse.rs`, docs/network.md §10.3).
+/// crossover near 350; `benches/sparse.rs`, docs/network.md §10.5).
 pub const DENSE_LIMIT: usize = 384;
 
 /// The largest sparse [`SymmetricMatrix`] whose inertia counts and shifted solves are computed

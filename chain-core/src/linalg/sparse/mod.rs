@@ -12,7 +12,7 @@
 //! Costs for a 2D lattice patch of `n` degrees of freedom with nested-dissection-like fill: the
 //! factor holds `O(n log n)` values, a factorization takes `O(n^{3/2})`, a solve `O(n log n)`;
 //! compared with the dense `O(n^2)` memory and `O(n^3)` time. Measured crossover and timings:
-//! `benches/sparse.rs` and docs/network.md §10.3.
+//! `benches/sparse.rs` and docs/network.md §10.5.
 
 pub mod eigen;
 pub mod lblt;
