@@ -19,7 +19,7 @@
 //! let outcomes = OutcomeGrid::new(&grid, &points)?;
 //! assert_eq!(outcomes.cells().len(), 3);                  // one row per v0
 //! let total: usize = Outcome::ALL.iter().map(|&o| outcomes.count(o)).sum();
-//! assert_eq!(total + outcomes.failed(), 12);
+//! assert_eq!(total + outcomes.unresolved() + outcomes.failed(), 12);   // every point shown
 //!
 //! let figure = Figure {
 //!     label: "fig:my-antikink",
