@@ -167,7 +167,7 @@ impl BistableChain {
         Ok(())
     }
 
-    /// The unit cell: the mass `m` at the origin, its ground `g` [`GROUND_OFFSET`] behind it,
+    /// The unit cell: the mass `m` at the origin, its ground `g` `GROUND_OFFSET` behind it,
     /// the harmonic coupling `m -> m` to the next cell and the bistable bond `g -> m`.
     pub fn cell(&self) -> Result<Cell, MotionError> {
         Ok(Cell::builder(1, &[[1.0, 0.0]])
