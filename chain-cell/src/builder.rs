@@ -1,7 +1,7 @@
 //! [`CellBuilder`]: a cell assembled in Rust, validated by the same rules as a cell file.
 
-use super::Cell;
-use super::validate::{Raw, RawBond, RawNode, Val, validate_raw};
+use super::validate::{Raw, RawBond, RawLaw, RawNode, Val, validate_raw};
+use super::{BondLaw, Cell};
 use crate::error::CellError;
 
 /// Builds a [`Cell`] node by node and bond by bond; [`CellBuilder::build`] validates it.
@@ -74,7 +74,22 @@ impl CellBuilder {
             cell: Some(Val::plain(cell.to_vec())),
             k: Some(Val::plain(k)),
             rest_length: rest_length.map(Val::plain),
+            law: None,
         });
+        self
+    }
+
+    /// The spring law of every bond that sets none of its own (default harmonic).
+    pub fn law(mut self, law: BondLaw) -> Self {
+        self.raw.law = Some(Val::plain(RawLaw::Given(law)));
+        self
+    }
+
+    /// The spring law of the bond added last (no effect before the first bond).
+    pub fn bond_law(mut self, law: BondLaw) -> Self {
+        if let Some(b) = self.raw.bonds.last_mut() {
+            b.law = Some(Val::plain(RawLaw::Given(law)));
+        }
         self
     }
 
@@ -143,6 +158,7 @@ impl CellDescription {
         let raw = Raw {
             dimension: self.dimension.map(Val::plain),
             lattice: self.lattice.map(Val::plain),
+            law: None,
             line: None,
             nodes: self
                 .nodes
@@ -167,6 +183,7 @@ impl CellDescription {
                     cell: b.cell.map(Val::plain),
                     k: b.k.map(Val::plain),
                     rest_length: b.rest_length.map(Val::plain),
+                    law: None,
                 })
                 .collect(),
         };

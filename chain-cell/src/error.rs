@@ -157,6 +157,14 @@ pub enum CellError {
         /// Its length.
         length: f64,
     },
+    /// A `law` that is not a law of the cell format.
+    #[error("{at}: {problem}")]
+    Law {
+        /// The `law` key.
+        at: Location,
+        /// What is wrong, and what the key accepts.
+        problem: String,
+    },
     /// Two bonds joining the same two node instances.
     #[error("{at}: bond {second} joins the same two nodes as bond {first} (a duplicate bond)")]
     DuplicateBond {
@@ -185,6 +193,7 @@ impl CellError {
             | CellError::UnknownKind { at, .. }
             | CellError::BadName { at, .. }
             | CellError::UnknownNode { at, .. }
+            | CellError::Law { at, .. }
             | CellError::ZeroLengthBond { at, .. }
             | CellError::DuplicateBond { at, .. } => Some(at),
         }

@@ -24,6 +24,7 @@
 
 mod builder;
 pub mod error;
+mod law;
 mod text;
 mod validate;
 
@@ -31,6 +32,7 @@ pub mod ready;
 
 pub use builder::{BondDescription, CellBuilder, CellDescription, NodeDescription};
 pub use error::{CellError, Location};
+pub use law::{BondLaw, Polynomial, PolynomialProblem};
 use std::path::Path;
 
 /// What a node is.
@@ -111,6 +113,8 @@ pub struct Bond {
     pub k: f64,
     /// Rest length (> 0; default: the reference length, so the reference is stress-free).
     pub rest_length: f64,
+    /// The spring law (default: the cell's `law`, itself harmonic by default).
+    pub law: BondLaw,
 }
 
 /// A validated unit cell. Build one with [`Cell::from_toml_str`], [`Cell::builder`] or a
@@ -308,6 +312,9 @@ impl Cell {
                 bond.k,
                 bond.rest_length
             );
+            if bond.law != BondLaw::Harmonic {
+                let _ = writeln!(out, "law = {}", bond.law.to_toml());
+            }
         }
         out
     }

@@ -2,7 +2,7 @@
 //! line. Unknown keys and wrong types are reported by the TOML reader at their line; everything
 //! else (missing keys, ranges, names) by [`super::validate`].
 
-use super::validate::{Raw, RawBond, RawNode, Val};
+use super::validate::{Raw, RawBond, RawLaw, RawNode, Val};
 use crate::error::CellError;
 use serde::Deserialize;
 use toml::Spanned;
@@ -12,6 +12,7 @@ use toml::Spanned;
 struct File {
     dimension: Option<Spanned<i64>>,
     lattice: Option<Spanned<Vec<Vec<f64>>>>,
+    law: Option<Spanned<toml::Value>>,
     #[serde(default)]
     node: Vec<Spanned<NodeTable>>,
     #[serde(default)]
@@ -37,6 +38,33 @@ struct BondTable {
     cell: Option<Spanned<Vec<i64>>>,
     k: Option<Spanned<f64>>,
     rest_length: Option<Spanned<f64>>,
+    law: Option<Spanned<toml::Value>>,
+}
+
+/// A `law` value as written: a name, or a table `{ polynomial = [numbers] }`; anything else is
+/// kept as its description for the validation's error.
+fn raw_law(value: toml::Value) -> RawLaw {
+    match value {
+        toml::Value::String(name) => RawLaw::Name(name),
+        toml::Value::Table(table) if table.len() == 1 && table.contains_key("polynomial") => {
+            match &table["polynomial"] {
+                toml::Value::Array(items) => {
+                    let numbers: Option<Vec<f64>> = items
+                        .iter()
+                        .map(|v| match v {
+                            toml::Value::Float(x) => Some(*x),
+                            toml::Value::Integer(i) => Some(*i as f64),
+                            _ => None,
+                        })
+                        .collect();
+                    numbers
+                        .map_or_else(|| RawLaw::Other("a list with a non-number".into()), RawLaw::Polynomial)
+                }
+                other => RawLaw::Other(format!("`polynomial = ` a {}", other.type_str())),
+            }
+        }
+        other => RawLaw::Other(format!("a {}", other.type_str())),
+    }
 }
 
 /// 1-based line and column of byte `offset` in `text`.
@@ -67,6 +95,10 @@ pub(crate) fn parse(text: &str) -> Result<Raw, CellError> {
     Ok(Raw {
         dimension: file.dimension.map(|v| val(v, &line)),
         lattice: file.lattice.map(|v| val(v, &line)),
+        law: file.law.map(|v| {
+            let v = val(v, &line);
+            Val { value: raw_law(v.value), line: v.line }
+        }),
         line: Some(1),
         nodes: file
             .node
@@ -98,6 +130,10 @@ pub(crate) fn parse(text: &str) -> Result<Raw, CellError> {
                     cell: t.cell.map(|v| val(v, &line)),
                     k: t.k.map(|v| val(v, &line)),
                     rest_length: t.rest_length.map(|v| val(v, &line)),
+                    law: t.law.map(|v| {
+                        let v = val(v, &line);
+                        Val { value: raw_law(v.value), line: v.line }
+                    }),
                 }
             })
             .collect(),

@@ -6,9 +6,11 @@
 //! cell; at least one node; node names non-empty and unique; a joint has `position`, a rotor
 //! `pivot`, `length > 0` and `angle`, and neither takes the other's keys; every bond names two
 //! existing nodes, has `dimension` integer cell offsets, `k > 0` and `rest_length > 0` when
-//! given; no bond has zero length; no two bonds join the same two node instances.
+//! given; no bond has zero length; no two bonds join the same two node instances; a `law` (of
+//! the cell or of a bond) is `"harmonic"`, `"quartic"` or `{ polynomial = [c2, ...] }` with one
+//! to five finite coefficients.
 
-use super::{Bond, Cell, Node, NodeKind};
+use super::{Bond, BondLaw, Cell, Node, NodeKind, Polynomial, PolynomialProblem};
 use crate::error::{CellError, Location};
 
 /// A value with the line it came from (for text).
@@ -29,6 +31,8 @@ impl<T> Val<T> {
 pub(crate) struct Raw {
     pub dimension: Option<Val<i64>>,
     pub lattice: Option<Val<Vec<Vec<f64>>>>,
+    /// The law of every bond that names none.
+    pub law: Option<Val<RawLaw>>,
     pub line: Option<usize>,
     pub nodes: Vec<RawNode>,
     pub bonds: Vec<RawBond>,
@@ -55,6 +59,58 @@ pub(crate) struct RawBond {
     pub cell: Option<Val<Vec<i64>>>,
     pub k: Option<Val<f64>>,
     pub rest_length: Option<Val<f64>>,
+    pub law: Option<Val<RawLaw>>,
+}
+
+/// An unvalidated `law`.
+#[derive(Clone, Debug)]
+pub(crate) enum RawLaw {
+    /// A law given as a value (the Rust builder).
+    Given(BondLaw),
+    /// A name: `harmonic` or `quartic`.
+    Name(String),
+    /// `{ polynomial = [c2, c3, ...] }`.
+    Polynomial(Vec<f64>),
+    /// Anything else, described.
+    Other(String),
+}
+
+/// The law `v` at `key`.
+fn law(key: &str, v: &Val<RawLaw>) -> Result<BondLaw, CellError> {
+    let problem = |problem: String| CellError::Law { at: at(key, v.line), problem };
+    match &v.value {
+        RawLaw::Given(law) => match law {
+            BondLaw::Polynomial(p) => Polynomial::new(&p.coefficients)
+                .map(BondLaw::Polynomial)
+                .map_err(|e| polynomial_problem(key, v.line, e)),
+            other => Ok(*other),
+        },
+        RawLaw::Name(name) => match name.as_str() {
+            "harmonic" => Ok(BondLaw::Harmonic),
+            "quartic" => Ok(BondLaw::Quartic),
+            other => Err(problem(format!(
+                "unknown law `{other}` (expected \"harmonic\", \"quartic\" or {{ polynomial = [c2, c3, ...] }})"
+            ))),
+        },
+        RawLaw::Polynomial(c) => {
+            Polynomial::new(c).map(BondLaw::Polynomial).map_err(|e| polynomial_problem(key, v.line, e))
+        }
+        RawLaw::Other(what) => Err(problem(format!(
+            "{what} is not a law (expected \"harmonic\", \"quartic\" or {{ polynomial = [c2, c3, ...] }})"
+        ))),
+    }
+}
+
+fn polynomial_problem(key: &str, line: Option<usize>, e: PolynomialProblem) -> CellError {
+    match e {
+        PolynomialProblem::Count(found) => CellError::Length {
+            at: at(key, line),
+            expected: Polynomial::MAX_COEFFICIENTS,
+            found,
+            why: "one to five coefficients c2 .. c6",
+        },
+        PolynomialProblem::NotFinite { value, .. } => CellError::NotFinite { at: at(key, line), value },
+    }
 }
 
 /// Relative size below which a bond counts as having zero length, and lattice vectors as
@@ -240,6 +296,10 @@ pub(crate) fn validate_raw(raw: Raw) -> Result<Cell, CellError> {
             CellError::UnknownNode { at: at(key, v.line), name: v.value.clone(), suggestion }
         })
     };
+    let cell_law = match &raw.law {
+        Some(v) => law("law", v)?,
+        None => BondLaw::Harmonic,
+    };
     let mut bonds = Vec::with_capacity(raw.bonds.len());
     for (i, b) in raw.bonds.iter().enumerate() {
         let key = |k: &str| format!("bond[{i}].{k}");
@@ -273,7 +333,11 @@ pub(crate) fn validate_raw(raw: Raw) -> Result<Cell, CellError> {
             Some(v) => Some(positive(&key("rest_length"), v)?),
             None => None,
         };
-        bonds.push((Bond { from, to, cell, k, rest_length: rest.unwrap_or(f64::NAN) }, b.line));
+        let law = match &b.law {
+            Some(v) => law(&key("law"), v)?,
+            None => cell_law,
+        };
+        bonds.push((Bond { from, to, cell, k, rest_length: rest.unwrap_or(f64::NAN), law }, b.line));
     }
     let cell = Cell::from_parts(dimension, lattice, nodes, bonds.iter().map(|(b, _)| b.clone()).collect());
     let mut seen: Vec<(usize, usize, [i64; 2])> = Vec::with_capacity(bonds.len());

@@ -4,7 +4,8 @@
 //! [`NetworkError`](crate::NetworkError).
 
 pub use chain_cell::{
-    Bond, BondDescription, Cell, CellBuilder, CellDescription, Node, NodeDescription, NodeKind,
+    Bond, BondDescription, BondLaw, Cell, CellBuilder, CellDescription, Node, NodeDescription, NodeKind,
+    Polynomial, PolynomialProblem,
 };
 
 /// Ready cells of the standard lattices (`chain_cell::ready`), and a ready cell by name.

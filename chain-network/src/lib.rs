@@ -35,13 +35,14 @@ pub mod guest;
 pub mod kernel;
 pub mod linalg;
 pub mod model;
+pub mod motion;
 pub mod patch;
 pub mod strip;
 pub mod winding;
 
-pub use cell::{Bond, Cell, CellBuilder, CellDescription, Node, NodeKind};
+pub use cell::{Bond, BondLaw, Cell, CellBuilder, CellDescription, Node, NodeKind, Polynomial};
 pub use error::{CellError, Location, NetworkError};
 /// The linear-algebra crate whose matrices the API returns.
 pub use faer;
 pub use faer::c64;
-pub use model::{ChainView, NetworkModel, NetworkModelBuilder};
+pub use model::{ChainView, IntoBondLaw, NetworkModel, NetworkModelBuilder};

@@ -19,7 +19,7 @@
 //! let outcomes = OutcomeGrid::new(&grid, &points)?;
 //! assert_eq!(outcomes.cells().len(), 3);                  // one row per v0
 //! let total: usize = Outcome::ALL.iter().map(|&o| outcomes.count(o)).sum();
-//! assert_eq!(total + outcomes.failed(), 12);
+//! assert_eq!(total + outcomes.unresolved() + outcomes.failed(), 12);   // every point shown
 //!
 //! let figure = Figure {
 //!     label: "fig:my-antikink",
@@ -33,7 +33,7 @@
 //! # }
 //! ```
 
-use chain_sweep::scattering::PointRecord;
+use chain_sweep::scattering::{PointRecord, Unresolved};
 use chain_sweep::{Grid, Point};
 use rotor_chain::dynamics::scatter::Outcome;
 
@@ -42,12 +42,24 @@ use crate::model::Heatmap;
 /// The label of a point that failed (energy budget, unreadable walls): shown, never hidden.
 pub const FAILED: &str = "failed";
 
+/// The label of a point whose outcome is not the impurity's alone (chain-sweep's
+/// `PointRecord::unresolved`): drawn hatched grey ([`crate::palette::hatched`]), never with an
+/// outcome's colour.
+pub const UNRESOLVED: &str = "unresolved";
+
 /// One grid point of an [`OutcomeGrid`].
 #[derive(Clone, Debug, PartialEq)]
 #[non_exhaustive]
 pub enum Cell {
     /// The point's scattering outcome.
     Outcome(Outcome),
+    /// The point's run decided `outcome`, but it is not the impurity's alone: why.
+    Unresolved {
+        /// What the kept run decided.
+        outcome: Outcome,
+        /// Why it is not robust.
+        reason: Unresolved,
+    },
     /// The point's computation failed; its error message.
     Failed(String),
     /// No point: the sweep has not computed it (yet).
@@ -115,6 +127,9 @@ impl OutcomeGrid {
                 return Err(OutcomeGridError::Duplicate { index: point.index, coords: point.coords });
             }
             cells[j][i] = match &point.outcome {
+                Ok(PointRecord { outcome, unresolved: Some(reason), .. }) => {
+                    Cell::Unresolved { outcome: *outcome, reason: *reason }
+                }
                 Ok(record) => Cell::Outcome(record.outcome),
                 Err(message) => Cell::Failed(message.clone()),
             };
@@ -137,7 +152,8 @@ impl OutcomeGrid {
         &self.cells
     }
 
-    /// The outcome at column `i`, row `j` (`None` for a failed or missing point, or off the grid).
+    /// The outcome at column `i`, row `j` (`None` for an unresolved, failed or missing point, or
+    /// off the grid).
     pub fn outcome(&self, i: usize, j: usize) -> Option<Outcome> {
         match self.cells.get(j)?.get(i)? {
             Cell::Outcome(o) => Some(*o),
@@ -148,6 +164,11 @@ impl OutcomeGrid {
     /// How many points have `outcome`.
     pub fn count(&self, outcome: Outcome) -> usize {
         self.cells.iter().flatten().filter(|c| **c == Cell::Outcome(outcome)).count()
+    }
+
+    /// How many points are unresolved.
+    pub fn unresolved(&self) -> usize {
+        self.cells.iter().flatten().filter(|c| matches!(c, Cell::Unresolved { .. })).count()
     }
 
     /// How many points failed.
@@ -175,7 +196,7 @@ impl OutcomeGrid {
         found
     }
 
-    /// The outcomes per row, `None` for a failed or missing point.
+    /// The outcomes per row, `None` for an unresolved, failed or missing point.
     pub fn labels(&self) -> Vec<Vec<Option<Outcome>>> {
         (0..self.v0.len()).map(|j| (0..self.ki.len()).map(|i| self.outcome(i, j)).collect()).collect()
     }
@@ -188,8 +209,8 @@ impl OutcomeGrid {
         lo > 0.0 && hi >= 10.0 * lo
     }
 
-    /// The phase-diagram panel: one colour per outcome ([`crate::palette`]), failed points
-    /// black, missing points grey; `k_i/k` on a logarithmic axis when [`OutcomeGrid::log_ki`]
+    /// The phase-diagram panel: one colour per outcome ([`crate::palette`]), unresolved points
+    /// hatched grey, failed points black, missing points light grey; `k_i/k` on a logarithmic axis when [`OutcomeGrid::log_ki`]
     /// (the data's `x` are then `log10(k_i/k)`). The legend lists the outcomes present.
     pub fn heatmap(&self, title: impl Into<String>) -> Heatmap {
         let log = self.log_ki();
@@ -209,17 +230,17 @@ impl OutcomeGrid {
 }
 
 /// The colour categories of a phase diagram: every outcome in the order of `Outcome::ALL`, then
-/// [`FAILED`]. A new outcome (the physics issue's "unresolved") joins by joining `Outcome::ALL`;
-/// its colour is [`crate::palette::Quantity::of_category`]'s.
+/// [`UNRESOLVED`] and [`FAILED`]; each colour is [`crate::palette::Quantity::of_category`]'s.
 pub fn categories() -> Vec<String> {
-    Outcome::ALL.iter().map(|o| o.name()).chain([FAILED]).map(str::to_owned).collect()
+    Outcome::ALL.iter().map(|o| o.name()).chain([UNRESOLVED, FAILED]).map(str::to_owned).collect()
 }
 
 /// A cell's value in [`OutcomeGrid::heatmap`]: its place in [`categories`] (`NaN` when missing).
 pub fn category(cell: &Cell) -> f64 {
     match cell {
         Cell::Outcome(o) => Outcome::ALL.iter().position(|x| x == o).unwrap_or(0) as f64,
-        Cell::Failed(_) => Outcome::ALL.len() as f64,
+        Cell::Unresolved { .. } => Outcome::ALL.len() as f64,
+        Cell::Failed(_) => (Outcome::ALL.len() + 1) as f64,
         Cell::Missing => f64::NAN,
     }
 }
@@ -261,7 +282,7 @@ mod tests {
             "{:?}",
             map.x
         );
-        let failed = Outcome::ALL.len() as f64;
+        let failed = (Outcome::ALL.len() + 1) as f64;
         assert_eq!(map.values[1][1], failed);
         assert_eq!(map.categories[failed as usize], FAILED);
         assert!(map.values[0][2].is_nan());

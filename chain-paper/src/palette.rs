@@ -81,9 +81,9 @@ pub enum Quantity {
     PairCreation,
     /// Outcome: undecided.
     Undecided,
-    /// Outcome: unresolved, a label that changes with the integrator or the rounding (the
-    /// physics issue's class; its colour is kept ready so that the phase diagrams show it as soon
-    /// as `Outcome::ALL` has it).
+    /// A scattering point whose outcome is not the impurity's alone (the integrators disagree,
+    /// or a wall from a free end reached the impurity first): grey, drawn hatched
+    /// ([`hatched`]) so it never reads as an outcome.
     Unresolved,
     /// A sweep point that failed (energy budget, unreadable walls): shown, never hidden.
     Failed,
@@ -134,7 +134,7 @@ impl Quantity {
             Quantity::Disintegrated => RGBColor(230, 190, 90),
             Quantity::PairCreation => RGBColor(240, 170, 210),
             Quantity::Undecided => RGBColor(205, 205, 205),
-            Quantity::Unresolved => RGBColor(120, 205, 205),
+            Quantity::Unresolved => RGBColor(200, 200, 200),
             Quantity::Failed => BLACK,
             // Up to 0.85 of viridis: its last shades are too light for a line on white.
             Quantity::Parameter { index, of } => {
@@ -182,6 +182,15 @@ pub const OTHER_CATEGORIES: [RGBColor; 6] = [
     RGBColor(200, 180, 225),
     RGBColor(210, 190, 170),
 ];
+
+/// The hatching's colour of a [`hatched`] category.
+pub const HATCH: RGBColor = RGBColor(60, 60, 60);
+
+/// Whether cells (and legend swatches) of the category named `name` are drawn hatched over their
+/// colour: the unresolved scattering points, so that no reader takes them for an outcome.
+pub fn hatched(name: &str) -> bool {
+    Quantity::of_category(name) == Some(Quantity::Unresolved)
+}
 
 /// The colour of category `index` named `name`: its quantity's, or the next of
 /// [`OTHER_CATEGORIES`].

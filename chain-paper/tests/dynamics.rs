@@ -159,8 +159,8 @@ fn phase_diagram_figure() {
     assert_eq!(figure.panels.len(), 4);
     for chart in &figure.panels[..2] {
         let Chart::Heat(h) = chart else { panic!("phase diagrams are heat maps") };
-        // Every outcome, and "failed".
-        assert_eq!(h.categories.len(), 9);
+        // Every outcome, "unresolved" and "failed".
+        assert_eq!(h.categories.len(), 10);
         assert!(h.values.iter().flatten().all(|&v| v >= 0.0 && (v as usize) < h.categories.len()));
         // k_i/k from 0.01 to 3 on a logarithmic axis: the data are log10(k_i/k).
         assert!(h.log_x && h.x_label == "k_i / k");

@@ -54,6 +54,8 @@ pub(crate) struct Preamble<'a> {
     pub grid: &'a str,
     pub run: &'a str,
     pub shard: Option<Shard>,
+    /// The record's columns the file has: all of them, or those before the optional ones.
+    pub columns: usize,
 }
 
 /// The two lines that start a results file, each ending in `\n`.
@@ -78,8 +80,13 @@ pub(crate) fn one_line(run: &str) -> String {
 }
 
 pub(crate) fn header_line<R: Record>() -> String {
+    header_line_of::<R>(R::header().len())
+}
+
+/// The header of a file with the record's first `columns` columns.
+pub(crate) fn header_line_of<R: Record>(columns: usize) -> String {
     let columns: Vec<&str> =
-        INDEX_COLUMNS.iter().chain(R::header()).chain([&ERROR_COLUMN]).copied().collect();
+        INDEX_COLUMNS.iter().chain(&R::header()[..columns]).chain([&ERROR_COLUMN]).copied().collect();
     columns.join(",")
 }
 
@@ -131,6 +138,30 @@ pub(crate) fn format_point<R: Record>(
     line
 }
 
+/// `line` (a point line of a file with the record's first `columns` columns) with the record's
+/// missing optional columns added empty before `error`, as a file with every column has it.
+pub(crate) fn with_every_column<R: Record>(line: &[u8], columns: usize) -> Vec<u8> {
+    let missing = R::header().len().saturating_sub(columns);
+    if missing == 0 {
+        return line.to_vec();
+    }
+    // The error field is the last; it may be quoted, so split the line rather than search it.
+    let Some(fields) = std::str::from_utf8(line).ok().and_then(|t| split_fields(t).ok()) else {
+        return line.to_vec();
+    };
+    let (error, rest) = fields.split_last().expect("split_fields returns at least one field");
+    let mut out = String::new();
+    for (k, field) in rest.iter().map(|f| f.as_ref()).chain(std::iter::repeat_n("", missing)).enumerate() {
+        if k > 0 {
+            out.push(',');
+        }
+        push_field(&mut out, field);
+    }
+    out.push(',');
+    push_field(&mut out, error);
+    out.into_bytes()
+}
+
 /// The complete lines of `bytes` (each without its `\n`), numbered from 1, and the length of the
 /// complete part: everything after the last `\n` is an unfinished write.
 pub(crate) fn complete_lines(bytes: &[u8]) -> (impl Iterator<Item = (usize, &[u8])>, usize) {
@@ -173,25 +204,33 @@ pub(crate) fn read_preamble<'a, R: Record>(
         Some(bytes) => text(path, 2, bytes)?,
         None => "",
     };
-    if found != expected {
+    let all = R::header().len();
+    // Every column, or (a file written before the optional ones existed) those before them.
+    let older = all.saturating_sub(R::optional_columns());
+    let columns = if found == expected {
+        all
+    } else if older < all && found == header_line_of::<R>(older) {
+        older
+    } else {
         return Err(SweepError::HeaderMismatch { path: path.to_owned(), expected, found: found.to_owned() });
-    }
-    Ok(Preamble { grid, run, shard })
+    };
+    Ok(Preamble { grid, run, shard, columns })
 }
 
-/// Read one point line. With a `grid`, the index must be inside it (and inside `shard`) and the
-/// coordinates must be exactly the grid's.
+/// Read one point line of a file with the record's first `columns` columns
+/// ([`Preamble::columns`]). With a `grid`, the index must be inside it (and inside `shard`) and
+/// the coordinates must be exactly the grid's.
 pub(crate) fn parse_point<R: Record>(
     path: &Path,
     line: usize,
     bytes: &[u8],
+    columns: usize,
     grid: Option<&Grid>,
     shard: Option<Shard>,
 ) -> Result<Point<R>, SweepError> {
     let fail = |reason: String| SweepError::Parse { path: path.to_owned(), line, reason };
     let fields = split_fields(text(path, line, bytes)?).map_err(|e| fail(e.to_string()))?;
     let fields: Vec<&str> = fields.iter().map(|f| f.as_ref()).collect();
-    let columns = R::header().len();
     let expected = INDEX_COLUMNS.len() + columns + 1;
     if fields.len() != expected {
         return Err(fail(ParseError::FieldCount { expected, found: fields.len() }.to_string()));
@@ -231,10 +270,10 @@ pub fn read_points<R: Record>(path: impl AsRef<Path>) -> Result<Vec<Point<R>>, S
     let path = path.as_ref();
     let bytes = std::fs::read(path).map_err(SweepError::io("read", path))?;
     let (mut lines, _) = complete_lines(&bytes);
-    read_preamble::<R>(path, lines.next().map(|l| l.1), lines.next().map(|l| l.1))?;
+    let columns = read_preamble::<R>(path, lines.next().map(|l| l.1), lines.next().map(|l| l.1))?.columns;
     lines
         .filter(|(_, bytes)| !bytes.is_empty())
-        .map(|(line, bytes)| parse_point(path, line, bytes, None, None))
+        .map(|(line, bytes)| parse_point(path, line, bytes, columns, None, None))
         .collect()
 }
 

@@ -73,7 +73,7 @@ fn read_shard<R: Record>(path: &Path) -> Result<ShardFile, SweepError> {
     })?;
     let mut points = Vec::new();
     for (line, text) in lines.filter(|(_, text)| !text.is_empty()) {
-        let point = parse_point::<R>(path, line, text, None, None)?;
+        let point = parse_point::<R>(path, line, text, preamble.columns, None, None)?;
         let (i, j) = point.index;
         let fail = |reason: String| SweepError::Parse { path: path.to_owned(), line, reason };
         if i >= nx || j >= ny {
@@ -84,7 +84,9 @@ fn read_shard<R: Record>(path: &Path) -> Result<ShardFile, SweepError> {
         }
         let failed = point.outcome.is_err();
         let (index, coords, line_number) = (point.index, point.coords, line);
-        points.push(ShardPoint { index, coords, failed, line_number, line: text.to_vec() });
+        // A shard written before the record's optional columns existed joins with them empty.
+        let line = file::with_every_column::<R>(text, preamble.columns);
+        points.push(ShardPoint { index, coords, failed, line_number, line });
     }
     Ok(ShardFile { path: path.to_owned(), shard, grid, run, points })
 }

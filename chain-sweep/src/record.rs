@@ -44,8 +44,16 @@ pub trait Record: Sized {
     fn header() -> &'static [&'static str];
     /// One field per column of [`Record::header`].
     fn to_fields(&self) -> Vec<String>;
-    /// Read back what [`Record::to_fields`] wrote (unquoted, one `&str` per column).
+    /// Read back what [`Record::to_fields`] wrote (unquoted, one `&str` per column), or, from a
+    /// file written before the last [`Record::optional_columns`] columns existed, the fields
+    /// before them.
     fn from_fields(fields: &[&str]) -> Result<Self, ParseError>;
+    /// How many of the last columns of [`Record::header`] were added after files were written
+    /// without them (default 0): such a file's header lacks them, and it still reads (its
+    /// points' fields stop before them); a sweep resumes only a file with every column.
+    fn optional_columns() -> usize {
+        0
+    }
 }
 
 /// The shortest text that parses back to exactly `value` (Rust's `Debug` for `f64`: `0.1`,

@@ -7,6 +7,15 @@
 //! ([`scatter_within_budget`]: a Verlet run above [`PhaseDiagram::energy_tolerance`] is computed
 //! again with DOP853, a point that still breaks it fails with the numbers); this module keeps the
 //! grid's side: the chain and the experiment of each point, its record and its file columns.
+//!
+//! **Unresolved points.** A point whose outcome is not the impurity's alone keeps its outcome
+//! and carries the reason in [`PointRecord::unresolved`] (columns `unresolved`,
+//! `unresolved_outcome`, `t_unresolved`): a wall born at a free end reached the impurity before
+//! the decision ([`Unresolved::EndWallFirst`], read from every run), or, with
+//! [`PhaseDiagram::cross_check`], Verlet and DOP853 decided differently
+//! ([`Unresolved::IntegratorsDisagree`], [`cross_checked`]). The cross-check is an option, not the
+//! default: it runs every point with DOP853 as well, which costs several times a Verlet point
+//! (docs/dynamics.md §6 gives the measured cost and how often each reason occurs).
 
 use std::fmt;
 use std::num::NonZeroUsize;
@@ -15,8 +24,11 @@ use std::str::FromStr;
 use rotor_chain::dynamics::DynamicsError;
 pub use rotor_chain::dynamics::launch::Direction;
 use rotor_chain::dynamics::run::{ABSORBING_ENDS, RunOptions};
+pub use rotor_chain::dynamics::scatter::Unresolved;
 pub use rotor_chain::dynamics::scatter::budget::{BudgetError, DEFAULT_ENERGY_TOLERANCE, VerletBreach};
-use rotor_chain::dynamics::scatter::{EnergyBudget, ScatterSetup, paper_time_unit, scatter_within_budget};
+use rotor_chain::dynamics::scatter::{
+    CrossChecked, EnergyBudget, ScatterSetup, cross_checked, paper_time_unit, scatter_within_budget,
+};
 use rotor_chain::geometry::Short;
 pub use rotor_chain::integrate::Method;
 use rotor_chain::integrate::{IntegrateError, Schedule, VerletOptions};
@@ -224,8 +236,10 @@ pub const MAX_ROTORS_SEARCHED: usize = 100_000;
 /// time counts where it was last seen (a split no longer hangs on the output a wall leaves at).
 /// Since v3 the rules' windows and the output interval are in the chain's time unit
 /// ([`paper_time_unit`]`(k, mass)`, 1 for the paper's `k = 1e4`, `M = 1`); for other chains the
-/// label names it (`time_unit=`), so a file such a chain wrote before is refused too.
-pub const PHYSICS: &str = "scatter-v3";
+/// label names it (`time_unit=`), so a file such a chain wrote before is refused too. v4: a
+/// point whose decision came after a wall from a free end reached the impurity is marked
+/// unresolved ([`PointRecord::unresolved`]).
+pub const PHYSICS: &str = "scatter-v4";
 
 /// One phase diagram: the chain, the defect, and how each point is computed. Build with
 /// [`PhaseDiagram::new`], then change the public fields as needed.
@@ -273,6 +287,11 @@ pub struct PhaseDiagram {
     /// Damping rate `gamma >= 0` of every rotor, in `1 / t` as given (like `t_max`, not scaled
     /// with the chain's time unit). Default 0: the paper's undamped runs.
     pub damping: f64,
+    /// Run every point with Verlet and with DOP853 ([`cross_checked`]) and mark it unresolved
+    /// where they decide differently. Default `false`: DOP853 costs several times a Verlet run
+    /// (docs/dynamics.md §6), and the integrators agree on all but a corner of the paper's plane;
+    /// the end-wall check is made either way.
+    pub cross_check: bool,
 }
 
 impl PhaseDiagram {
@@ -298,6 +317,7 @@ impl PhaseDiagram {
             direction: Direction::Left,
             start: None,
             damping: 0.0,
+            cross_check: false,
         })
     }
 
@@ -452,6 +472,9 @@ impl PhaseDiagram {
         if self.damping != 0.0 {
             label += &format!(" damping={:?}", self.damping);
         }
+        if self.cross_check {
+            label += " cross_check=true";
+        }
         label
     }
 
@@ -495,11 +518,23 @@ impl PhaseDiagram {
         setup
     }
 
-    /// One point of the diagram (module doc): the run held to its energy budget, and the record.
+    /// One point of the diagram (module doc): the run held to its energy budget, cross-checked
+    /// with DOP853 if [`PhaseDiagram::cross_check`], and the record, with the reason if the
+    /// point is unresolved (the outcome then is the kept run's: Verlet's when cross-checked).
     pub fn compute_point(&self, ki_ratio: f64, v0: f64) -> Result<PointRecord, PointError> {
         let model = self.chain(ki_ratio)?;
         let budget = EnergyBudget { tolerance: self.energy_tolerance, recompute: self.recompute };
-        let kept = scatter_within_budget(&model, &self.setup(v0, self.integrator), &budget)?;
+        let setup = self.setup(v0, self.integrator);
+        let (kept, unresolved) = if self.cross_check {
+            match cross_checked(&model, &setup, &budget)? {
+                CrossChecked::Resolved(kept) => (*kept, None),
+                CrossChecked::Unresolved { reason, verlet, .. } => (*verlet, Some(reason)),
+            }
+        } else {
+            let kept = scatter_within_budget(&model, &setup, &budget)?;
+            let unresolved = kept.scattering.unresolved();
+            (kept, unresolved)
+        };
         let result = &kept.scattering;
         let last = result.run.tracker.snapshots.last().ok_or(BudgetError::NothingRecorded)?;
         let (kinks_final, antikinks_final) = last.counts();
@@ -512,6 +547,7 @@ impl PhaseDiagram {
             antikinks_final,
             energy_error: kept.energy_error,
             integrator: if kept.recomputed { Recomputed::Dop853 } else { Recomputed::No(kept.integrator) },
+            unresolved,
         })
     }
 }
@@ -586,6 +622,56 @@ pub struct PointRecord {
     pub energy_error: f64,
     /// Which integrator produced the record.
     pub integrator: Recomputed,
+    /// Why the outcome is not robust, if it is not (module doc): columns `unresolved` (the
+    /// reason's [`Unresolved::name`]), `unresolved_outcome` (DOP853's outcome where the
+    /// integrators disagree) and `t_unresolved` (DOP853's decision time, or when the end-born
+    /// wall reached the impurity); the reason's other half is `outcome` and `t_decided`. Files
+    /// written before these columns existed read back with `None`.
+    pub unresolved: Option<Unresolved>,
+}
+
+impl PointRecord {
+    /// [`PointRecord::unresolved`] as its three columns: the reason's name, DOP853's outcome
+    /// (where the integrators disagree) and the reason's time (DOP853's decision, or when the
+    /// end-born wall reached the impurity). The other half of a reason is the record's own
+    /// `outcome` and `t_decided`.
+    pub fn unresolved_columns(&self) -> (Option<&'static str>, Option<Outcome>, Option<f64>) {
+        match self.unresolved {
+            None => (None, None, None),
+            Some(reason @ Unresolved::IntegratorsDisagree { dop853, .. }) => {
+                (Some(reason.name()), Some(dop853.0), Some(dop853.1))
+            }
+            Some(reason @ Unresolved::EndWallFirst { arrived, .. }) => {
+                (Some(reason.name()), None, Some(arrived))
+            }
+            // A reason this version does not know how to store (the enum is non-exhaustive).
+            Some(reason) => (Some(reason.name()), None, None),
+        }
+    }
+
+    /// The reason of [`PointRecord::unresolved_columns`] back from its columns, with this
+    /// record's `outcome` and `t_decided` as its other half; `Err` names what is wrong.
+    pub fn unresolved_of(
+        &self,
+        (name, outcome, time): (Option<&str>, Option<Outcome>, Option<f64>),
+    ) -> Result<Option<Unresolved>, String> {
+        let decided = (self.outcome, self.t_decided);
+        Ok(match (name, outcome, time) {
+            (None, None, None) => None,
+            (Some("integrators-disagree"), Some(other), Some(t)) => {
+                Some(Unresolved::IntegratorsDisagree { verlet: decided, dop853: (other, t) })
+            }
+            (Some("end-wall-first"), None, Some(arrived)) => {
+                Some(Unresolved::EndWallFirst { arrived, decided })
+            }
+            _ => {
+                return Err(format!(
+                    "unresolved {name:?} with outcome {outcome:?} and time {time:?}: expected nothing, \
+                     integrators-disagree with DOP853's outcome and time, or end-wall-first with a time"
+                ));
+            }
+        })
+    }
 }
 
 impl Record for PointRecord {
@@ -600,11 +686,19 @@ impl Record for PointRecord {
             "antikinks_final",
             "energy_error",
             "integrator",
+            "unresolved",
+            "unresolved_outcome",
+            "t_unresolved",
         ]
     }
 
+    /// The three `unresolved` columns came with physics v4: files without them still read.
+    fn optional_columns() -> usize {
+        3
+    }
+
     fn to_fields(&self) -> Vec<String> {
-        vec![
+        let mut fields = vec![
             self.outcome.name().to_owned(),
             format_f64(self.t_decided),
             self.confirmed.to_string(),
@@ -614,17 +708,27 @@ impl Record for PointRecord {
             self.antikinks_final.to_string(),
             format_f64(self.energy_error),
             self.integrator.to_string(),
-        ]
+        ];
+        let (reason, other, time) = self.unresolved_columns();
+        fields.extend([
+            reason.unwrap_or_default().to_owned(),
+            other.map_or(String::new(), |o| o.name().to_owned()),
+            time.map_or(String::new(), format_f64),
+        ]);
+        fields
     }
 
     fn from_fields(fields: &[&str]) -> Result<Self, ParseError> {
         let header = Self::header();
-        expect_fields(fields, header.len())?;
+        // The file's own columns: all of them, or those before the optional ones.
+        if fields.len() != header.len() - Self::optional_columns() {
+            expect_fields(fields, header.len())?;
+        }
         let later = match (fields[3], fields[4]) {
             ("", "") => None,
             _ => Some((parse_field(fields, 3, header[3])?, parse_field(fields, 4, header[4])?)),
         };
-        Ok(Self {
+        let mut record = Self {
             outcome: parse_field(fields, 0, header[0])?,
             t_decided: parse_field(fields, 1, header[1])?,
             confirmed: parse_field(fields, 2, header[2])?,
@@ -633,7 +737,16 @@ impl Record for PointRecord {
             antikinks_final: parse_field(fields, 6, header[6])?,
             energy_error: parse_field(fields, 7, header[7])?,
             integrator: parse_field(fields, 8, header[8])?,
-        })
+            unresolved: None,
+        };
+        // The optional columns, empty when the file has none.
+        let optional = |k: usize| fields.get(k).copied().filter(|f| !f.is_empty());
+        let other = optional(10).map(|_| parse_field(fields, 10, header[10])).transpose()?;
+        let time = optional(11).map(|_| parse_field(fields, 11, header[11])).transpose()?;
+        record.unresolved = record.unresolved_of((optional(9), other, time)).map_err(|reason| {
+            ParseError::Field { column: header[9].to_owned(), value: fields[9].to_owned(), reason }
+        })?;
+        Ok(record)
     }
 }
 
@@ -653,6 +766,7 @@ pub fn fake_point(ki_ratio: f64, v0: f64) -> PointRecord {
         antikinks_final,
         energy_error: 1e-9 * (1.0 + ki_ratio * v0),
         integrator: Recomputed::No(Method::Verlet),
+        unresolved: None,
     }
 }
 
@@ -720,7 +834,7 @@ mod tests {
         d.check().unwrap();
         assert!(
             d.run_label().ends_with(
-                "physics=scatter-v3 impurity=20 impurity_rest_length=1.75 direction=right start=5.0 damping=0.5"
+                "physics=scatter-v4 impurity=20 impurity_rest_length=1.75 direction=right start=5.0 damping=0.5"
             ),
             "{}",
             d.run_label()
@@ -853,6 +967,7 @@ mod tests {
             antikinks_final: 1,
             energy_error: 2.5e-13,
             integrator: Recomputed::Dop853,
+            unresolved: None,
         };
         let fields = record.to_fields();
         let fields: Vec<&str> = fields.iter().map(String::as_str).collect();
@@ -867,7 +982,10 @@ mod tests {
                 "2",
                 "1",
                 "2.5e-13",
-                "dop853-recomputed"
+                "dop853-recomputed",
+                "",
+                "",
+                ""
             ]
         );
         assert_eq!(PointRecord::from_fields(&fields), Ok(record.clone()));
@@ -879,6 +997,59 @@ mod tests {
             PointRecord::from_fields(&["split", "x", "true", "", "", "2", "1", "0", "verlet"]).unwrap_err();
         assert!(err.to_string().contains("column `t_decided`"), "{err}");
         assert!(PointRecord::from_fields(&["split"]).is_err());
+    }
+
+    /// An unresolved point keeps its reason through the file's columns, with both halves of it
+    /// (the record's outcome and decision time, and the columns' own); the fields of a file
+    /// written before the columns existed read as resolved; a reason without its numbers is an
+    /// error naming the column.
+    #[test]
+    fn unresolved_records_round_trip_and_records_without_the_columns_still_read() {
+        let base = PointRecord {
+            outcome: Outcome::PairCreation,
+            t_decided: 11.1,
+            confirmed: true,
+            later: None,
+            kinks_final: 2,
+            antikinks_final: 3,
+            energy_error: 1.5e-3,
+            integrator: Recomputed::No(Method::Verlet),
+            unresolved: None,
+        };
+        let disagree = PointRecord {
+            unresolved: Some(Unresolved::IntegratorsDisagree {
+                verlet: (Outcome::PairCreation, 11.1),
+                dop853: (Outcome::Trapped, 8.2),
+            }),
+            ..base.clone()
+        };
+        let end_wall = PointRecord {
+            unresolved: Some(Unresolved::EndWallFirst {
+                arrived: 5.25,
+                decided: (Outcome::PairCreation, 11.1),
+            }),
+            ..base.clone()
+        };
+        for (record, tail) in [
+            (&disagree, ["integrators-disagree", "trapped", "8.2"]),
+            (&end_wall, ["end-wall-first", "", "5.25"]),
+            (&base, ["", "", ""]),
+        ] {
+            let fields = record.to_fields();
+            let fields: Vec<&str> = fields.iter().map(String::as_str).collect();
+            assert_eq!(fields[9..], tail);
+            assert_eq!(PointRecord::from_fields(&fields).as_ref(), Ok(record));
+            // The nine columns of a file written before physics v4: resolved.
+            assert_eq!(PointRecord::from_fields(&fields[..9]), Ok(base.clone()));
+        }
+        let mut fields: Vec<String> = disagree.to_fields();
+        fields[11].clear();
+        let fields: Vec<&str> = fields.iter().map(String::as_str).collect();
+        let err = PointRecord::from_fields(&fields).unwrap_err();
+        assert!(err.to_string().starts_with("column `unresolved`"), "{err}");
+        let mut fields: Vec<&str> = base.to_fields().iter().map(|_| "").collect();
+        fields.truncate(10);
+        assert!(matches!(PointRecord::from_fields(&fields), Err(ParseError::FieldCount { .. })));
     }
 
     #[test]

@@ -394,9 +394,18 @@ fn resume<R: Record>(grid: &Grid, path: &Path, options: &SweepOptions) -> Result
         let (expected, found) = (file::shard_name(options.shard), file::shard_name(found.shard));
         return Err(SweepError::ShardMismatch { path: path.to_owned(), expected, found });
     }
+    // A file of the same sweep without the record's optional columns reads, but new points would not fit it.
+    if found.columns != R::header().len() {
+        let found_header = file::header_line_of::<R>(found.columns);
+        return Err(SweepError::HeaderMismatch {
+            path: path.to_owned(),
+            expected: file::header_line::<R>(),
+            found: found_header,
+        });
+    }
     let mut failed_lines = Vec::new();
     for (line, text) in lines.filter(|(_, text)| !text.is_empty()) {
-        let point = parse_point::<R>(path, line, text, Some(grid), options.shard)?;
+        let point = parse_point::<R>(path, line, text, found.columns, Some(grid), options.shard)?;
         let failed = point.outcome.is_err();
         if failed {
             failed_lines.push(point.line);

@@ -187,7 +187,7 @@ fn a_good_fake_sweep_writes_the_phase_diagram_columns() {
     assert_eq!(
         lines.next(),
         Some(
-            "i,j,x,y,outcome,t_decided,confirmed,later,t_later,kinks_final,antikinks_final,energy_error,integrator,error"
+            "i,j,x,y,outcome,t_decided,confirmed,later,t_later,kinks_final,antikinks_final,energy_error,integrator,unresolved,unresolved_outcome,t_unresolved,error"
         )
     );
     assert_eq!(lines.count(), 9);

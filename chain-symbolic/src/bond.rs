@@ -24,6 +24,10 @@
 //! is `dl / du` per displacement: `dl/dx` for a joint, `dl / d(r phi)` for a rotor, as
 //! `chain-network`'s compatibility matrix (whose rotor column is the tip's arc length).
 //!
+//! A law may take parameters of its own beyond `k` and `l0`: [`polynomial`], the run-time
+//! polynomial law in the elongation whose coefficients `c2 .. c6` are symbols, is rendered with
+//! them appended to every type's arguments ([`BondKernels::with_parameters`]).
+//!
 //! [`SpringTerms`]: crate::spring::SpringTerms
 
 use std::fmt::Write;
@@ -191,6 +195,43 @@ impl BondTerms {
     }
 }
 
+/// The names of the polynomial law's coefficients `c2 .. c6` as the rendered kernels take them,
+/// after [`BondKind::args`]: `p2 .. p6` (`c2` already names a rotor's `cos phi2`).
+pub const POLYNOMIAL_COEFFICIENTS: [&str; 5] = ["p2", "p3", "p4", "p5", "p6"];
+
+/// The polynomial law in the elongation `e = l - l0`,
+///
+/// `E(e) = k (c2 e^2 / 2 + c3 e^3 / 3 + c4 e^4 / 4 + c5 e^5 / 5 + c6 e^6 / 6)`,
+///
+/// with the coefficients `c2 .. c6` symbols (named as in [`POLYNOMIAL_COEFFICIENTS`]), so one rendered kernel
+/// serves every choice at run time: `c2 = 1` alone is the harmonic law `k e^2 / 2`, `c4 > 0` a
+/// hardening spring, and `c2 = a b c4`, `c3 = -(a + b) c4` the double well whose tension
+/// `k c4 e (e - a) (e - b)` vanishes at `e = 0, a, b` (stable at `0` and `b` for `0 < a < b`:
+/// the bistable element of a transition-wave chain). Written in Horner's form,
+/// `k e^2 (c2/2 + e (c3/3 + e (c4/4 + e (c5/5 + e c6/6))))`: five multiplications and a
+/// rounding error bounded by the sum of the terms' magnitudes; every derivative is the engine's.
+pub fn polynomial(g: &mut Graph) -> SpringLaw {
+    let (l, l0, k) = SpringLaw::symbols(g);
+    let e = g.sub(l, l0);
+    let mut horner = None;
+    for (j, name) in POLYNOMIAL_COEFFICIENTS.iter().enumerate().rev() {
+        let c = g.symbol(name);
+        let power = g.constant((j + 2) as f64);
+        let term = g.div(c, power);
+        horner = Some(match horner {
+            None => term,
+            Some(inner) => {
+                let shifted = g.mul(e, inner);
+                g.add(term, shifted)
+            }
+        });
+    }
+    let e2 = g.powi(e, 2);
+    let ke2 = g.mul(k, e2);
+    let energy = g.mul(ke2, horner.expect("five coefficients"));
+    SpringLaw::custom(g, energy)
+}
+
 /// One function of a rendered bond kernel: the chain kernel's description over the bond's terms.
 pub type BondFunction = crate::chain::KernelFunction<BondTerms>;
 
@@ -240,11 +281,20 @@ pub const BOND_FUNCTIONS: [BondFunction; 10] = [
 /// A law's bond kernels: each bond type derived in its own graph.
 pub struct BondKernels {
     pub bonds: Vec<(Graph, BondTerms)>,
+    /// The law's own parameters (symbols), appended to every type's arguments.
+    pub parameters: Vec<&'static str>,
 }
 
 impl BondKernels {
     /// Derives the three bond types for `law` (built in each fresh graph by the caller's closure).
     pub fn new(law: &dyn Fn(&mut Graph) -> SpringLaw) -> Self {
+        Self::with_parameters(law, &[])
+    }
+
+    /// As [`BondKernels::new`] for a law with parameters of its own (symbols of the graph other
+    /// than the law's `l`, `l0`, `k`), which the rendered kernels take after
+    /// [`BondKind::args`], in the order of `parameters`.
+    pub fn with_parameters(law: &dyn Fn(&mut Graph) -> SpringLaw, parameters: &[&'static str]) -> Self {
         let bonds = BondKind::ALL
             .iter()
             .map(|&kind| {
@@ -254,18 +304,19 @@ impl BondKernels {
                 (g, terms)
             })
             .collect();
-        Self { bonds }
+        Self { bonds, parameters: parameters.to_vec() }
     }
 
     /// Rust source of the kernels: per bond type a module (`joint_joint`, `joint_rotor`,
     /// `rotor_rotor`) holding, for each of [`BOND_FUNCTIONS`], a unit struct implementing
     /// `BondFn<A, M>`, whose `#[inline(always)] eval<L: Lane>(x: [L; A]) -> [L; M]` is generic
-    /// over the lane type and takes [`BondKind::args`], and a unit struct `Kernels` naming them
-    /// all (`BondKernels<A, N, N + 1, H, 1 + N + H>`, `N` degrees of freedom, `H` block
-    /// entries); after the modules, a unit struct `Law` implementing `LawKernels` with the three
-    /// types' `Kernels`: what a network model's drivers are generic over. The caller puts
-    /// `Lane`, `BondFn`, `BondKernels` and `LawKernels` in the file's scope; each module imports
-    /// them from `super`.
+    /// over the lane type and takes [`BondKind::args`] (then the law's parameters), and a unit
+    /// struct `Kernels` naming them all (`BondKernels<A, N, N + 1, H, 1 + N + H>`, `N` degrees
+    /// of freedom, `H` block entries); after the modules, a unit struct `Law` implementing
+    /// `LawKernels` with the three types' `Kernels` (`LawKernels<A1, A2, A3>` with the three
+    /// types' argument counts, for a law with parameters): what a network model's drivers are
+    /// generic over. The caller puts `Lane`, `BondFn`, `BondKernels` and `LawKernels` in the
+    /// file's scope; each module imports them from `super`.
     pub fn render(&self) -> Result<String, String> {
         let mut out = String::new();
         for (g, terms) in &self.bonds {
@@ -278,7 +329,7 @@ impl BondKernels {
                     _ => None,
                 }
             };
-            let args = terms.kind.args();
+            let args: Vec<&str> = terms.kind.args().iter().chain(&self.parameters).copied().collect();
             let a = args.len();
             let _ = writeln!(
                 out,
@@ -315,7 +366,16 @@ impl BondKernels {
         }
         let _ = writeln!(out, "/// The law's kernels of every bond type.");
         let _ = writeln!(out, "pub struct Law;\n");
-        let _ = writeln!(out, "impl LawKernels for Law {{");
+        // A law with parameters of its own names its argument counts; the others take the
+        // trait's defaults (8, 9, 10), so their files stay as they were.
+        let arities = if self.parameters.is_empty() {
+            String::new()
+        } else {
+            let a: Vec<String> =
+                BondKind::ALL.iter().map(|k| (k.args().len() + self.parameters.len()).to_string()).collect();
+            format!("<{}>", a.join(", "))
+        };
+        let _ = writeln!(out, "impl LawKernels{arities} for Law {{");
         for kind in BondKind::ALL {
             let name = format!("{kind:?}");
             let _ = writeln!(out, "type {name} = {}::Kernels;", kind.module());
@@ -335,6 +395,8 @@ mod tests {
     const K: f64 = 3.0;
     const L0: f64 = 1.1;
     const OFFSET: (f64, f64) = (1.3, -0.4);
+    /// The polynomial law's coefficients `c2 .. c6` in the tests: every power present, signs mixed.
+    const C: [f64; 5] = [0.9, -1.7, 2.3, -0.6, 0.45];
 
     fn law_of(energy: fn(f64) -> f64) -> impl Fn(f64) -> f64 {
         energy
@@ -370,6 +432,11 @@ mod tests {
                 "r2" => R2,
                 "k" => K,
                 "l0" => L0,
+                "p2" => C[0],
+                "p3" => C[1],
+                "p4" => C[2],
+                "p5" => C[3],
+                "p6" => C[4],
                 other => panic!("a symbol the bond does not take: {other}"),
             }
         }
@@ -414,10 +481,14 @@ mod tests {
         SpringLaw::custom(g, energy)
     }
 
-    const LAWS: [Law; 3] = [
+    const LAWS: [Law; 4] = [
         (SpringLaw::harmonic, |l| 0.5 * K * (l - L0).powi(2)),
         (SpringLaw::quartic, |l| K * (l * l - L0 * L0).powi(2) / (8.0 * L0 * L0)),
         (exponential, |l| K * ((l - L0).exp() - 1.0 - (l - L0))),
+        // The sum of powers as written in the law's definition, not the engine's Horner form.
+        (polynomial, |l| {
+            K * (0..5).map(|j| C[j] * (l - L0).powi(j as i32 + 2) / (j + 2) as f64).sum::<f64>()
+        }),
     ];
 
     /// Length, energy, gradient, Hessian block and compatibility row of every bond type and law
@@ -481,5 +552,14 @@ mod tests {
         assert_eq!(src.matches("impl BondFn<").count(), 3 * BOND_FUNCTIONS.len());
         let code: String = src.lines().filter(|l| !l.starts_with("///")).collect();
         assert!(!code.contains("sin(") && !code.contains("phi"), "angles enter only through s and c");
+    }
+
+    #[test]
+    fn the_polynomial_law_takes_its_coefficients_after_the_bond_arguments() {
+        let src = BondKernels::with_parameters(&polynomial, &POLYNOMIAL_COEFFICIENTS).render().unwrap();
+        for kind in BondKind::ALL {
+            let args: Vec<&str> = kind.args().iter().chain(&POLYNOMIAL_COEFFICIENTS).copied().collect();
+            assert!(src.contains(&format!("let [{}] = x;", args.join(", "))), "{kind:?}");
+        }
     }
 }

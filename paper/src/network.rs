@@ -9,6 +9,7 @@
 //! network draw CELL.toml [--out DIR]
 //! network diagram [--x1 -0.2:0.2:41] [--x2 -0.2:0.2:41] [--x3 0.1] [--z 0] [--out DIR] [--shard I/N|slurm | --merge]
 //! network cell NAME [PARAMETERS...]     # a ready cell's TOML on stdout
+//! network motion transition [--sites 200] [--damping 0.5] [--duration 70] [--out DIR]
 //! ```
 //!
 //! Exit status: 0 done; 2 bad input (a cell file's problem names its key and line; bad sizes and
@@ -19,7 +20,7 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 use chain_paper::network::diagram::{DiagramParams, PolarizationPoint, compute_point, diagram_figure};
-use chain_paper::network::{bands_figure, cell_figure};
+use chain_paper::network::{bands_figure, cell_figure, transition_figure};
 use chain_paper::{output, render};
 use chain_sweep::{Axis, Grid, Shard, SweepOptions, find_shards, merge_shards, read_results, run_sweep};
 use clap::{Parser, Subcommand, ValueEnum};
@@ -27,6 +28,8 @@ use rotor_chain::network::bloch::parse_path;
 use rotor_chain::network::cell::ready;
 use rotor_chain::network::counts::{Method, counts};
 use rotor_chain::network::guest::guest_modes;
+use rotor_chain::network::motion::MotionError;
+use rotor_chain::network::motion::transition::BistableChain;
 use rotor_chain::network::patch::{Boundary, Patch};
 use rotor_chain::network::strip::{DEFAULT_Q, Strip, strip_modes};
 use rotor_chain::network::winding::{WindingOptions, winding};
@@ -152,6 +155,11 @@ enum Command {
         #[arg(long)]
         threads: Option<usize>,
     },
+    /// Networks in motion (issue 36): nonlinear waves launched on a network, measured, drawn.
+    Motion {
+        #[command(subcommand)]
+        demo: Motion,
+    },
     /// Print a ready cell in the file format: square, kagome, deformed-kagome X1 X2 X3 Z,
     /// twisted-kagome ALPHA, rotor-chain A R THETA_BAR, paper-chain-right, paper-chain-left.
     Cell {
@@ -160,6 +168,26 @@ enum Command {
         /// Its parameters.
         #[arg(allow_negative_numbers = true)]
         parameters: Vec<f64>,
+    },
+}
+
+#[derive(Subcommand)]
+enum Motion {
+    /// A transition wave in a chain of bistable elements (the polynomial double-well law): its
+    /// fitted front speed against the continuum's closed form, and the x-t diagram.
+    Transition {
+        /// Sites of the chain.
+        #[arg(long, default_value_t = BistableChain::default().sites)]
+        sites: usize,
+        /// The damping rate gamma (1 / time).
+        #[arg(long, default_value_t = BistableChain::default().damping)]
+        damping: f64,
+        /// Length of the run (the fit starts at t = 15).
+        #[arg(long, default_value_t = BistableChain::default().duration)]
+        duration: f64,
+        /// Output folder of the figure.
+        #[arg(long, default_value = "network-output")]
+        out: PathBuf,
     },
 }
 
@@ -187,6 +215,18 @@ impl From<NetworkError> for Failure {
             _ => 1,
         };
         Failure { status, message: e.to_string() }
+    }
+}
+
+impl From<MotionError> for Failure {
+    fn from(e: MotionError) -> Self {
+        match e {
+            MotionError::Network(e) => e.into(),
+            MotionError::Parameter { .. } | MotionError::Cell(_) => {
+                Failure { status: 2, message: e.to_string() }
+            }
+            _ => Failure { status: 1, message: e.to_string() },
+        }
     }
 }
 
@@ -411,6 +451,22 @@ fn run(command: Command) -> Result<(), Failure> {
             let rows = read_results::<PolarizationPoint>(&path).map_err(|e| fail(1, e.to_string()))?;
             write_figure(&diagram_figure(&params, &grid, &rows), &out)?;
             println!("{}", path.display());
+        }
+        Command::Motion { demo: Motion::Transition { sites, damping, duration, out } } => {
+            let chain = BistableChain { sites, damping, duration, ..BistableChain::default() };
+            let samples = (2.0 * duration).round() as usize + 1;
+            let chain = BistableChain { samples: samples.max(2), ..chain };
+            let (figure, wave) = transition_figure(&chain)?;
+            println!(
+                "front speed {:.5} (fit over {} samples, rms {:.3} sites), continuum {:.5}: {:+.3} %",
+                wave.speed(),
+                wave.fit.points,
+                wave.fit.rms_residual,
+                wave.predicted,
+                100.0 * wave.relative_difference()
+            );
+            prepare(&out)?;
+            write_figure(&figure, &out)?;
         }
         Command::Cell { name, parameters } => {
             let cell = ready::by_name(&name, &parameters)?;

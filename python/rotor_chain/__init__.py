@@ -22,6 +22,8 @@ True
 - :class:`Network`: periodic spring and rotor networks (issue 33) from a cell file, TOML text,
   keyword arguments or a ready lattice: Maxwell-Calladine counts, zero modes, Bloch matrices,
   bands, winding numbers and the polarization, strips with edge modes, Guest modes.
+- :class:`NetworkModel`: a finite patch of a network in motion (issue 36): energy, gradient,
+  relaxation, Newton, the lowest modes (sparse stiffness for large patches), Verlet.
 - :mod:`rotor_chain.errors`: the exceptions, one class per Rust error family.
 
 Units: every number is absolute, in the units of the parameters given; nothing is divided by
@@ -41,6 +43,9 @@ from ._native import (
     Launch,
     Modes,
     Network,
+    NetworkModel,
+    NetworkModes,
+    NetworkRun,
     PeierlsNabarro,
     Run,
     Scattering,
@@ -66,6 +71,9 @@ __all__ = [
     "Chain",
     "Continuum",
     "Network",
+    "NetworkModel",
+    "NetworkModes",
+    "NetworkRun",
     "Antikink",
     "PeierlsNabarro",
     "Modes",

@@ -17,6 +17,9 @@ _VARIABLES = {
     "antikinks_final": (np.int64, -1, {"long_name": "antikinks at the end of the run"}),
     "energy_error": (np.float64, np.nan, {"long_name": "largest relative energy error", "units": "1"}),
     "integrator": (np.str_, "", {"long_name": "integrator of the record ('verlet', 'dop853', ...)"}),
+    "unresolved": (np.str_, "", {"long_name": "why the outcome is not the impurity's alone ('' if it is)"}),
+    "unresolved_outcome": (np.str_, "", {"long_name": "DOP853's outcome where the integrators disagree"}),
+    "t_unresolved": (np.float64, np.nan, {"long_name": "DOP853's decision, or when an end-born wall reached the impurity", "units": "t"}),
 }
 
 

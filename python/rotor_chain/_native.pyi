@@ -228,6 +228,59 @@ class Network:
     def strip(self, along: int, cells: int, q: float = 2.0) -> Dict[str, Any]: ...
     def guest_modes(self) -> Tuple[int, Array]: ...
 
+class NetworkModel:
+    """A finite patch of a network with masses, a spring law and overrides (issue 36)."""
+    def __init__(
+        self,
+        network: Network,
+        cells: Union[int, Sequence[int]],
+        *,
+        boundary: Literal["periodic", "free"] = "periodic",
+        mass: float = 1.0,
+        law: Literal["harmonic", "quartic"] = "harmonic",
+        springs: Optional[Mapping[int, Mapping[str, float]]] = None,
+        masses: Optional[Mapping[Tuple[Tuple[int, int], int], float]] = None,
+    ) -> None: ...
+    @property
+    def dof(self) -> int: ...
+    @property
+    def spring_count(self) -> int: ...
+    def reference(self) -> Array: ...
+    def inertia(self) -> Array: ...
+    def energy(self, x: ArrayLike) -> float: ...
+    def gradient(self, x: ArrayLike) -> Array: ...
+    def relax(self, x: ArrayLike, *, tolerance: float = 1e-8, max_steps: int = 20000) -> Tuple[Array, int]: ...
+    def newton(self, x: ArrayLike, *, tolerance: float = 1e-11, max_iterations: int = 60) -> Array: ...
+    def modes(self, x: ArrayLike, count: int = 12) -> NetworkModes: ...
+    def propagate(
+        self,
+        x: ArrayLike,
+        v: ArrayLike,
+        *,
+        t_max: float,
+        dt: Optional[float] = None,
+        output_every: int = 100,
+        damping: float = 0.0,
+        energy_limit: float = 0.1,
+    ) -> NetworkRun: ...
+
+class NetworkModes:
+    """The lowest modes of a patch, ascending in ``omega^2``."""
+    frequencies: Array
+    omega_squared: Array
+    vectors: Array
+    participation: Array
+
+class NetworkRun:
+    """A Verlet run of a patch."""
+    times: Array
+    energies: Array
+    x: Array
+    v: Array
+    time: float
+    steps: int
+    max_energy_error: float
+
 class Counting:
     rotors: int
     springs: int
@@ -293,6 +346,12 @@ class PhaseDiagram:
         energy_tolerance: float = ...,
         recompute: bool = True,
         t_max: float = 20.0,
+        impurity: Optional[int] = None,
+        impurity_rest_length: Optional[float] = None,
+        start: Optional[float] = None,
+        direction: Literal["left", "right"] = "left",
+        damping: float = 0.0,
+        cross_check: bool = False,
     ) -> None: ...
     @property
     def run_label(self) -> str: ...

@@ -14,8 +14,11 @@ spring), followed until its outcome is decided and confirmed, and held to an ene
 
 A *record* is a dict with the columns of the results file: ``i``, ``j`` (grid indices), ``ki``
 (``k_i/k``), ``v0``, ``outcome``, ``t_decided``, ``confirmed``, ``later``, ``t_later``,
-``kinks_final``, ``antikinks_final``, ``energy_error``, ``integrator`` and ``error`` (``None``, or
-the message of a point that failed, whose other fields are then ``None``). Times are in the unit
+``kinks_final``, ``antikinks_final``, ``energy_error``, ``integrator``, ``unresolved``,
+``unresolved_outcome``, ``t_unresolved`` (``None``, or why the outcome is not the impurity's alone:
+``"end-wall-first"`` or ``"integrators-disagree"`` with DOP853's outcome and time, docs/dynamics.md
+§6) and ``error`` (``None``, or the message of a point that failed, whose other fields are then
+``None``). Times are in the unit
 ``t`` of Appendix B, speeds in ``a/t``.
 
 With ``out=...`` every point is appended to that CSV file the moment it is known, in the format of
@@ -78,6 +81,9 @@ COLUMNS: Tuple[str, ...] = (
     "antikinks_final",
     "energy_error",
     "integrator",
+    "unresolved",
+    "unresolved_outcome",
+    "t_unresolved",
     "error",
 )
 
@@ -132,6 +138,12 @@ def point(
     energy_tolerance: float = DEFAULT_ENERGY_TOLERANCE,
     recompute: bool = True,
     t_max: float = 20.0,
+    impurity: Optional[int] = None,
+    impurity_rest_length: Optional[float] = None,
+    start: Optional[float] = None,
+    direction: str = "left",
+    damping: float = 0.0,
+    cross_check: bool = False,
 ) -> Record:
     """One point of a phase diagram, as a record (``i = j = 0``). The settings are those of
     :func:`phase_diagram`.
@@ -154,6 +166,12 @@ def point(
         energy_tolerance=energy_tolerance,
         recompute=recompute,
         t_max=t_max,
+        impurity=impurity,
+        impurity_rest_length=impurity_rest_length,
+        start=start,
+        direction=direction,
+        damping=damping,
+        cross_check=cross_check,
     )
     d.check_ki(ki)
     _check_v0(v0)
@@ -176,6 +194,12 @@ def phase_diagram(
     energy_tolerance: float = DEFAULT_ENERGY_TOLERANCE,
     recompute: bool = True,
     t_max: float = 20.0,
+    impurity: Optional[int] = None,
+    impurity_rest_length: Optional[float] = None,
+    start: Optional[float] = None,
+    direction: str = "left",
+    damping: float = 0.0,
+    cross_check: bool = False,
     out: Union[None, str, "os.PathLike[str]"] = None,
     client: Any = None,
     threads: Optional[int] = None,
@@ -208,6 +232,16 @@ def phase_diagram(
             interval and the absorbing ends are the paper's in the chain's time unit
             ``sqrt(1e4 mass / k)``: with other ``k`` and ``mass`` the same diagram shows at
             ``v0`` and ``t_max`` scaled by ``sqrt(k / (1e4 mass))`` and its inverse.
+        impurity, impurity_rest_length, start, direction, damping: the experiment, as the
+            ``phase-diagram`` command's ``--impurity`` (the impurity spring; default the middle
+            one), ``--impurity-rest-length`` (its rest length ``l0`` in ``a``; default the
+            chain's), ``--start`` (the defect's start site; default 15 sites from the impurity),
+            ``--direction`` (``"left"``, the paper's, or ``"right"``) and ``--damping`` (every
+            rotor's damping rate in ``1/t``; default 0) take them.
+        cross_check: run every point with DOP853 as well and mark it unresolved
+            (``"integrators-disagree"``) where the integrators decide differently; 6 times the
+            cost of a point (``--cross-check``). Points where a wall from a free end reached the
+            impurity before the decision are marked ``"end-wall-first"`` either way.
         out: a results file (CSV): created, or resumed if it holds part of this sweep (then only
             the missing points are computed, and the records returned are all of the file's).
         client: a ``dask.distributed.Client``: the points are computed in chunks on its workers
@@ -255,6 +289,12 @@ def phase_diagram(
         energy_tolerance=energy_tolerance,
         recompute=recompute,
         t_max=t_max,
+        impurity=impurity,
+        impurity_rest_length=impurity_rest_length,
+        start=start,
+        direction=direction,
+        damping=damping,
+        cross_check=cross_check,
     )
     d = _native.PhaseDiagram(**settings)  # checks them all: ConfigError or ValueError
     xs, ys = _native.axis(ki), _native.axis(v0)  # at most MAX_AXIS_COUNT values each

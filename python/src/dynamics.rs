@@ -242,14 +242,14 @@ pub fn propagate(
 /// 50 ms, the GIL is taken to run the signal handlers; a `KeyboardInterrupt` (or any error they
 /// raise) stops the run and is raised when it returns.
 #[derive(Default)]
-struct Interrupt {
+pub(crate) struct Interrupt {
     last: Option<std::time::Instant>,
     error: Option<PyErr>,
 }
 
 impl Interrupt {
     /// Whether a signal handler raised: the run's stop question.
-    fn pending(&mut self) -> bool {
+    pub(crate) fn pending(&mut self) -> bool {
         let now = std::time::Instant::now();
         if self.last.is_some_and(|t| now.duration_since(t) < std::time::Duration::from_millis(50)) {
             return false;
@@ -260,7 +260,7 @@ impl Interrupt {
     }
 
     /// The signal handler's error, if one stopped the run.
-    fn raise(self) -> PyResult<()> {
+    pub(crate) fn raise(self) -> PyResult<()> {
         self.error.map_or(Ok(()), Err)
     }
 }

@@ -17,6 +17,7 @@ mod chain;
 mod dynamics;
 mod errors;
 mod network;
+mod network_model;
 mod pickle;
 mod statics;
 mod sweep;
@@ -26,6 +27,9 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<chain::Chain>()?;
     m.add_class::<chain::Continuum>()?;
     m.add_class::<network::Network>()?;
+    m.add_class::<network_model::NetworkModel>()?;
+    m.add_class::<network_model::NetworkModes>()?;
+    m.add_class::<network_model::NetworkRun>()?;
     m.add_class::<statics::Antikink>()?;
     m.add_class::<statics::PeierlsNabarro>()?;
     m.add_class::<statics::Modes>()?;

@@ -35,7 +35,7 @@ fn complex_matrix<'py>(py: Python<'py>, m: &Mat<c64>) -> Bound<'py, PyArray2<num
         .into_pyarray(py)
 }
 
-fn boundary_of(name: &str) -> PyResult<Boundary> {
+pub(crate) fn boundary_of(name: &str) -> PyResult<Boundary> {
     match name {
         "periodic" => Ok(Boundary::Periodic),
         "free" => Ok(Boundary::Free),
@@ -44,7 +44,7 @@ fn boundary_of(name: &str) -> PyResult<Boundary> {
 }
 
 /// `cells` as `[N1, N2]`: an int (one dimension) or a pair.
-fn cells_of(cell: &Cell, cells: &Bound<'_, PyAny>) -> PyResult<[usize; 2]> {
+pub(crate) fn cells_of(cell: &Cell, cells: &Bound<'_, PyAny>) -> PyResult<[usize; 2]> {
     if let Ok(n) = cells.extract::<usize>() {
         return if cell.dimension() == 1 {
             Ok([n, 1])
@@ -111,6 +111,13 @@ fn get<'py, T: FromPyObjectOwned<'py>>(d: &Bound<'py, PyDict>, what: &str, key: 
 }
 
 use pyo3::conversion::FromPyObjectOwned;
+
+impl Network {
+    /// The validated cell.
+    pub(crate) fn cell(&self) -> &Cell {
+        &self.cell
+    }
+}
 
 #[pymethods]
 impl Network {

@@ -11,6 +11,7 @@ use rotor_chain::statics::walls;
 
 use crate::args::{AtMost, array, choice, rows};
 use crate::chain::Chain;
+use crate::dynamics::Interrupt;
 use crate::errors;
 use crate::pickle::{self, pickle_fields};
 use rotor_chain::ChainGeometry;
@@ -276,8 +277,11 @@ pub fn modes(
 ) -> PyResult<Modes> {
     let theta = chain.theta(theta)?;
     let options = ModeOptions { count: count.map(|c| c.0), hold_ends, ..ModeOptions::default() };
-    let found =
-        py.detach(|| md::modes(&chain.chain, &theta, &options)).map_err(|e| errors::statics(py, &e))?;
+    // Ctrl-C: the eigensolver asks the interrupt between its iterations and stops.
+    let mut interrupt = Interrupt::default();
+    let found = py.detach(|| md::modes_with(&chain.chain, &theta, &options, &mut || interrupt.pending()));
+    interrupt.raise()?;
+    let found = found.map_err(|e| errors::statics(py, &e))?;
     let n = chain.n();
     let shapes: Vec<Vec<f64>> = found.iter().map(|m| m.shape.clone()).collect();
     Ok(Modes {
@@ -368,9 +372,12 @@ pub fn maxwell_calladine(
     tolerance: Option<f64>,
 ) -> PyResult<Counting> {
     let theta = chain.theta(theta)?;
-    let c = py
-        .detach(|| counting::maxwell_calladine(&chain.chain, &theta, tolerance))
-        .map_err(|e| errors::statics(py, &e))?;
+    let mut interrupt = Interrupt::default();
+    let c = py.detach(|| {
+        counting::maxwell_calladine_with(&chain.chain, &theta, tolerance, &mut || interrupt.pending())
+    });
+    interrupt.raise()?;
+    let c = c.map_err(|e| errors::statics(py, &e))?;
     Ok(Counting {
         rotors: c.rotors,
         springs: c.springs,

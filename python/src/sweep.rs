@@ -4,7 +4,8 @@
 //!
 //! A point's record crosses into Python as a dict with the columns of the results file
 //! (`i, j, ki, v0, outcome, t_decided, confirmed, later, t_later, kinks_final, antikinks_final,
-//! energy_error, integrator, error`): a failed point has `error` set and `None` elsewhere. Floats
+//! energy_error, integrator, unresolved, unresolved_outcome, t_unresolved, error`): a failed point
+//! has `error` set and `None` elsewhere; a resolved one `None` in the three `unresolved` keys. Floats
 //! are Python floats, so a record goes to another process and back bit for bit.
 
 use std::panic::{AssertUnwindSafe, catch_unwind};
@@ -12,7 +13,8 @@ use std::path::PathBuf;
 use std::str::FromStr;
 
 use chain_sweep::scattering::{
-    Defect, Ends, LaterEvent, Outcome, PhaseDiagram as Diagram, PointRecord, Recomputed, method_by_name,
+    Defect, Direction, Ends, LaterEvent, Outcome, PhaseDiagram as Diagram, PointRecord, Recomputed,
+    method_by_name,
 };
 use chain_sweep::threads::{max_threads, worker_threads};
 use chain_sweep::{Axis, Grid, Point, ResultsFile as File, SweepOptions};
@@ -40,10 +42,12 @@ impl PhaseDiagram {
     #[pyo3(signature = (defect, *, n = RotorCount(Ok(60)), r = Real::of(0.8), k = Real::of(1.0e4), theta_bar = Real::of(0.28),
                         mass = Real::of(1.0), ends = "free", integrator = "verlet", dt = None,
                         energy_tolerance = Real::of(chain_sweep::scattering::DEFAULT_ENERGY_TOLERANCE),
-                        recompute = true, t_max = Real::of(20.0)),
+                        recompute = true, t_max = Real::of(20.0), impurity = None, impurity_rest_length = None,
+                        start = None, direction = "left", damping = Real::of(0.0), cross_check = false),
            text_signature = "(defect, *, n=60, r=0.8, k=1e4, theta_bar=0.28, mass=1.0, ends='free', \
                              integrator='verlet', dt=None, energy_tolerance=DEFAULT_ENERGY_TOLERANCE, recompute=True, \
-                             t_max=20.0)")]
+                             t_max=20.0, impurity=None, impurity_rest_length=None, start=None, direction='left', \
+                             damping=0.0, cross_check=False)")]
     #[allow(clippy::too_many_arguments)]
     fn new(
         py: Python<'_>,
@@ -59,6 +63,12 @@ impl PhaseDiagram {
         energy_tolerance: Real,
         recompute: bool,
         t_max: Real,
+        impurity: Option<usize>,
+        impurity_rest_length: Option<Real>,
+        start: Option<Real>,
+        direction: &str,
+        damping: Real,
+        cross_check: bool,
     ) -> PyResult<Self> {
         let (r, k, theta_bar, mass) =
             (r.get("r")?, k.get("k")?, theta_bar.get("theta_bar")?, mass.get("mass")?);
@@ -86,6 +96,19 @@ impl PhaseDiagram {
         d.energy_tolerance = energy_tolerance;
         d.recompute = recompute;
         d.t_max = t_max;
+        // The `phase-diagram` command's experiment settings, with its names.
+        d.impurity_spring = impurity;
+        d.impurity_rest_length = Real::optional(impurity_rest_length, "impurity_rest_length")?;
+        d.start = Real::optional(start, "start")?;
+        d.direction = match direction {
+            "left" => Direction::Left,
+            "right" => Direction::Right,
+            other => {
+                return Err(value_error(format!("direction must be one of 'left', 'right', got '{other}'")));
+            }
+        };
+        d.damping = damping.get("damping")?;
+        d.cross_check = cross_check;
         d.check().map_err(|e| errors::config(py, &e))?;
         Ok(Self { d })
     }
@@ -161,6 +184,12 @@ impl PhaseDiagram {
         kwargs.set_item("energy_tolerance", d.energy_tolerance)?;
         kwargs.set_item("recompute", d.recompute)?;
         kwargs.set_item("t_max", d.t_max)?;
+        kwargs.set_item("impurity", d.impurity_spring)?;
+        kwargs.set_item("impurity_rest_length", d.impurity_rest_length)?;
+        kwargs.set_item("start", d.start)?;
+        kwargs.set_item("direction", if d.direction == Direction::Right { "right" } else { "left" })?;
+        kwargs.set_item("damping", d.damping)?;
+        kwargs.set_item("cross_check", d.cross_check)?;
         Ok((args, kwargs))
     }
 }
@@ -241,6 +270,10 @@ fn record_dict<'py>(
             d.set_item("antikinks_final", r.antikinks_final)?;
             d.set_item("energy_error", r.energy_error)?;
             d.set_item("integrator", r.integrator.to_string())?;
+            let (reason, other, time) = r.unresolved_columns();
+            d.set_item("unresolved", reason)?;
+            d.set_item("unresolved_outcome", other.map(Outcome::name))?;
+            d.set_item("t_unresolved", time)?;
             d.set_item("error", &none)?;
         }
         Err(message) => {
@@ -254,6 +287,9 @@ fn record_dict<'py>(
                 "antikinks_final",
                 "energy_error",
                 "integrator",
+                "unresolved",
+                "unresolved_outcome",
+                "t_unresolved",
             ] {
                 d.set_item(key, &none)?;
             }
@@ -285,20 +321,29 @@ fn record_of(d: &Bound<'_, PyDict>) -> PyResult<RecordOf> {
         _ => return Err(value_error("a record has `later` and `t_later` both or neither")),
     };
     let integrator = Recomputed::from_str(&item::<String>(d, "integrator")?).map_err(value_error)?;
-    Ok((
-        index,
-        coords,
-        Ok(PointRecord {
-            outcome,
-            t_decided: item(d, "t_decided")?,
-            confirmed: item(d, "confirmed")?,
-            later,
-            kinks_final: item(d, "kinks_final")?,
-            antikinks_final: item(d, "antikinks_final")?,
-            energy_error: item(d, "energy_error")?,
-            integrator,
-        }),
-    ))
+    let mut record = PointRecord {
+        outcome,
+        t_decided: item(d, "t_decided")?,
+        confirmed: item(d, "confirmed")?,
+        later,
+        kinks_final: item(d, "kinks_final")?,
+        antikinks_final: item(d, "antikinks_final")?,
+        energy_error: item(d, "energy_error")?,
+        integrator,
+        unresolved: None,
+    };
+    // Records made before the `unresolved` keys existed have none of them: resolved.
+    let optional = |key: &str| -> PyResult<Option<Bound<'_, PyAny>>> {
+        d.get_item(key)?.filter(|v| !v.is_none()).map(Ok).transpose()
+    };
+    let reason: Option<String> = optional("unresolved")?.map(|v| v.extract()).transpose()?;
+    let other = match optional("unresolved_outcome")? {
+        Some(v) => Some(Outcome::from_str(&v.extract::<String>()?).map_err(|e| value_error(e.to_string()))?),
+        None => None,
+    };
+    let time: Option<f64> = optional("t_unresolved")?.map(|v| v.extract()).transpose()?;
+    record.unresolved = record.unresolved_of((reason.as_deref(), other, time)).map_err(value_error)?;
+    Ok((index, coords, Ok(record)))
 }
 
 /// The values of an axis: ``"FROM:TO:COUNT"`` or ``"FROM:TO:COUNT:log"`` as on the

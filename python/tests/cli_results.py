@@ -9,7 +9,7 @@ from pathlib import Path
 from typing import Any, Dict, List, Optional
 
 INTS = {"i", "j", "kinks_final", "antikinks_final"}
-FLOATS = {"ki", "v0", "t_decided", "t_later", "energy_error"}
+FLOATS = {"ki", "v0", "t_decided", "t_later", "energy_error", "t_unresolved"}
 
 
 def run_cli(cli: Path, out: Path, defect: str, ki: str, v0: str, *extra: str) -> subprocess.CompletedProcess:

@@ -32,18 +32,47 @@ pub fn eigenvalues_in_index_range(
     bands::check_bands(diag, off)?;
     bands::check_range(lo, hi, diag.len())?;
     let sturm = Sturm::new(diag, off);
-    Ok(bisect(&sturm, lo, hi).into_iter().map(|x| x / sturm.matrix.scale).collect())
+    let values = bisect(&sturm, lo, hi, Accuracy::Absolute, &mut || false)?;
+    Ok(values.into_iter().map(|x| x / sturm.matrix.scale).collect())
 }
 
-/// Eigenvalues `lo..hi` of the scaled matrix held by `sturm`, ascending.
-pub(crate) fn bisect(sturm: &Sturm, lo: usize, hi: usize) -> Vec<f64> {
+/// How far [`bisect`] narrows each eigenvalue's interval.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Accuracy {
+    /// To a few `eps ||T||` (`dstebz`'s default): what the entries of any symmetric tridiagonal
+    /// matrix determine.
+    Absolute,
+    /// To a few `eps |lambda|`, down to the pivot floor `pivmin`: for a matrix whose entries
+    /// determine its eigenvalues to relative accuracy, such as the Golub-Kahan matrix of a
+    /// bidiagonal (zero diagonal: a count in floating point is exact for off-diagonal entries
+    /// perturbed by a few ulps each, which moves every singular value by a few ulps of itself;
+    /// Demmel & Kahan, *SIAM J. Sci. Stat. Comput.* 11, 1990, Sec. 5).
+    Relative,
+}
+
+/// Eigenvalues `lo..hi` of the scaled matrix held by `sturm`, ascending, to `accuracy`. `stop`
+/// is asked before each eigenvalue's refinement: a yes ends the bisection with
+/// [`LinalgError::Stopped`].
+pub(crate) fn bisect(
+    sturm: &Sturm,
+    lo: usize,
+    hi: usize,
+    accuracy: Accuracy,
+    stop: &mut dyn FnMut() -> bool,
+) -> Result<Vec<f64>, LinalgError> {
     let (bottom, top) = sturm.bounds;
-    let abstol = (f64::EPSILON * bottom.abs().max(top.abs())).max(sturm.pivmin);
+    let abstol = match accuracy {
+        Accuracy::Absolute => (f64::EPSILON * bottom.abs().max(top.abs())).max(sturm.pivmin),
+        Accuracy::Relative => sturm.pivmin,
+    };
     let m = hi - lo;
     // left[t] <= lambda_{lo + t} < right[t]: count(left) <= lo + t < count(right).
     let mut left = vec![bottom; m];
     let mut right = vec![top; m];
     for t in 0..m {
+        if stop() {
+            return Err(LinalgError::Stopped { what: "eigenvalues", done: t, of: m });
+        }
         loop {
             let (a, b) = (left[t], right[t]);
             let mid = 0.5 * (a + b);
@@ -62,5 +91,5 @@ pub(crate) fn bisect(sturm: &Sturm, lo: usize, hi: usize) -> Vec<f64> {
             }
         }
     }
-    left.iter().zip(&right).map(|(a, b)| 0.5 * (a + b)).collect()
+    Ok(left.iter().zip(&right).map(|(a, b)| 0.5 * (a + b)).collect())
 }

@@ -1,4 +1,4 @@
-//! Errors of the tridiagonal linear algebra. Each carries the numbers that explain it.
+//! Errors of the linear algebra (tridiagonal, dense and sparse). Each carries the numbers that explain it.
 
 use core::fmt;
 
@@ -108,12 +108,54 @@ pub enum LinalgError {
         /// The pattern's rows.
         found: usize,
     },
+    /// The caller's stop question (Ctrl-C in Python) answered yes: the computation stopped after
+    /// `done` of its `of` steps (eigenvalues, eigenvectors or iterations, as `what` says).
+    #[error("stopped on request after {done} of {of} {what}")]
+    Stopped {
+        /// What the steps are.
+        what: &'static str,
+        /// Steps finished.
+        done: usize,
+        /// Steps there were to do (an upper bound for iterations).
+        of: usize,
+    },
     /// A sparse matrix too large for the dense path (`n x n` numbers above the bound).
     #[error("a {n} x {n} matrix is too large for the dense algorithms: at most {max} numbers")]
     TooLarge {
         /// The dimension.
         n: usize,
-        /// [`super::MAX_DENSE_VALUES`].
+        /// [`super::MAX_DENSE_VALUES`], or the sparse factor's bound
+        /// [`sparse::lblt::MAX_FACTOR_VALUES`](super::sparse::lblt::MAX_FACTOR_VALUES).
         max: usize,
+    },
+    /// An allocation of the sparse path failed.
+    #[error("out of memory: {bytes} bytes could not be allocated")]
+    OutOfMemory {
+        /// The bytes asked for.
+        bytes: usize,
+    },
+    /// A sparse factorization of `A - shift I` whose backward error is too large to trust its
+    /// inertia or its solves (pivot growth the intranode pivoting could not avoid).
+    #[error("the factorization of A - {shift:e} I has backward error {backward_error:e} (at most {bound:e})")]
+    Unstable {
+        /// The shift.
+        shift: f64,
+        /// The backward error of a test solve with the factors.
+        backward_error: f64,
+        /// The bound.
+        bound: f64,
+    },
+    /// The sparse eigensolver's result disagrees with an inertia count: `counted` eigenvalues lie
+    /// in the inner part of the found range (below `below`), but `found` of the returned ones do.
+    #[error(
+        "{counted} eigenvalues lie below {below:e} in the found range, but the eigensolver found {found}"
+    )]
+    Missed {
+        /// The end of the range compared.
+        below: f64,
+        /// Eigenvalues there by Sylvester's law of inertia.
+        counted: usize,
+        /// Eigenvalues there among those found.
+        found: usize,
     },
 }

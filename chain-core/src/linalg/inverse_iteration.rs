@@ -31,9 +31,9 @@ use alloc::vec;
 use alloc::vec::Vec;
 
 use super::bands::{self, Scaled};
-use super::bisection::bisect;
+use super::bisection::{Accuracy, bisect};
 use super::error::{Input, LinalgError};
-use super::ql::eigenpairs;
+use super::ql::eigenpairs_with;
 use super::solve::TridiagonalLu;
 use super::sturm::Sturm;
 use crate::math;
@@ -55,33 +55,49 @@ pub fn lowest_eigenpairs(diag: &[f64], off: &[f64], k: usize) -> Result<Vec<Eige
 
 /// Eigenpairs `lo..hi` (0-based, ascending: `lo = 0` is the smallest eigenvalue), with
 /// orthonormal eigenvectors. All of them (`0..n`) come from the QL iteration
-/// ([`eigenpairs`], O(n^3)) as LAPACK's `dstevx` does; a part of the spectrum from bisection and
-/// inverse iteration.
+/// ([`eigenpairs`](super::eigenpairs), O(n^3)) as LAPACK's `dstevx` does; a part of the spectrum
+/// from bisection and inverse iteration.
 pub fn eigenpairs_in_index_range(
     diag: &[f64],
     off: &[f64],
     lo: usize,
     hi: usize,
 ) -> Result<Vec<Eigenpair>, LinalgError> {
+    eigenpairs_in_index_range_with(diag, off, lo, hi, &mut || false)
+}
+
+/// [`eigenpairs_in_index_range`] with a stop question, asked at every QL iteration, before each
+/// eigenvalue's bisection and before each inverse iteration (each O(n), O(n^2) for a QL
+/// iteration with vectors): a yes ends the call with [`LinalgError::Stopped`] (Python's Ctrl-C
+/// stops `Chain.modes` this way).
+pub fn eigenpairs_in_index_range_with(
+    diag: &[f64],
+    off: &[f64],
+    lo: usize,
+    hi: usize,
+    stop: &mut dyn FnMut() -> bool,
+) -> Result<Vec<Eigenpair>, LinalgError> {
     bands::check_bands(diag, off)?;
     let n = diag.len();
     bands::check_range(lo, hi, n)?;
     // The whole spectrum: QL (should it ever not converge, bisection and inverse iteration).
-    if n > 0
-        && lo == 0
-        && hi == n
-        && let Ok((values, vectors)) = eigenpairs(diag, off)
-    {
-        let columns = vectors.as_slice().chunks_exact(n);
-        return Ok(values
-            .into_iter()
-            .zip(columns)
-            .map(|(value, v)| Eigenpair { value, vector: v.to_vec() })
-            .collect());
+    if n > 0 && lo == 0 && hi == n {
+        match eigenpairs_with(diag, off, stop) {
+            Ok((values, vectors)) => {
+                let columns = vectors.as_slice().chunks_exact(n);
+                return Ok(values
+                    .into_iter()
+                    .zip(columns)
+                    .map(|(value, v)| Eigenpair { value, vector: v.to_vec() })
+                    .collect());
+            }
+            Err(LinalgError::NoConvergence { .. }) => {}
+            Err(other) => return Err(other),
+        }
     }
     let sturm = Sturm::new(diag, off);
-    let values = bisect(&sturm, lo, hi);
-    inverse_iteration(&sturm.matrix, &values, lo)
+    let values = bisect(&sturm, lo, hi, Accuracy::Absolute, stop)?;
+    inverse_iteration(&sturm.matrix, &values, lo, stop)
 }
 
 /// The `k` eigenpairs whose eigenvalues are nearest `sigma`, ascending by eigenvalue, with
@@ -101,7 +117,7 @@ pub fn eigenpairs_near(
     let x = (sigma * sturm.matrix.scale).clamp(sturm.bounds.0, sturm.bounds.1);
     let below = sturm.count(x);
     let lo = below.saturating_sub(k);
-    let values = bisect(&sturm, lo, (below + k).min(n));
+    let values = bisect(&sturm, lo, (below + k).min(n), Accuracy::Absolute, &mut || false)?;
     // The k nearest form a run around the first eigenvalue at or above x.
     let (mut a, mut b) = (below - lo, below - lo);
     while b - a < k {
@@ -111,15 +127,21 @@ pub fn eigenpairs_near(
             b += 1;
         }
     }
-    inverse_iteration(&sturm.matrix, &values[a..b], lo + a)
+    inverse_iteration(&sturm.matrix, &values[a..b], lo + a, &mut || false)
 }
 
 /// Inverse iteration sweeps before giving up (`dstein` allows 5; one or two suffice in practice).
 const MAX_ITERATIONS: usize = 8;
 
 /// Eigenvectors of the scaled matrix `t` for its ascending eigenvalues `values` (scaled), of
-/// which the first has index `first` in the spectrum.
-fn inverse_iteration(t: &Scaled, values: &[f64], first: usize) -> Result<Vec<Eigenpair>, LinalgError> {
+/// which the first has index `first` in the spectrum. `stop` is asked before each vector: a yes
+/// ends with [`LinalgError::Stopped`].
+fn inverse_iteration(
+    t: &Scaled,
+    values: &[f64],
+    first: usize,
+    stop: &mut dyn FnMut() -> bool,
+) -> Result<Vec<Eigenpair>, LinalgError> {
     let n = t.diag.len();
     let norm = t.norm();
     if norm == 0.0 {
@@ -136,6 +158,9 @@ fn inverse_iteration(t: &Scaled, values: &[f64], first: usize) -> Result<Vec<Eig
     let mut cluster_start = 0;
     let mut shift = f64::NEG_INFINITY;
     for (j, &lambda) in values.iter().enumerate() {
+        if stop() {
+            return Err(LinalgError::Stopped { what: "eigenvectors", done: j, of: values.len() });
+        }
         if j > 0 && lambda - values[j - 1] > cluster_gap {
             cluster_start = j;
         }

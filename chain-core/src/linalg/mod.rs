@@ -16,11 +16,19 @@
 //! - [`inverse_iteration`]: [`lowest_eigenpairs`], [`eigenpairs_near`],
 //!   [`eigenpairs_in_index_range`], bisection and then inverse iteration, re-orthogonalised
 //!   within clusters. O(n) per eigenpair outside large clusters.
+//!
+//! The long computations take a stop question (`..._with`), asked at every QL iteration and
+//! before each bisected eigenvalue and each inverse iteration, and end with
+//! [`LinalgError::Stopped`] when it answers yes.
+//! - `golub_kahan`: a bidiagonal's singular values to relative accuracy and its null spaces,
+//!   through the Sturm counts and inverse iteration of its Golub-Kahan tridiagonal. O(n) per
+//!   count (the chain's Maxwell-Calladine counting).
 //! - [`solve`](mod@solve): [`solve`](fn@solve), [`solve_shifted`], Gaussian elimination with
 //!   partial pivoting. O(n).
 //!
 //! - [`SymmetricMatrix`] (`symmetric.rs`): the tridiagonal path through the functions above, a
-//!   sparse upper triangle through dense decompositions up to [`MAX_DENSE_VALUES`].
+//!   sparse upper triangle through dense decompositions up to [`DENSE_LIMIT`] rows and through
+//!   [`sparse`] (a sparse `LBL^T` and shift-invert subspace iteration) beyond.
 //!
 //! What they share (input checks, exact scaling, norms) is in the private `bands.rs`.
 //!
@@ -55,11 +63,15 @@ mod bands;
 pub mod bisection;
 pub mod error;
 #[cfg(feature = "alloc")]
+pub(crate) mod golub_kahan;
+#[cfg(feature = "alloc")]
 pub mod inverse_iteration;
 #[cfg(feature = "alloc")]
 pub mod ql;
 #[cfg(feature = "alloc")]
 pub mod solve;
+#[cfg(feature = "alloc")]
+pub mod sparse;
 #[cfg(feature = "alloc")]
 pub mod sturm;
 #[cfg(feature = "alloc")]
@@ -69,12 +81,14 @@ mod symmetric;
 pub use bisection::eigenvalues_in_index_range;
 pub use error::{Input, LinalgError};
 #[cfg(feature = "alloc")]
-pub use inverse_iteration::{Eigenpair, eigenpairs_in_index_range, eigenpairs_near, lowest_eigenpairs};
+pub use inverse_iteration::{
+    Eigenpair, eigenpairs_in_index_range, eigenpairs_in_index_range_with, eigenpairs_near, lowest_eigenpairs,
+};
 #[cfg(feature = "alloc")]
-pub use ql::{eigenpairs, eigenvalues, eigenvalues_ql};
+pub use ql::{eigenpairs, eigenpairs_with, eigenvalues, eigenvalues_ql};
 #[cfg(feature = "alloc")]
 pub use solve::{solve, solve_shifted};
 #[cfg(feature = "alloc")]
 pub use sturm::{count_below, try_count_below};
 #[cfg(feature = "alloc")]
-pub use symmetric::{MAX_DENSE_VALUES, SymmetricMatrix};
+pub use symmetric::{DENSE_FACTOR_LIMIT, DENSE_LIMIT, MAX_DENSE_VALUES, SymmetricMatrix};

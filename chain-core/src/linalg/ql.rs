@@ -28,9 +28,18 @@ use super::error::LinalgError;
 /// All eigenvalues of the symmetric tridiagonal matrix (`diag`, `off`), ascending, by the implicit
 /// QL iteration. O(n^2).
 pub fn eigenvalues_ql(diag: &[f64], off: &[f64]) -> Result<Vec<f64>, LinalgError> {
+    eigenvalues_ql_with(diag, off, &mut || false)
+}
+
+/// [`eigenvalues_ql`] with a stop question, asked at every QL iteration (O(n) each).
+pub(crate) fn eigenvalues_ql_with(
+    diag: &[f64],
+    off: &[f64],
+    stop: &mut dyn FnMut() -> bool,
+) -> Result<Vec<f64>, LinalgError> {
     bands::check_bands(diag, off)?;
     let (mut d, mut e, scale) = prepare(diag, off);
-    implicit_ql(&mut d, &mut e, None, scale)?;
+    implicit_ql(&mut d, &mut e, None, scale, stop)?;
     let mut values: Vec<f64> = d.iter().map(|x| x / scale).collect();
     values.sort_by(f64::total_cmp);
     Ok(values)
@@ -51,12 +60,22 @@ pub fn eigenvalues(diag: &[f64], off: &[f64]) -> Result<Vec<f64>, LinalgError> {
 /// thousand; for a few eigenpairs of a long chain use
 /// [`lowest_eigenpairs`](super::lowest_eigenpairs).
 pub fn eigenpairs(diag: &[f64], off: &[f64]) -> Result<(Vec<f64>, DMatrix<f64>), LinalgError> {
+    eigenpairs_with(diag, off, &mut || false)
+}
+
+/// [`eigenpairs`] with a stop question, asked at every QL iteration (O(n^2) each with the
+/// vectors): a yes ends the call with [`LinalgError::Stopped`].
+pub fn eigenpairs_with(
+    diag: &[f64],
+    off: &[f64],
+    stop: &mut dyn FnMut() -> bool,
+) -> Result<(Vec<f64>, DMatrix<f64>), LinalgError> {
     bands::check_bands(diag, off)?;
     let n = diag.len();
     let (mut d, mut e, scale) = prepare(diag, off);
     let mut z = DMatrix::<f64>::identity(n, n);
     let mut rotations = Rotations::new(z.as_mut_slice(), n);
-    implicit_ql(&mut d, &mut e, Some(&mut rotations), scale)?;
+    implicit_ql(&mut d, &mut e, Some(&mut rotations), scale, stop)?;
     rotations.apply();
     let mut order: Vec<usize> = (0..n).collect();
     order.sort_by(|&i, &j| d[i].total_cmp(&d[j]));
@@ -82,12 +101,13 @@ const TINY: f64 = f64::MIN_POSITIVE / f64::EPSILON;
 
 /// Diagonalises the scaled tridiagonal matrix in place: `d` becomes the eigenvalues (unsorted),
 /// `e` (length `n`, `e[i]` coupling rows `i` and `i + 1`, `e[n - 1] = 0`) is destroyed, and the
-/// rotations are recorded in `rotations`, if given.
+/// rotations are recorded in `rotations`, if given. `stop` is asked before every iteration.
 fn implicit_ql(
     d: &mut [f64],
     e: &mut [f64],
     mut rotations: Option<&mut Rotations<'_>>,
     scale: f64,
+    stop: &mut dyn FnMut() -> bool,
 ) -> Result<(), LinalgError> {
     let n = d.len();
     let budget = 30 * n;
@@ -112,6 +132,9 @@ fn implicit_ql(
                     index: l,
                     residual: e[l].abs() / scale,
                 });
+            }
+            if stop() {
+                return Err(LinalgError::Stopped { what: "eigenvalues", done: l, of: n });
             }
             iterations += 1;
             // The Wilkinson shift mu, entering as g = d_m - mu.

@@ -2,13 +2,16 @@
 //! algorithms the analyses need on it: norms, the inertia (how many eigenvalues lie below a
 //! shift), eigenpairs near a value or at the bottom of the spectrum, and shifted solves.
 //!
-//! **Two paths, one interface.** A tridiagonal matrix (the rotor chain's, paper Eq.
+//! **Three paths, one interface.** A tridiagonal matrix (the rotor chain's, paper Eq.
 //! `eq:prestress8`) takes the O(n) algorithms of this module's siblings: Sturm counts, bisection
 //! and inverse iteration, Gaussian elimination with partial pivoting. A sparse upper triangle (a
-//! spring network's) is taken densely up to [`MAX_DENSE_VALUES`] numbers: nalgebra's symmetric
+//! spring network's) of at most [`DENSE_LIMIT`] rows ([`DENSE_FACTOR_LIMIT`] for counts and solves)
+//! is taken densely: nalgebra's symmetric
 //! eigendecomposition (Householder tridiagonalisation and implicit QL) for counts and eigenpairs,
-//! LU with partial pivoting for solves. Correct for any network of a few thousand degrees of
-//! freedom; larger ones are refused with [`LinalgError::TooLarge`] rather than exhausting memory.
+//! LU with partial pivoting for solves. A larger one takes the sparse path ([`super::sparse`]):
+//! inertia counts and solves from a sparse `LBL^T` factorization (Sylvester's law of inertia), the
+//! eigenpairs by shift-invert subspace iteration on it. [`SymmetricMatrix::with_dense_limit`]
+//! moves the crossover (tests force the sparse path on small matrices with it).
 //!
 //! Why a representation of our own rather than a sparse crate's: the chain's fast path needs the
 //! two bands as plain slices for its O(n) algorithms, a network's Hessian is assembled in place
@@ -23,6 +26,9 @@ use core::ops::Range;
 use nalgebra::DMatrix;
 
 use super::error::{Input, LinalgError};
+use super::sparse::Upper;
+use super::sparse::eigen::{self, Target};
+use super::sparse::lblt::{self, Lblt};
 use super::{Eigenpair, bands};
 use crate::model::{Pattern, Stiffness, StiffnessLayout};
 
@@ -32,6 +38,27 @@ use crate::model::{Pattern, Stiffness, StiffnessLayout};
 /// typed error before anything is allocated, not an allocation failure.
 pub const MAX_DENSE_VALUES: usize = 1 << 26;
 
+/// The largest sparse [`SymmetricMatrix`] whose eigenpairs are computed densely by default; larger
+/// ones take shift-invert subspace iteration. Why 384: the lowest 12 eigenpairs of a 2D lattice's
+/// pattern cost 9.2 ms dense and 14.8 ms sparse at 256 rows, 100 ms and 29 ms at 576 (the
+/// crossover near 350; `benches/sparse.rs`, docs/network.md §10.5).
+pub const DENSE_LIMIT: usize = 384;
+
+/// The largest sparse [`SymmetricMatrix`] whose inertia counts and shifted solves are computed
+/// densely by default; larger ones take the sparse `LBL^T`. Why 256: there already the sparse count
+/// takes 0.21 ms against the dense eigenvalues' 4.5 ms, the sparse solve 0.25 ms against dense LU's
+/// 1.2 ms (same benchmark).
+pub const DENSE_FACTOR_LIMIT: usize = 256;
+
+/// Which algorithm family asks whether to take the sparse path.
+#[derive(Clone, Copy)]
+enum Operation {
+    /// Eigenpairs ([`DENSE_LIMIT`]).
+    Eigenpairs,
+    /// Inertia counts and solves ([`DENSE_FACTOR_LIMIT`]).
+    Factor,
+}
+
 /// A symmetric `n x n` matrix in one of the layouts of [`StiffnessLayout`], owning its pattern
 /// and values.
 #[derive(Clone, Debug, PartialEq)]
@@ -39,6 +66,10 @@ pub struct SymmetricMatrix {
     n: usize,
     form: Form,
     values: Vec<f64>,
+    /// The largest dimension a sparse form is taken densely at: `None` for the defaults
+    /// ([`DENSE_LIMIT`], [`DENSE_FACTOR_LIMIT`]), or the one limit of
+    /// [`SymmetricMatrix::with_dense_limit`].
+    dense_limit: Option<usize>,
 }
 
 #[derive(Clone, Debug, PartialEq)]
@@ -59,9 +90,12 @@ impl SymmetricMatrix {
     pub fn for_model<M: Stiffness + ?Sized>(model: &M) -> Result<Self, LinalgError> {
         let n = model.dof_count();
         match model.stiffness_layout() {
-            StiffnessLayout::Tridiagonal => {
-                Ok(Self { n, form: Form::Tridiagonal, values: vec![0.0; (2 * n).saturating_sub(1)] })
-            }
+            StiffnessLayout::Tridiagonal => Ok(Self {
+                n,
+                form: Form::Tridiagonal,
+                values: vec![0.0; (2 * n).saturating_sub(1)],
+                dense_limit: None,
+            }),
             StiffnessLayout::Upper(p) => {
                 p.check(true)?;
                 if p.rows() != n {
@@ -71,6 +105,7 @@ impl SymmetricMatrix {
                     n,
                     form: Form::Upper { row_starts: p.row_starts.to_vec(), columns: p.columns.to_vec() },
                     values: vec![0.0; p.entries()],
+                    dense_limit: None,
                 })
             }
         }
@@ -101,7 +136,7 @@ impl SymmetricMatrix {
         let mut values = Vec::with_capacity(diag.len() + off.len());
         values.extend_from_slice(diag);
         values.extend_from_slice(off);
-        Ok(Self { n: diag.len(), form: Form::Tridiagonal, values })
+        Ok(Self { n: diag.len(), form: Form::Tridiagonal, values, dense_limit: None })
     }
 
     /// The symmetric matrix whose upper triangle is `values` in `pattern`.
@@ -114,7 +149,38 @@ impl SymmetricMatrix {
             return Err(LinalgError::RhsMismatch { n: pattern.entries(), rhs: values.len() });
         }
         let form = Form::Upper { row_starts: pattern.row_starts.to_vec(), columns: pattern.columns.to_vec() };
-        Ok(Self { n: pattern.rows(), form, values })
+        Ok(Self { n: pattern.rows(), form, values, dense_limit: None })
+    }
+
+    /// The same matrix, taken densely up to `limit` rows and by the sparse path beyond (a sparse
+    /// form only; a tridiagonal one always takes its banded algorithms). Never beyond
+    /// [`MAX_DENSE_VALUES`]: a larger `limit` is capped there.
+    #[must_use]
+    pub fn with_dense_limit(mut self, limit: usize) -> Self {
+        self.dense_limit = Some(limit);
+        self
+    }
+
+    /// Whether the sparse path serves this matrix's eigenpairs (and so its counts and solves): a
+    /// sparse form beyond the dense limit or the dense bound.
+    pub fn is_sparse_path(&self) -> bool {
+        self.sparse_view(Operation::Eigenpairs).is_some()
+    }
+
+    /// The sparse view when the sparse path serves this matrix for `operation`.
+    fn sparse_view(&self, operation: Operation) -> Option<Upper<'_>> {
+        let limit = self.dense_limit.unwrap_or(match operation {
+            Operation::Eigenpairs => DENSE_LIMIT,
+            Operation::Factor => DENSE_FACTOR_LIMIT,
+        });
+        match &self.form {
+            Form::Upper { row_starts, columns }
+                if self.n > limit || self.n.saturating_mul(self.n) > MAX_DENSE_VALUES =>
+            {
+                Some(Upper { n: self.n, row_starts, columns, values: &self.values })
+            }
+            _ => None,
+        }
     }
 
     /// The dimension `n`.
@@ -237,7 +303,7 @@ impl SymmetricMatrix {
                 let (diag, off) = self.values.split_at(self.n);
                 let mut values = diag[keep.clone()].to_vec();
                 values.extend_from_slice(&off[keep.start..keep.start + m.saturating_sub(1)]);
-                Self { n: m, form: Form::Tridiagonal, values }
+                Self { n: m, form: Form::Tridiagonal, values, dense_limit: self.dense_limit }
             }
             Form::Upper { row_starts, columns } => {
                 let (mut starts, mut cols, mut values) = (vec![0], Vec::new(), Vec::new());
@@ -251,7 +317,12 @@ impl SymmetricMatrix {
                     }
                     starts.push(cols.len());
                 }
-                Self { n: m, form: Form::Upper { row_starts: starts, columns: cols }, values }
+                Self {
+                    n: m,
+                    form: Form::Upper { row_starts: starts, columns: cols },
+                    values,
+                    dense_limit: self.dense_limit,
+                }
             }
         }
     }
@@ -301,12 +372,22 @@ impl SymmetricMatrix {
         Ok(m)
     }
 
-    /// How many eigenvalues lie strictly below `x` (a Sturm count on the tridiagonal path, the
-    /// dense eigenvalues on the sparse one).
+    /// How many eigenvalues lie strictly below `x`: a Sturm count on the tridiagonal path, the
+    /// dense eigenvalues on the dense one, the inertia of a sparse `LBL^T` of `K - x I` on the
+    /// sparse one (exact for a matrix within its backward error, `<= 64 n eps ||K||`, of
+    /// `K - x I`: [`super::sparse::lblt`]).
     ///
     /// # Errors
-    /// A non-finite entry or shift, or a sparse matrix too large for the dense path.
+    /// A non-finite entry or shift, a sparse factorization that is unstable or does not fit in
+    /// memory.
     pub fn count_below(&self, x: f64) -> Result<usize, LinalgError> {
+        if let Some(upper) = self.sparse_view(Operation::Factor) {
+            self.check_finite()?;
+            bands::check_finite(Input::Shift, &[x])?;
+            let inertia = Lblt::new(&upper, x)?.inertia();
+            // An exactly zero pivot is an eigenvalue at x, not below it.
+            return Ok(inertia.negative);
+        }
         match self.bands() {
             Some((diag, off)) => super::try_count_below(diag, off, x),
             None => {
@@ -321,6 +402,9 @@ impl SymmetricMatrix {
     /// # Errors
     /// A non-finite entry or `sigma`, `k > n`, or a sparse matrix too large for the dense path.
     pub fn eigenpairs_near(&self, sigma: f64, k: usize) -> Result<Vec<Eigenpair>, LinalgError> {
+        if let Some(pairs) = self.sparse_eigenpairs(Target::Near(sigma), k)? {
+            return Ok(pairs);
+        }
         match self.bands() {
             Some((diag, off)) => super::eigenpairs_near(diag, off, sigma, k),
             None => {
@@ -340,6 +424,9 @@ impl SymmetricMatrix {
     /// # Errors
     /// As [`SymmetricMatrix::eigenpairs_near`].
     pub fn lowest_eigenpairs(&self, k: usize) -> Result<Vec<Eigenpair>, LinalgError> {
+        if let Some(pairs) = self.sparse_eigenpairs(Target::Lowest, k)? {
+            return Ok(pairs);
+        }
         match self.bands() {
             Some((diag, off)) => super::lowest_eigenpairs(diag, off, k),
             None => {
@@ -358,6 +445,9 @@ impl SymmetricMatrix {
     /// Non-finite input, a right-hand side of the wrong length, a singular matrix, or a sparse
     /// matrix too large for the dense path.
     pub fn solve_shifted(&self, shift: f64, rhs: &[f64]) -> Result<Vec<f64>, LinalgError> {
+        if let Some(upper) = self.sparse_view(Operation::Factor) {
+            return self.sparse_solve(&upper, shift, rhs);
+        }
         match self.bands() {
             Some((diag, off)) => super::solve_shifted(diag, off, shift, rhs),
             None => {
@@ -379,6 +469,66 @@ impl SymmetricMatrix {
                 }
             }
         }
+    }
+
+    /// The sparse path's eigenpairs (`None` when the matrix takes another path, or asks for so
+    /// many pairs that the block would exceed half the matrix and the dense path can serve).
+    fn sparse_eigenpairs(&self, target: Target, k: usize) -> Result<Option<Vec<Eigenpair>>, LinalgError> {
+        let Some(upper) = self.sparse_view(Operation::Eigenpairs) else { return Ok(None) };
+        self.check_finite()?;
+        if let Target::Near(sigma) = target {
+            bands::check_finite(Input::Shift, &[sigma])?;
+        }
+        bands::check_range(0, k, self.n)?;
+        let dense_fits = self.n.saturating_mul(self.n) <= MAX_DENSE_VALUES;
+        if 2 * eigen::block_size(k, self.n) > self.n {
+            // So many pairs that subspace iteration is no cheaper than the dense decomposition.
+            return if dense_fits {
+                Ok(None)
+            } else {
+                Err(LinalgError::TooLarge { n: self.n, max: MAX_DENSE_VALUES })
+            };
+        }
+        let norm = self.inf_norm();
+        if norm == 0.0 {
+            // The zero matrix: every vector is an eigenvector of eigenvalue 0.
+            let unit = |i: usize| (0..self.n).map(|j| f64::from(u8::from(i == j))).collect();
+            return Ok(Some((0..k).map(|i| Eigenpair { value: 0.0, vector: unit(i) }).collect()));
+        }
+        eigen::eigenpairs(&upper, norm, target, k).map(Some)
+    }
+
+    /// `(K - shift I) x = b` by the sparse `LBL^T`, with one step of iterative refinement.
+    fn sparse_solve(&self, upper: &Upper<'_>, shift: f64, rhs: &[f64]) -> Result<Vec<f64>, LinalgError> {
+        self.check_finite()?;
+        bands::check_finite(Input::Shift, &[shift])?;
+        if rhs.len() != self.n {
+            return Err(LinalgError::RhsMismatch { n: self.n, rhs: rhs.len() });
+        }
+        bands::check_finite(Input::Rhs, rhs)?;
+        let factors = Lblt::new(upper, shift)?;
+        // An exactly zero pivot, as the dense and banded eliminations: a merely tiny one is left
+        // to the backward-error check below (Newton's shifted solves are nearly singular along
+        // the near-null directions they project out, and are right to be).
+        let inertia = factors.inertia();
+        if inertia.zero > 0 {
+            let (row, pivot) = inertia.smallest;
+            return Err(LinalgError::Singular { row, pivot });
+        }
+        let mut x = rhs.to_vec();
+        factors.solve_in_place(&mut x, 1)?;
+        // One refinement step: x += (K - shift I)^{-1} (b - (K - shift I) x).
+        let mut r = vec![0.0; self.n];
+        upper.mul_vec_shifted(shift, &x, &mut r);
+        r.iter_mut().zip(rhs).for_each(|(r, b)| *r = b - *r);
+        factors.solve_in_place(&mut r, 1)?;
+        x.iter_mut().zip(&r).for_each(|(x, d)| *x += d);
+        let eta = lblt::backward_error(upper, shift, factors.norm(), &x, rhs);
+        let bound = lblt::MAX_BACKWARD_ERROR_FACTOR * self.n as f64 * f64::EPSILON;
+        if eta.is_nan() || eta > bound {
+            return Err(LinalgError::Unstable { shift, backward_error: eta, bound });
+        }
+        Ok(x)
     }
 
     /// Every eigenvalue of the dense path, ascending.
@@ -467,11 +617,16 @@ mod tests {
     }
 
     #[test]
-    fn a_sparse_matrix_too_large_for_the_dense_path_is_refused() {
+    fn a_sparse_matrix_beyond_the_dense_bound_takes_the_sparse_path() {
+        // diag(1, 2, ..., n): the counts below x are floor(x - eps) exactly.
         let n = 8193;
-        let diag = vec![1.0; n];
+        let diag: Vec<f64> = (1..=n).map(|i| i as f64).collect();
         let off = vec![0.0; n - 1];
         let (_, s) = both(&diag, &off);
-        assert!(matches!(s.count_below(0.0), Err(LinalgError::TooLarge { n: 8193, .. })));
+        assert!(s.is_sparse_path());
+        assert_eq!(s.count_below(0.5).unwrap(), 0);
+        assert_eq!(s.count_below(100.5).unwrap(), 100);
+        assert_eq!(s.count_below(9000.0).unwrap(), n);
+        assert!(matches!(s.to_dense(), Err(LinalgError::TooLarge { n: 8193, .. })));
     }
 }

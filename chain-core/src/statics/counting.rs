@@ -8,9 +8,12 @@
 //! `rank C = rho`, there are `n - rho` zero modes and `m - rho` self-stresses, so
 //! `N_zero - N_selfstress = n - m` on every configuration, whatever its geometry (1 for a chain).
 //!
-//! The rank comes from the singular values of `C` (a dense SVD; `C` is small next to the O(n^3)
-//! it costs only for chains of thousands of rotors) with the tolerance
-//! `max(n, n - 1) * epsilon * sigma_max` (the usual numerical-rank rule). The vectors of both null
+//! The rank comes from the singular values of `C` with the tolerance
+//! `max(n, m) * epsilon * sigma_max` (the usual numerical-rank rule). A chain's `C` is bidiagonal:
+//! its singular values and null spaces come from its Golub-Kahan tridiagonal (bisection on Sturm
+//! counts to relative accuracy, inverse iteration; `linalg/golub_kahan.rs`), O(n) per count and
+//! O(n^2) in all, stoppable ([`maxwell_calladine_with`]). Any other layout (a network's sparse
+//! `C`) goes through a dense SVD, up to [`MAX_DENSE_SVD_SIDE`]. There the vectors of both null
 //! spaces are singular vectors of `C` with a row of zeros appended (square, so that its
 //! decomposition holds all right vectors; nalgebra's decomposition with vectors is less
 //! accurate in its singular values, 1e-5 to 3e-3 seen, so the values come from a decomposition
@@ -31,6 +34,7 @@ use nalgebra::DMatrix;
 use super::error::StaticsError;
 use super::validate;
 use crate::linalg;
+use crate::linalg::golub_kahan::{GolubKahan, NullSpaces, REFINED};
 use crate::model::layout::bidiagonal_parts;
 use crate::model::{ChainModel, CompatibilityLayout, SpringNetwork};
 
@@ -157,25 +161,61 @@ impl Rows {
 ///
 /// # Errors
 /// `theta` not one finite value per degree of freedom, a compatibility matrix that is not finite
-/// or not well formed, a `tolerance` that is not finite and `>= 0`, a matrix too large for the
-/// dense decomposition, or a failed SVD (each iteration bounded).
+/// or not well formed, a `tolerance` that is not finite and `>= 0`, a null space or a matrix too
+/// large (a sparse layout's dense SVD beyond [`MAX_DENSE_SVD_SIDE`]), or a failed decomposition
+/// (each iteration bounded).
 pub fn maxwell_calladine<M: SpringNetwork + ?Sized>(
     model: &M,
     theta: &[f64],
     tolerance: Option<f64>,
 ) -> Result<Counting, StaticsError> {
+    maxwell_calladine_with(model, theta, tolerance, &mut || false)
+}
+
+/// The side of the largest compatibility matrix (its rows or columns, whichever are more) that a
+/// network's counting decomposes densely: 512. The SVD with vectors of the padded square matrix
+/// cannot be stopped and grows as the cube of the side: 1.5 s at 512, 12 s at 1024 (nalgebra,
+/// release build, AMD EPYC Zen 4, one core; `examples/counting_time.rs dense N`). A chain (the
+/// bidiagonal layout) has no such bound: its counting takes O(n) per Sturm count.
+pub const MAX_DENSE_SVD_SIDE: usize = 512;
+
+/// [`maxwell_calladine`] with a stop question: a chain's counting (the bidiagonal layout) asks it
+/// before each singular value's bisection and each null vector's inverse iteration (each O(n))
+/// and ends with [`LinalgError::Stopped`](crate::linalg::LinalgError::Stopped) on a yes (Python's
+/// Ctrl-C stops `Chain.maxwell_calladine` this way); a network's dense SVD, bounded by
+/// [`MAX_DENSE_SVD_SIDE`], asks it once before it starts.
+///
+/// A chain's singular values come from its Golub-Kahan tridiagonal (`linalg/golub_kahan.rs`),
+/// each to a few ulps of itself, O(n) per Sturm count and O(n^2) for all of them; its null
+/// spaces from inverse iteration there, O(n) per vector.
+///
+/// # Errors
+/// As [`maxwell_calladine`], and `Stopped` when `stop` answered yes.
+pub fn maxwell_calladine_with<M: SpringNetwork + ?Sized>(
+    model: &M,
+    theta: &[f64],
+    tolerance: Option<f64>,
+    stop: &mut dyn FnMut() -> bool,
+) -> Result<Counting, StaticsError> {
     if let Some(t) = tolerance {
         validate::non_negative("tolerance", t)?;
     }
     let (n, m) = (model.dof_count(), model.spring_count());
+    if matches!(model.compatibility_layout(), CompatibilityLayout::Bidiagonal) && n == m + 1 {
+        validate::angles(model, theta)?;
+        let mut values = vec![0.0; 2 * m];
+        model.compatibility_into(theta, &mut values);
+        validate::finite("the compatibility matrix", &values)?;
+        let (left, right) = bidiagonal_parts(m, &values);
+        return chain_counting(left, right, tolerance, stop);
+    }
     let rows = Rows::of(model, theta)?;
     // The square matrix of the vectors' decomposition holds max(n, m)^2 numbers.
     let side = n.max(m);
-    validate::at_most(
-        "rotors x springs of the dense SVD",
-        side.saturating_mul(side),
-        super::MAX_DENSE_VALUES,
-    )?;
+    validate::at_most("rotors or springs of the dense SVD (MAX_DENSE_SVD_SIDE)", side, MAX_DENSE_SVD_SIDE)?;
+    if stop() {
+        return Err(crate::linalg::LinalgError::Stopped { what: "SVDs", done: 0, of: 2 }.into());
+    }
     let c = rows.to_dense();
     // nalgebra's `singular_values()` iterates without a bound; LAPACK's `dbdsqr` allows
     // 6 n^2 sweeps, which is what this gives.
@@ -219,6 +259,47 @@ pub fn maxwell_calladine<M: SpringNetwork + ?Sized>(
     let stress_span = least(&left_vectors, side - rank, |u| rows.transpose_residual(u));
     let self_stresses = without_last_axes(stress_span, side - m).into_iter().map(oriented).collect();
     Ok(Counting { rotors: n, springs: m, singular_values, tolerance, rank, zero_modes, self_stresses })
+}
+
+/// The counting of a chain's `(n - 1) x n` bidiagonal `C` (`left` its diagonal, `right` its
+/// superdiagonal, finite) through its Golub-Kahan tridiagonal.
+fn chain_counting(
+    left: &[f64],
+    right: &[f64],
+    tolerance: Option<f64>,
+    stop: &mut dyn FnMut() -> bool,
+) -> Result<Counting, StaticsError> {
+    let m = left.len();
+    let n = m + 1;
+    let gk = GolubKahan::new(left, right)?;
+    let mut singular_values = gk.singular_values(stop)?;
+    singular_values.reverse();
+    let sigma_max = singular_values.first().copied().unwrap_or(0.0);
+    let tolerance = tolerance.unwrap_or(n as f64 * f64::EPSILON * sigma_max);
+    let rank = singular_values.iter().filter(|&&s| s > tolerance).count();
+    // The singular values within 1e-2 sigma_max of zero: the vectors of B^T B (whose gaps are
+    // squares) of values that close would mix with the null vectors, so they are computed with
+    // them and separated by a Rayleigh-Ritz step.
+    let near_bound = tolerance.max(REFINED * sigma_max);
+    let near = singular_values.iter().filter(|&&s| s <= near_bound).count().max(m - rank);
+    // The subspaces' vectors: 2 near + 1 of at most n entries.
+    let cluster = 2 * near + 1;
+    validate::at_most(
+        "(2 singular values below 1e-2 sigma_max + 1) x n",
+        cluster.saturating_mul(n),
+        super::MAX_DENSE_VALUES,
+    )?;
+    let NullSpaces { right: zero_modes, left: self_stresses } =
+        gk.null_spaces(m - rank, near, tolerance, stop)?;
+    Ok(Counting {
+        rotors: n,
+        springs: m,
+        singular_values,
+        tolerance,
+        rank,
+        zero_modes: zero_modes.into_iter().map(oriented).collect(),
+        self_stresses: self_stresses.into_iter().map(oriented).collect(),
+    })
 }
 
 /// [`without_last_axis`] `count` times: the span without its last `count` axes (the padding of

@@ -25,7 +25,7 @@ use nalgebra::DMatrix;
 use super::error::StaticsError;
 use super::validate;
 use super::walls::domain_walls;
-use crate::linalg::SymmetricMatrix;
+use crate::linalg::{self, LinalgError, SymmetricMatrix};
 use crate::math;
 use crate::model::{ChainModel, Stiffness};
 
@@ -145,7 +145,23 @@ pub fn modes<M: ChainModel + ?Sized>(
     theta: &[f64],
     options: &ModeOptions,
 ) -> Result<Vec<Mode>, StaticsError> {
-    let mut result = normal_modes(model, theta, options)?;
+    modes_with(model, theta, options, &mut || false)
+}
+
+/// [`modes`] with a stop question, asked inside the eigensolver's loops (every QL iteration,
+/// each bisected eigenvalue, each inverse iteration) of a chain's tridiagonal problem: a yes ends
+/// the call with [`LinalgError::Stopped`] (Python's Ctrl-C
+/// stops `Chain.modes` this way).
+///
+/// # Errors
+/// As [`modes`], and `Stopped` when `stop` answered yes.
+pub fn modes_with<M: ChainModel + ?Sized>(
+    model: &M,
+    theta: &[f64],
+    options: &ModeOptions,
+    stop: &mut dyn FnMut() -> bool,
+) -> Result<Vec<Mode>, StaticsError> {
+    let mut result = normal_modes_with(model, theta, options, stop)?;
     label_kinds(model, theta, options, &mut result);
     Ok(result)
 }
@@ -160,6 +176,21 @@ pub fn normal_modes<M: Stiffness + ?Sized>(
     model: &M,
     x: &[f64],
     options: &ModeOptions,
+) -> Result<Vec<Mode>, StaticsError> {
+    normal_modes_with(model, x, options, &mut || false)
+}
+
+/// [`normal_modes`] with a stop question ([`modes_with`]); a sparse stiffness (a network's)
+/// takes the dense decomposition, bounded by [`MAX_DENSE_VALUES`](super::MAX_DENSE_VALUES), and
+/// asks it once before it starts.
+///
+/// # Errors
+/// As [`modes`], and `Stopped` when `stop` answered yes.
+pub fn normal_modes_with<M: Stiffness + ?Sized>(
+    model: &M,
+    x: &[f64],
+    options: &ModeOptions,
+    stop: &mut dyn FnMut() -> bool,
 ) -> Result<Vec<Mode>, StaticsError> {
     validate::angles(model, x)?;
     options.check()?;
@@ -180,7 +211,11 @@ pub fn normal_modes<M: Stiffness + ?Sized>(
     let scaled = k.principal(range.clone()).mass_scaled(&inertia[range.clone()]);
     let count = options.count.unwrap_or(n).min(scaled.dim());
     validate::at_most("modes x rotors", count.saturating_mul(n), super::MAX_DENSE_VALUES)?;
-    let pairs = scaled.lowest_eigenpairs(count)?;
+    let pairs = match scaled.bands() {
+        Some((diag, off)) => linalg::eigenpairs_in_index_range_with(diag, off, 0, count, stop)?,
+        None if stop() => return Err(LinalgError::Stopped { what: "eigenpairs", done: 0, of: count }.into()),
+        None => scaled.lowest_eigenpairs(count)?,
+    };
     let mut values: Vec<f64> = pairs.iter().map(|p| p.value).collect();
     let mut vectors: Vec<Vec<f64>> = pairs
         .into_iter()

@@ -31,6 +31,12 @@ pub mod harmonic;
 #[rustfmt::skip]
 pub mod quartic;
 
+/// The polynomial law `k sum_{j=2..6} c_j (l - l0)^j / j` (`chain_cell::Polynomial`), its
+/// coefficients `c2 .. c6` taken after each type's arguments above as `p2 .. p6` (13, 14 and 15
+/// arguments).
+#[rustfmt::skip]
+pub mod polynomial;
+
 /// One rendered per-bond kernel with `A` arguments and `M` outputs, generic over the lane type.
 pub trait BondFn<const A: usize, const M: usize> {
     /// The outputs for the arguments `x` (the module doc's table), lane by lane.
@@ -66,13 +72,15 @@ pub trait BondKernels<const A: usize, const N: usize, const N1: usize, const H: 
 
 /// A spring law's kernels for the three bond types: what [`NetworkModel`](crate::NetworkModel)'s
 /// drivers are generic over. Each rendered kernel file's `Law` implements it
-/// ([`harmonic::Law`], [`quartic::Law`], and the `#[rotor_network]` attribute's own, rendered at
-/// compile time for its law).
-pub trait LawKernels: 'static {
+/// ([`harmonic::Law`], [`quartic::Law`], [`polynomial::Law`], and the `#[rotor_network]`
+/// attribute's own, rendered at compile time for its law). `A1, A2, A3` are the three types'
+/// argument counts: the table's 8, 9 and 10, more for a law with parameters of its own (the
+/// polynomial's 13, 14 and 15).
+pub trait LawKernels<const A1: usize = 8, const A2: usize = 9, const A3: usize = 10>: 'static {
     /// The joint-joint bond's kernels.
-    type JointJoint: BondKernels<8, 4, 5, 10, 15>;
+    type JointJoint: BondKernels<A1, 4, 5, 10, 15>;
     /// The joint-rotor bond's kernels.
-    type JointRotor: BondKernels<9, 3, 4, 6, 10>;
+    type JointRotor: BondKernels<A2, 3, 4, 6, 10>;
     /// The rotor-rotor bond's kernels.
-    type RotorRotor: BondKernels<10, 2, 3, 3, 6>;
+    type RotorRotor: BondKernels<A3, 2, 3, 3, 6>;
 }

@@ -22,11 +22,21 @@ impl Kind {
             Kind::RotorRotor => 2,
         }
     }
+
+    /// The kernel's arguments before a law's own parameters (`BondKind::args`).
+    pub fn args(self) -> usize {
+        match self {
+            Kind::JointJoint => 8,
+            Kind::JointRotor => 9,
+            Kind::RotorRotor => 10,
+        }
+    }
 }
 
 /// The bonds of one type: per bond, its spring (the patch's bond index), its degrees of freedom
 /// in the kernel's order (unused slots 0), the offset `(ox, oy)`, the rotor lengths
-/// `[r1, r2]` (0 for a joint end), `k` and `l0`.
+/// `[r1, r2]` (0 for a joint end), `k` and `l0`; for the polynomial kernel its coefficients
+/// `c2 .. c6` (empty for the others).
 #[derive(Debug)]
 pub(super) struct Group {
     pub kind: Kind,
@@ -36,6 +46,7 @@ pub(super) struct Group {
     pub radius: Vec<[f64; 2]>,
     pub k: Vec<f64>,
     pub l0: Vec<f64>,
+    pub coefficients: Vec<[f64; 5]>,
 }
 
 impl Group {
@@ -48,6 +59,7 @@ impl Group {
             radius: Vec::new(),
             k: Vec::new(),
             l0: Vec::new(),
+            coefficients: Vec::new(),
         }
     }
 
@@ -63,6 +75,7 @@ impl Group {
             + size_of_val(&self.radius[..])
             + size_of_val(&self.k[..])
             + size_of_val(&self.l0[..])
+            + size_of_val(&self.coefficients[..])
     }
 
     /// The degrees of freedom of bond `i`, in the kernel's order.
@@ -91,6 +104,12 @@ impl Group {
                 a[..10].copy_from_slice(&[s1, c1, s2, c2, ox, oy, r1, r2, k, l0]);
             }
         }
+        // A law's own parameters (the polynomial's coefficients) come last; `A` is a constant,
+        // so the other kernels compile without this.
+        let base = self.kind.args();
+        if A > base {
+            a[base..].copy_from_slice(&self.coefficients[i][..A - base]);
+        }
         a
     }
 }
@@ -98,29 +117,46 @@ impl Group {
 /// Evaluates kernel `$f` (a kernel of every bond type of the law's kernels `$K`, a
 /// [`LawKernels`](crate::kernel::LawKernels)) on every bond of every group of `$model` at `$x`,
 /// calling `$body` with the group, the bond's index in it and the outputs as a slice. `$m` lists
-/// the kernel's output count per bond type (joint-joint, joint-rotor, rotor-rotor).
+/// the kernel's output count per bond type (joint-joint, joint-rotor, rotor-rotor), `$a` the law's
+/// argument counts (`LawKernels<A1, A2, A3>`).
 macro_rules! each_bond {
-    ($model:expr, $K:ty, $x:expr, $trig:expr, $f:ident, [$m1:literal, $m2:literal, $m3:literal], |$g:ident, $i:ident, $out:ident| $body:block) => {{
+    ($model:expr, $K:ty, [$a1:tt, $a2:tt, $a3:tt], $x:expr, $trig:expr, $f:ident, [$m1:literal, $m2:literal, $m3:literal], |$g:ident, $i:ident, $out:ident| $body:block) => {{
         use $crate::kernel::{BondFn, BondKernels, LawKernels};
         let model = $model;
         let (x, trig): (&[f64], &[[f64; 2]]) = ($x, $trig);
         let [jj, jr, rr] = &model.groups;
         for ($g, which) in [(jj, 0), (jr, 1), (rr, 2)] {
             for $i in 0..$g.len() {
-                let outputs: &[f64] = match which {
-                    0 => &<<<$K as LawKernels>::JointJoint as BondKernels<8, 4, 5, 10, 15>>::$f as BondFn<
-                        8,
-                        $m1,
-                    >>::eval::<f64>($g.args::<8>($i, x, trig, &model.rotor_of)),
-                    1 => &<<<$K as LawKernels>::JointRotor as BondKernels<9, 3, 4, 6, 10>>::$f as BondFn<
-                        9,
-                        $m2,
-                    >>::eval::<f64>($g.args::<9>($i, x, trig, &model.rotor_of)),
-                    _ => &<<<$K as LawKernels>::RotorRotor as BondKernels<10, 2, 3, 3, 6>>::$f as BondFn<
-                        10,
-                        $m3,
-                    >>::eval::<f64>($g.args::<10>($i, x, trig, &model.rotor_of)),
-                };
+                let outputs: &[f64] =
+                    match which {
+                        0 => &<<<$K as LawKernels<$a1, $a2, $a3>>::JointJoint as BondKernels<
+                            $a1,
+                            4,
+                            5,
+                            10,
+                            15,
+                        >>::$f as BondFn<$a1, $m1>>::eval::<f64>(
+                            $g.args::<$a1>($i, x, trig, &model.rotor_of),
+                        ),
+                        1 => &<<<$K as LawKernels<$a1, $a2, $a3>>::JointRotor as BondKernels<
+                            $a2,
+                            3,
+                            4,
+                            6,
+                            10,
+                        >>::$f as BondFn<$a2, $m2>>::eval::<f64>(
+                            $g.args::<$a2>($i, x, trig, &model.rotor_of),
+                        ),
+                        _ => &<<<$K as LawKernels<$a1, $a2, $a3>>::RotorRotor as BondKernels<
+                            $a3,
+                            2,
+                            3,
+                            3,
+                            6,
+                        >>::$f as BondFn<$a3, $m3>>::eval::<f64>(
+                            $g.args::<$a3>($i, x, trig, &model.rotor_of),
+                        ),
+                    };
                 let $out = outputs;
                 $body
             }

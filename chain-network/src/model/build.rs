@@ -3,11 +3,12 @@
 
 use super::NetworkModel;
 use super::bonds::{Group, Kind};
+use super::kernels::Kernels;
+use super::law::{IntoBondLaw, Kernel, kernel_of};
 use super::stencil::Stencil;
-use crate::cell::NodeKind;
+use crate::cell::{BondLaw, NodeKind};
 use crate::error::NetworkError;
 use crate::patch::Patch;
-use chain_core::Law;
 use std::sync::OnceLock;
 
 /// A builder for a [`NetworkModel`]; see [`NetworkModel::builder`]. Overrides name a spring by
@@ -16,7 +17,8 @@ use std::sync::OnceLock;
 #[derive(Clone, Debug)]
 pub struct NetworkModelBuilder<'p, 'c> {
     patch: &'p Patch<'c>,
-    law: Law,
+    law: Option<BondLaw>,
+    spring_laws: Vec<(usize, BondLaw)>,
     kernels: Option<super::kernels::Kernels>,
     mass: f64,
     node_masses: Vec<([usize; 2], usize, f64)>,
@@ -40,7 +42,8 @@ impl<'p, 'c> NetworkModelBuilder<'p, 'c> {
     pub(super) fn new(patch: &'p Patch<'c>) -> Self {
         Self {
             patch,
-            law: Law::Harmonic,
+            law: None,
+            spring_laws: Vec::new(),
             kernels: None,
             mass: 1.0,
             node_masses: Vec::new(),
@@ -49,19 +52,27 @@ impl<'p, 'c> NetworkModelBuilder<'p, 'c> {
         }
     }
 
-    /// The spring law of every bond (default harmonic).
-    pub fn law(mut self, law: Law) -> Self {
-        self.law = law;
+    /// The spring law of every bond (default: each bond's law in the cell, harmonic unless the
+    /// cell says otherwise): a cell's [`BondLaw`] or chain-core's `Law`.
+    pub fn law(mut self, law: impl IntoBondLaw) -> Self {
+        self.law = Some(law.into_bond_law());
+        self
+    }
+
+    /// The spring law of spring `p` (the patch's bond `p`), over [`law`](Self::law) and the
+    /// cell. Quartic springs cannot be mixed with others (the build's error says which).
+    pub fn spring_law(mut self, p: usize, law: impl IntoBondLaw) -> Self {
+        self.spring_laws.push((p, law.into_bond_law()));
         self
     }
 
     /// Evaluates every bond with the kernels `K` instead of the checked-in ones of the law: the
     /// `#[rotor_network]` attribute's, rendered at compile time for its law (which may be a
-    /// custom one; [`NetworkModel::law`] then still reports the builder's [`Law`]). Not public
+    /// custom one; [`NetworkModel::spring_law`] then still reports the builder's laws). Not public
     /// API: the attribute's generated code calls it through `rotor_chain::__private`.
     #[doc(hidden)]
     pub fn kernels<K: crate::kernel::LawKernels>(mut self) -> Self {
-        self.kernels = Some(super::kernels::Kernels::of::<K>());
+        self.kernels = Some(Kernels::of::<K>());
         self
     }
 
@@ -130,6 +141,19 @@ impl<'p, 'c> NetworkModelBuilder<'p, 'c> {
                 springs[p][slot] = positive(what, format!("spring {p}"), value)?;
             }
         }
+
+        let mut laws: Vec<BondLaw> =
+            patch.bonds().iter().map(|pb| self.law.unwrap_or(cell.bonds()[pb.bond].law)).collect();
+        for &(p, law) in &self.spring_laws {
+            if p >= springs_count {
+                return Err(NetworkError::Argument {
+                    what: "spring law",
+                    problem: format!("spring {p}: the patch has {springs_count} springs"),
+                });
+            }
+            laws[p] = law;
+        }
+        let (kernel, coefficients) = kernel_of(&laws)?;
 
         let dof = patch.dof();
         let mut inertia = vec![0.0; dof];
@@ -210,14 +234,18 @@ impl<'p, 'c> NetworkModelBuilder<'p, 'c> {
             g.radius.push(radius);
             g.k.push(springs[p][0]);
             g.l0.push(springs[p][1]);
+            if let Some(c) = coefficients.get(p) {
+                g.coefficients.push(*c);
+            }
         }
         let stencil = Stencil::new(&groups, cell.dof(), patch.cell_count(), |j| rotor_of[j] != u32::MAX);
-        let kernels = self.kernels.unwrap_or_else(|| match self.law {
-            Law::Quartic => super::kernels::Kernels::of::<crate::kernel::quartic::Law>(),
-            _ => super::kernels::Kernels::of::<crate::kernel::harmonic::Law>(),
+        let kernels = self.kernels.unwrap_or_else(|| match kernel {
+            Kernel::Harmonic => Kernels::of::<crate::kernel::harmonic::Law>(),
+            Kernel::Quartic => Kernels::of::<crate::kernel::quartic::Law>(),
+            Kernel::Polynomial => Kernels::with_arguments::<crate::kernel::polynomial::Law, 13, 14, 15>(),
         });
         Ok(NetworkModel {
-            law: self.law,
+            law: kernel,
             kernels,
             inertia,
             reference,

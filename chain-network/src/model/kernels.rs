@@ -42,28 +42,39 @@ pub(super) struct Kernels {
 }
 
 impl Kernels {
-    /// The passes of the kernels `K`.
+    /// The passes of the kernels `K` (of the table's argument counts).
     pub fn of<K: LawKernels>() -> Self {
+        Self::with_arguments::<K, 8, 9, 10>()
+    }
+
+    /// The passes of the kernels `K` whose bond types take `A1, A2, A3` arguments (a law with
+    /// parameters of its own: the polynomial's 13, 14, 15).
+    pub fn with_arguments<K: LawKernels<A1, A2, A3>, const A1: usize, const A2: usize, const A3: usize>()
+    -> Self {
         Self {
-            energy: energy::<K>,
-            gradient: super::lanes::gradient::<K, false>,
-            energy_gradient: super::lanes::gradient::<K, true>,
-            blocks: blocks::<K>,
-            per_spring: [per_spring::<K, false>, per_spring::<K, true>],
-            compatibility: compatibility::<K>,
+            energy: energy::<K, A1, A2, A3>,
+            gradient: super::lanes::gradient::<K, A1, A2, A3, false>,
+            energy_gradient: super::lanes::gradient::<K, A1, A2, A3, true>,
+            blocks: blocks::<K, A1, A2, A3>,
+            per_spring: [per_spring::<K, A1, A2, A3, false>, per_spring::<K, A1, A2, A3, true>],
+            compatibility: compatibility::<K, A1, A2, A3>,
         }
     }
 }
 
-fn energy<K: LawKernels>(m: &NetworkModel, x: &[f64], trig: &[[f64; 2]]) -> f64 {
+fn energy<K: LawKernels<A1, A2, A3>, const A1: usize, const A2: usize, const A3: usize>(
+    m: &NetworkModel,
+    x: &[f64],
+    trig: &[[f64; 2]],
+) -> f64 {
     let mut energy = 0.0;
-    each_bond!(m, K, x, trig, Energy, [1, 1, 1], |_g, _i, out| { energy += out[0] });
+    each_bond!(m, K, [A1, A2, A3], x, trig, Energy, [1, 1, 1], |_g, _i, out| { energy += out[0] });
     energy
 }
 
 /// Assembles `which` block of every bond into `values` (zeroed first) at its slots; for the
 /// fused [`Block::All`], also the gradient into `grad`, returning the energy (else 0).
-fn blocks<K: LawKernels>(
+fn blocks<K: LawKernels<A1, A2, A3>, const A1: usize, const A2: usize, const A3: usize>(
     m: &NetworkModel,
     x: &[f64],
     trig: &[[f64; 2]],
@@ -86,12 +97,18 @@ fn blocks<K: LawKernels>(
         }
     };
     match which {
-        Block::Hessian => each_bond!(m, K, x, trig, Hessian, [10, 6, 3], |g, i, out| { add(g, i, out, 0) }),
-        Block::Material => each_bond!(m, K, x, trig, Material, [10, 6, 3], |g, i, out| { add(g, i, out, 0) }),
-        Block::Stress => each_bond!(m, K, x, trig, Stress, [10, 6, 3], |g, i, out| { add(g, i, out, 0) }),
+        Block::Hessian => {
+            each_bond!(m, K, [A1, A2, A3], x, trig, Hessian, [10, 6, 3], |g, i, out| { add(g, i, out, 0) })
+        }
+        Block::Material => {
+            each_bond!(m, K, [A1, A2, A3], x, trig, Material, [10, 6, 3], |g, i, out| { add(g, i, out, 0) })
+        }
+        Block::Stress => {
+            each_bond!(m, K, [A1, A2, A3], x, trig, Stress, [10, 6, 3], |g, i, out| { add(g, i, out, 0) })
+        }
         Block::All => {
             let grad = grad.expect("the fused call passes the gradient");
-            each_bond!(m, K, x, trig, EnergyGradientHessian, [15, 10, 6], |g, i, out| {
+            each_bond!(m, K, [A1, A2, A3], x, trig, EnergyGradientHessian, [15, 10, 6], |g, i, out| {
                 let d = g.bond_dofs(i);
                 energy += out[0];
                 for (&dof, &v) in d.iter().zip(&out[1..]) {
@@ -105,18 +122,34 @@ fn blocks<K: LawKernels>(
 }
 
 /// One value per spring from a one-output kernel, into `out` by spring index.
-fn per_spring<K: LawKernels, const TENSION: bool>(m: &NetworkModel, x: &[f64], trig: &Trig, out: &mut [f64]) {
+fn per_spring<
+    K: LawKernels<A1, A2, A3>,
+    const A1: usize,
+    const A2: usize,
+    const A3: usize,
+    const TENSION: bool,
+>(
+    m: &NetworkModel,
+    x: &[f64],
+    trig: &Trig,
+    out: &mut [f64],
+) {
     if TENSION {
-        each_bond!(m, K, x, trig, Tension, [1, 1, 1], |g, i, v| { out[g.spring[i]] = v[0] });
+        each_bond!(m, K, [A1, A2, A3], x, trig, Tension, [1, 1, 1], |g, i, v| { out[g.spring[i]] = v[0] });
     } else {
-        each_bond!(m, K, x, trig, Length, [1, 1, 1], |g, i, v| { out[g.spring[i]] = v[0] });
+        each_bond!(m, K, [A1, A2, A3], x, trig, Length, [1, 1, 1], |g, i, v| { out[g.spring[i]] = v[0] });
     }
 }
 
 /// The compatibility matrix's values at their slots.
-fn compatibility<K: LawKernels>(m: &NetworkModel, x: &[f64], trig: &[[f64; 2]], values: &mut [f64]) {
+fn compatibility<K: LawKernels<A1, A2, A3>, const A1: usize, const A2: usize, const A3: usize>(
+    m: &NetworkModel,
+    x: &[f64],
+    trig: &[[f64; 2]],
+    values: &mut [f64],
+) {
     let rows = m.rows();
-    each_bond!(m, K, x, trig, Compatibility, [4, 3, 2], |g, i, v| {
+    each_bond!(m, K, [A1, A2, A3], x, trig, Compatibility, [4, 3, 2], |g, i, v| {
         let n = v.len();
         for (&s, &c) in rows.slots[g.kind as usize][i * n..(i + 1) * n].iter().zip(v) {
             values[s] = c;

@@ -29,21 +29,25 @@ mod build;
 mod chain;
 mod kernels;
 mod lanes;
+mod law;
 mod stencil;
 mod traits;
 
 pub use build::NetworkModelBuilder;
 pub use chain::ChainView;
+pub use law::IntoBondLaw;
 
+use crate::cell::{BondLaw, Polynomial};
 use crate::patch::Patch;
 use bonds::Group;
-use chain_core::Law;
+use law::Kernel;
 use std::sync::OnceLock;
 
 /// A finite patch of a network as a mechanical model. Build one with [`NetworkModel::builder`].
 #[derive(Debug)]
 pub struct NetworkModel {
-    law: Law,
+    /// The checked-in kernel module of the springs' laws (`law.rs`).
+    law: Kernel,
     /// The passes of the law's kernels (the checked-in ones of `law`, or the attribute's).
     kernels: kernels::Kernels,
     inertia: Vec<f64>,
@@ -63,8 +67,8 @@ pub struct NetworkModel {
 }
 
 impl NetworkModel {
-    /// A builder for the model of `patch` (harmonic law, unit masses, the cell's constants and
-    /// rest lengths, until changed).
+    /// A builder for the model of `patch` (unit masses, the cell's laws, constants and rest
+    /// lengths, until changed).
     pub fn builder<'p, 'c>(patch: &'p Patch<'c>) -> NetworkModelBuilder<'p, 'c> {
         NetworkModelBuilder::new(patch)
     }
@@ -75,9 +79,18 @@ impl NetworkModel {
         self.reference.clone()
     }
 
-    /// The spring law.
-    pub fn law(&self) -> Law {
-        self.law
+    /// The law of spring `p` (the patch's bond `p`), or `None` past the last spring. A harmonic
+    /// spring of a model that also has polynomial springs is reported as the polynomial `c2 = 1`
+    /// it is evaluated as. A model built with the `#[rotor_network]` attribute's kernels reports
+    /// the builder's law, not the attribute's. Looks the spring up among the bonds: O(bonds).
+    pub fn spring_law(&self, p: usize) -> Option<BondLaw> {
+        let (g, i) =
+            self.groups.iter().find_map(|g| g.spring.iter().position(|&s| s == p).map(|i| (g, i)))?;
+        Some(match self.law {
+            Kernel::Harmonic => BondLaw::Harmonic,
+            Kernel::Quartic => BondLaw::Quartic,
+            Kernel::Polynomial => BondLaw::Polynomial(Polynomial { coefficients: g.coefficients[i] }),
+        })
     }
 
     /// The number of rotors.

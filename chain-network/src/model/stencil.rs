@@ -11,7 +11,10 @@
 //! changes) or leaves a free one. The runs are found from the bonds themselves (grouped by their
 //! two slots and `delta`, then cut wherever consecutive bonds are not one cell apart or their
 //! constants differ), so every patch and override is covered; a kagome patch of `N x N` cells has
-//! at most two runs per cell bond and row.
+//! at most two runs per cell bond and row. A bond's parameters (`k`, `l0`, and a law's own: the
+//! polynomial's coefficients) go to the kernel as constants where every bond of the run has the
+//! same (a cell bond without overrides), else as one array per parameter, contiguous per run; the
+//! generated kernels stay the only arithmetic.
 //!
 //! A rotor's angle has a sine and a cosine array after the coordinates
 //! (`input[(D + 2 r) * cells + c]`, `input[(D + 2 r + 1) * cells + c]` for the `r`-th rotor slot of
@@ -22,9 +25,23 @@
 use super::bonds::{Group, Kind};
 use std::collections::HashMap;
 
+/// The most parameters a bond passes after its geometry: `k`, `l0` and a law's own (the
+/// polynomial's five coefficients, `Group::coefficients`).
+pub(super) const PARAMETERS: usize = 7;
+
+/// One of a run's parameters (`k`, `l0`, a coefficient): one value for every bond of the run,
+/// passed to the kernel as a constant (the common case: a cell bond without overrides; a large
+/// patch's step then streams 8 bytes per bond and parameter less, and the model holds it once per
+/// run), or the run's own values from `Runs::values[at]` on, one per bond.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(super) enum Parameter {
+    Shared(f64),
+    PerBond(usize),
+}
+
 /// A run of bonds of one type: bond `i` of the run reads its four end arguments at
-/// `ends[a] + i` of the input, adds its gradient entries at `grads[a] + i`, and its `k`, `l0` at
-/// `param + i` of the group's arrays.
+/// `ends[a] + i` of the input, adds its gradient entries at `grads[a] + i`, and takes its
+/// parameters from [`Run::parameters`].
 #[derive(Debug)]
 pub(super) struct Run {
     /// The bonds in the run.
@@ -38,21 +55,17 @@ pub(super) struct Run {
     /// The kernel's constant arguments after the ends: `ox, oy` and the rotor lengths the kernel
     /// takes (none, `r2`, or `r1 r2`), zero-padded.
     pub constants: [f64; 4],
-    /// The first bond's index in [`Runs::k`] and [`Runs::l0`].
-    pub param: usize,
-    /// `[k, l0]` when every bond of the run has the same (a cell bond without overrides: the
-    /// common case), passed as constants: a large patch's step then streams 16 bytes per bond
-    /// less, and the model holds them once per run.
-    pub uniform: Option<[f64; 2]>,
+    /// `k`, `l0`, then the law's coefficients `c2 .. c6` (the polynomial's; `Shared(0.0)` for a
+    /// law without them), each shared by the run's bonds or per bond.
+    pub parameters: [Parameter; PARAMETERS],
 }
 
-/// The runs of one bond type, with the `k` and `l0` of the bonds of every run that has not one
-/// pair for all its bonds ([`Run::uniform`]), in run order.
+/// The runs of one bond type, with the values of every parameter that is not shared by a run's
+/// bonds ([`Parameter::PerBond`]), run after run.
 #[derive(Debug)]
 pub(super) struct Runs {
     pub runs: Vec<Run>,
-    pub k: Vec<f64>,
-    pub l0: Vec<f64>,
+    pub values: Vec<f64>,
 }
 
 /// The runs of a patch's bonds by type (in the order of `NetworkModel::groups`) and the shape of
@@ -128,8 +141,9 @@ impl Stencil {
                     })
                     .push(i);
             }
-            let mut runs =
-                Runs { runs: Vec::new(), k: Vec::with_capacity(g.len()), l0: Vec::with_capacity(g.len()) };
+            // The bonds of each run, found first; its parameters are then shared or per bond.
+            let mut runs = Runs { runs: Vec::new(), values: Vec::new() };
+            let mut members: Vec<usize> = Vec::with_capacity(g.len());
             let used = g.kind.dofs();
             for key in keys {
                 let mut last: Option<([usize; 4], [usize; 4], [f64; 4])> = None;
@@ -147,27 +161,32 @@ impl Stencil {
                             ends,
                             grads,
                             constants,
-                            param: runs.k.len(),
-                            uniform: None,
+                            parameters: [Parameter::Shared(0.0); PARAMETERS],
                         }),
                     }
-                    runs.k.push(g.k[i]);
-                    runs.l0.push(g.l0[i]);
+                    members.push(i);
                     last = Some((ends, grads, constants));
                 }
             }
-            // Keep per-bond parameters only for the runs that need them.
-            let same = |v: &[f64]| v.iter().all(|x| x.to_bits() == v[0].to_bits());
-            let (k, l0) = (std::mem::take(&mut runs.k), std::mem::take(&mut runs.l0));
+            // Bond `i`'s parameter `j` (`k`, `l0`, then the coefficients where the law has them).
+            let parameter = |i: usize, j: usize| match j {
+                0 => g.k[i],
+                1 => g.l0[i],
+                _ => g.coefficients.get(i).map_or(0.0, |c| c[j - 2]),
+            };
+            let mut start = 0;
             for run in &mut runs.runs {
-                let range = run.param..run.param + run.len;
-                if same(&k[range.clone()]) && same(&l0[range.clone()]) {
-                    run.uniform = Some([k[run.param], l0[run.param]]);
-                } else {
-                    run.param = runs.k.len();
-                    runs.k.extend_from_slice(&k[range.clone()]);
-                    runs.l0.extend_from_slice(&l0[range]);
+                let bonds = &members[start..start + run.len];
+                for (j, slot) in run.parameters.iter_mut().enumerate() {
+                    let first = parameter(bonds[0], j);
+                    *slot = if bonds.iter().all(|&i| parameter(i, j).to_bits() == first.to_bits()) {
+                        Parameter::Shared(first)
+                    } else {
+                        runs.values.extend(bonds.iter().map(|&i| parameter(i, j)));
+                        Parameter::PerBond(runs.values.len() - run.len)
+                    };
                 }
+                start += run.len;
             }
             runs
         });
@@ -187,11 +206,7 @@ impl Stencil {
     pub fn heap_bytes(&self) -> usize {
         use std::mem::size_of_val;
         size_of_val(&self.rotor_slots[..])
-            + self
-                .kinds
-                .iter()
-                .map(|r| size_of_val(&r.runs[..]) + size_of_val(&r.k[..]) + size_of_val(&r.l0[..]))
-                .sum::<usize>()
+            + self.kinds.iter().map(|r| size_of_val(&r.runs[..]) + size_of_val(&r.values[..])).sum::<usize>()
     }
 
     /// Fills `input`'s coordinates from `x` (in the patch's order) and the rotors' sines and
@@ -345,32 +360,91 @@ mod tests {
             .unwrap()
     }
 
+    /// The laws and parameters of a case of the test below.
+    #[derive(Clone, Copy, Debug)]
+    enum Laws {
+        /// Harmonic, the cell's constants and rest lengths (every parameter shared by a run).
+        Harmonic,
+        /// Harmonic, every spring's `k` and `l0` overridden.
+        HarmonicOverridden,
+        /// Quartic, every spring's `k` and `l0` overridden.
+        QuarticOverridden,
+        /// One polynomial for every spring, every spring's `k` overridden: `k` per bond, `l0`
+        /// and the coefficients shared.
+        PolynomialShared,
+        /// A polynomial of its own for every spring (every coefficient per bond), every `l0`
+        /// overridden.
+        PolynomialPerBond,
+        /// Harmonic springs (the polynomial `c2 = 1`) and every third spring one polynomial:
+        /// runs with coefficients per bond beside runs that share them.
+        Mixed,
+    }
+
     /// The stencil's energy and gradient against the scalar kernels summed bond by bond (the
-    /// order of `Patch::bonds`): every bond's terms are the same numbers, so the two sums of a
-    /// degree of freedom's `n` terms differ by at most `2 n eps` times the sum of their
-    /// magnitudes. At every level the machine runs, on periodic and free patches, with and without
-    /// each bond's constant and rest length overridden.
+    /// order of `Patch::bonds`) for every law's kernels (harmonic, quartic, the polynomial with
+    /// its coefficients shared or per bond): every bond's terms are the same numbers, so the two
+    /// sums of a degree of freedom's `n` terms differ by at most `2 n eps` times the sum of their
+    /// magnitudes, and the energies by `2 b eps` times the sum of the `b` bond energies'
+    /// magnitudes. At every level the machine runs, on periodic and free patches.
     #[test]
     fn runs_give_the_bond_by_bond_energy_and_gradient_to_rounding() {
+        use super::Parameter;
+        use crate::cell::Polynomial;
+        use crate::model::law::Kernel;
         let cells = [(ready::kagome(), [11, 7]), (wide(), [10, 9]), (wide(), [3, 3])];
-        // Whether bond types with their own `k` and `l0` per bond, and with one for all, were met.
-        let mut seen = [false; 2];
+        let cases = [
+            Laws::Harmonic,
+            Laws::HarmonicOverridden,
+            Laws::QuarticOverridden,
+            Laws::PolynomialShared,
+            Laws::PolynomialPerBond,
+            Laws::Mixed,
+        ];
+        // Whether runs whose `k` (first index 0) and whose coefficients (1) are shared (second
+        // index 0) and per bond (1) were met.
+        let mut seen = [[false; 2]; 2];
         for (cell, size) in &cells {
             for boundary in [Boundary::Periodic, Boundary::Free] {
                 let patch = Patch::new(cell, *size, boundary).unwrap();
-                for (law, overrides) in [(Law::Harmonic, false), (Law::Harmonic, true), (Law::Quartic, true)]
-                {
-                    let mut rng = SplitMix(patch.bonds().len() as u64);
-                    let mut builder = NetworkModel::builder(&patch).law(law);
-                    // Without overrides every run has one `k` and `l0` (`Run::uniform`).
-                    for p in (0..patch.bonds().len()).filter(|_| overrides) {
-                        builder = builder
-                            .spring_constant(p, rng.range(0.5, 2.0))
-                            .rest_length(p, rng.range(0.5, 1.5));
+                let springs = patch.bonds().len();
+                for laws in cases {
+                    let mut rng = SplitMix(springs as u64);
+                    let random_polynomial = |rng: &mut SplitMix| {
+                        let c = [rng.range(0.5, 2.0), rng.symmetric(), rng.symmetric(), rng.symmetric(), 0.5];
+                        Polynomial::new(&c).unwrap()
+                    };
+                    let one = random_polynomial(&mut rng);
+                    let mut builder = NetworkModel::builder(&patch);
+                    for p in 0..springs {
+                        let (k, l0) = (rng.range(0.5, 2.0), rng.range(0.5, 1.5));
+                        builder = match laws {
+                            Laws::Harmonic => builder,
+                            Laws::HarmonicOverridden => builder.spring_constant(p, k).rest_length(p, l0),
+                            Laws::QuarticOverridden => {
+                                builder.law(Law::Quartic).spring_constant(p, k).rest_length(p, l0)
+                            }
+                            Laws::PolynomialShared => builder.law(one).spring_constant(p, k),
+                            Laws::PolynomialPerBond => {
+                                builder.spring_law(p, random_polynomial(&mut rng)).rest_length(p, l0)
+                            }
+                            Laws::Mixed if p % 3 == 0 => builder.spring_law(p, one),
+                            Laws::Mixed => builder,
+                        };
                     }
                     let model = builder.build().unwrap();
+                    let expected = match laws {
+                        Laws::Harmonic | Laws::HarmonicOverridden => Kernel::Harmonic,
+                        Laws::QuarticOverridden => Kernel::Quartic,
+                        _ => Kernel::Polynomial,
+                    };
+                    assert_eq!(model.law, expected, "{laws:?}");
                     for run in model.stencil.kinds.iter().flat_map(|r| &r.runs) {
-                        seen[usize::from(run.uniform.is_some())] = true;
+                        let per_bond =
+                            |j: usize| usize::from(matches!(run.parameters[j], Parameter::PerBond(_)));
+                        seen[0][per_bond(0)] = true;
+                        if model.law == Kernel::Polynomial {
+                            (2..super::PARAMETERS).for_each(|j| seen[1][per_bond(j)] = true);
+                        }
                     }
                     let x: Vec<f64> = model.reference().iter().map(|x| x + 0.1 * rng.symmetric()).collect();
                     let n = x.len();
@@ -380,28 +454,41 @@ mod tests {
                         let trig = model.trig(&x);
                         let (mut reference, mut magnitude, mut terms) =
                             (vec![0.0; n], vec![0.0; n], vec![0usize; n]);
-                        let mut energy = 0.0;
+                        let (mut energy, mut energies) = (0.0, 0.0);
                         let mut add = |g: &crate::model::bonds::Group, i: usize, out: &[f64]| {
                             energy += out[0];
+                            energies += out[0].abs();
                             for (&d, &v) in g.bond_dofs(i).iter().zip(&out[1..]) {
                                 reference[d] += v;
                                 magnitude[d] += v.abs();
                                 terms[d] += 1;
                             }
                         };
-                        match law {
-                            Law::Quartic => each_bond!(
+                        match model.law {
+                            Kernel::Harmonic => each_bond!(
                                 &model,
-                                crate::kernel::quartic::Law,
+                                crate::kernel::harmonic::Law,
+                                [8, 9, 10],
                                 &x,
                                 &trig,
                                 EnergyGradient,
                                 [5, 4, 3],
                                 |g, i, out| { add(g, i, out) }
                             ),
-                            _ => each_bond!(
+                            Kernel::Quartic => each_bond!(
                                 &model,
-                                crate::kernel::harmonic::Law,
+                                crate::kernel::quartic::Law,
+                                [8, 9, 10],
+                                &x,
+                                &trig,
+                                EnergyGradient,
+                                [5, 4, 3],
+                                |g, i, out| { add(g, i, out) }
+                            ),
+                            Kernel::Polynomial => each_bond!(
+                                &model,
+                                crate::kernel::polynomial::Law,
+                                [13, 14, 15],
                                 &x,
                                 &trig,
                                 EnergyGradient,
@@ -409,10 +496,10 @@ mod tests {
                                 |g, i, out| { add(g, i, out) }
                             ),
                         }
-                        (energy, reference, magnitude, terms)
+                        (energy, energies, reference, magnitude, terms)
                     };
                     for level in Level::ALL {
-                        let Some((e, grad, alone, (energy, reference, magnitude, terms))) =
+                        let Some((e, grad, alone, (energy, energies, reference, magnitude, terms))) =
                             with_level(level, || {
                                 let mut grad = vec![f64::NAN; n];
                                 let e = model.energy_and_gradient_into(&x, &mut grad);
@@ -421,14 +508,10 @@ mod tests {
                         else {
                             continue;
                         };
-                        let what = format!("{size:?} {boundary:?} {law:?} overrides {overrides} {level:?}");
+                        let what = format!("{size:?} {boundary:?} {laws:?} {level:?}");
                         assert_eq!(grad, alone, "{what}: fused and alone");
-                        // Both energies are sums of the same bond energies (positive).
-                        let bonds = patch.bonds().len() as f64;
-                        assert!(
-                            (e - energy).abs() <= 2.0 * bonds * f64::EPSILON * energy,
-                            "{what}: {e} vs {energy}"
-                        );
+                        let bound = 2.0 * springs as f64 * f64::EPSILON * energies;
+                        assert!((e - energy).abs() <= bound, "{what}: {e} vs {energy} (bound {bound:e})");
                         for d in 0..n {
                             let bound = 2.0 * terms[d] as f64 * f64::EPSILON * magnitude[d];
                             assert!(
@@ -442,6 +525,6 @@ mod tests {
                 }
             }
         }
-        assert_eq!(seen, [true, true], "both parameter layouts");
+        assert_eq!(seen, [[true, true], [true, true]], "every parameter layout");
     }
 }

@@ -2,14 +2,17 @@
 //! ([`NetworkDrawing`], rendered by `render`'s `network` part), the bands along a path, the
 //! phase of `det Q(k)` over the zone, a strip's spectrum with its edge zero modes, a zero mode's
 //! arrows, the polarization phase diagram ([`diagram`]), and issue 36's demonstrations
-//! ([`demonstration`]: the paper's chain declared as a network). Every figure is a [`Figure`](crate::Figure) of
+//! ([`demonstration`]: the paper's chain declared as a network; [`transition_figure`]: a
+//! transition wave in a bistable chain). Every figure is a [`Figure`](crate::Figure) of
 //! the paper's model, rendered to PNG and SVG by [`crate::render::render`].
 
 pub mod demonstration;
 pub mod diagram;
 mod figures;
+mod transition;
 
 pub use figures::{bands_figure, cell_figure};
+pub use transition::transition_figure;
 
 use std::fmt::Write as _;
 

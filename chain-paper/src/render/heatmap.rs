@@ -252,7 +252,32 @@ where
             },
         )
     }))?;
+    // Hatched categories: three diagonal strokes over each such cell.
+    let is_hatched = |v: f64| {
+        categorical
+            && category_index(v, map.categories.len()).is_some_and(|i| palette::hatched(&map.categories[i]))
+    };
+    let hatched: Vec<((f64, f64), (f64, f64))> = rows
+        .iter()
+        .flat_map(|r| cols.iter().map(move |c| (r.clone(), c.clone())))
+        .filter(|(r, c)| is_hatched(block_value(map, r, c)))
+        .map(|(r, c)| ((xe[c.start], ye[r.start]), (xe[c.end], ye[r.end])))
+        .collect();
+    chart.draw_series(hatched.iter().flat_map(|&((x0, y0), (x1, y1))| {
+        hatch_strokes().map(move |[(u0, v0), (u1, v1)]| {
+            let at = |u: f64, v: f64| (x0 + u * (x1 - x0), y0 + v * (y1 - y0));
+            PathElement::new(vec![at(u0, v0), at(u1, v1)], palette::HATCH.stroke_width(1))
+        })
+    }))?;
     Ok(chart.plotting_area().get_pixel_range().1)
+}
+
+/// The hatching of a unit square: three strokes parallel to its rising diagonal (`v = u + c`,
+/// `c` in -1/2, 0, 1/2), each clipped to the square, as `[(u, v) start, end]`.
+fn hatch_strokes() -> impl Iterator<Item = [(f64, f64); 2]> {
+    [-0.5f64, 0.0, 0.5]
+        .into_iter()
+        .map(|c| [(c.min(0.0).abs(), c.max(0.0)), (1.0 - c.max(0.0), 1.0 + c.min(0.0))])
 }
 
 /// A vertical colour bar of `scale` with ticks, and `label` beside them reading upwards (as the
@@ -327,6 +352,13 @@ where
         let top = 4 + 26 * row as i32;
         let swatch = [(0, top), (18, top + 18)];
         area.draw(&Rectangle::new(swatch, colour.filled()))?;
+        if palette::hatched(name) {
+            for [(u0, v0), (u1, v1)] in hatch_strokes() {
+                // Rising in the picture: pixel rows grow downwards.
+                let at = |u: f64, v: f64| ((18.0 * u).round() as i32, top + 18 - (18.0 * v).round() as i32);
+                area.draw(&PathElement::new(vec![at(u0, v0), at(u1, v1)], palette::HATCH.stroke_width(1)))?;
+            }
+        }
         area.draw(&Rectangle::new(swatch, BLACK.mix(0.5).stroke_width(1)))?;
         area.draw(&Text::new(name, (26, top + 1), font(TICK_FONT, FontStyle::Normal)))?;
     }

@@ -87,6 +87,12 @@ struct Cli {
     /// Damping rate of every rotor, in 1/t as given (the paper's runs: 0)
     #[arg(long, default_value_t = 0.0)]
     damping: f64,
+    /// Run every point with DOP853 as well as Verlet and mark it unresolved where they decide
+    /// differently (column `unresolved` = integrators-disagree); several times the cost of a
+    /// point. Points where a wall from a free end reached the impurity before the decision are
+    /// marked unresolved (end-wall-first) either way
+    #[arg(long)]
+    cross_check: bool,
     /// Rotor length r, in units of the lattice spacing a = 1 (paper: r/a = 0.8)
     #[arg(long, default_value_t = 0.8)]
     r: f64,
@@ -226,6 +232,7 @@ fn diagram(cli: &Cli, ki: &Axis, v0: &Axis) -> Result<PhaseDiagram, Failure> {
         DirectionArg::Right => Direction::Right,
     };
     d.damping = cli.damping;
+    d.cross_check = cli.cross_check;
     d.check().map_err(usage)?;
     for &ki in ki.values() {
         d.check_ki(ki).map_err(|e| Failure::Usage(format!("invalid --ki: {e}")))?;
@@ -252,6 +259,7 @@ fn main() -> ExitCode {
                 summary.failed,
                 summary.run
             );
+            report_unresolved(&args.out);
             summary.failed
         }),
         None => run(&cli).map(|(summary, out)| {
@@ -394,8 +402,8 @@ fn merge(args: &MergeArgs) -> Result<MergeSummary, Failure> {
     merge_shards::<PointRecord>(&shards, &args.out).map_err(run)
 }
 
-fn report(cli: &Cli, out: &std::path::Path, s: &Summary) {
-    let out = out.display();
+fn report(cli: &Cli, path: &std::path::Path, s: &Summary) {
+    let out = path.display();
     eprintln!(
         "phase-diagram: {out}: {} points: {} computed now ({} failed), {} already done ({} failed) in {:.1} s",
         s.total,
@@ -429,5 +437,37 @@ fn report(cli: &Cli, out: &std::path::Path, s: &Summary) {
     }
     if s.failed_before > 0 && !cli.retry_failed {
         eprintln!("phase-diagram: rerun with --retry-failed to compute the failed points again");
+    }
+    report_unresolved(path);
+}
+
+/// `phase-diagram: antikink.csv: 3 of 1600 points unresolved (2 end-wall-first, 1
+/// integrators-disagree) ...`: the points of the file whose outcome is not the impurity's alone,
+/// by reason (nothing when there are none).
+fn report_unresolved(out: &std::path::Path) {
+    let points = match chain_sweep::read_points::<PointRecord>(out) {
+        Ok(points) => points,
+        Err(e) => {
+            eprintln!("phase-diagram: cannot count the unresolved points: {e}");
+            return;
+        }
+    };
+    let mut reasons: Vec<(&'static str, usize)> = Vec::new();
+    for reason in points.iter().filter_map(|p| p.outcome.as_ref().ok()?.unresolved) {
+        match reasons.iter_mut().find(|(name, _)| *name == reason.name()) {
+            Some((_, count)) => *count += 1,
+            None => reasons.push((reason.name(), 1)),
+        }
+    }
+    let unresolved: usize = reasons.iter().map(|(_, count)| count).sum();
+    if unresolved > 0 {
+        reasons.sort();
+        let by_reason: Vec<String> = reasons.iter().map(|(name, count)| format!("{count} {name}")).collect();
+        eprintln!(
+            "phase-diagram: {}: {unresolved} of {} points unresolved ({}): their outcome is not the impurity's alone (column `unresolved`)",
+            out.display(),
+            points.len(),
+            by_reason.join(", ")
+        );
     }
 }

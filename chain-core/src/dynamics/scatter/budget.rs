@@ -208,6 +208,26 @@ pub enum Unresolved {
         /// DOP853's outcome and when it was decided.
         dop853: (super::Outcome, f64),
     },
+    /// A wall born at a free end reached the impurity's range (`reach`) at `arrived`, at or
+    /// before the outcome was decided: the label mixes what the impurity did with what the
+    /// finite chain's ends sent back ([`super::Scattering::unresolved`]).
+    EndWallFirst {
+        /// When the end-born wall came within `reach` of the impurity.
+        arrived: f64,
+        /// The run's outcome and when it was decided.
+        decided: (super::Outcome, f64),
+    },
+}
+
+impl Unresolved {
+    /// Lower-case name of the reason, for files and tables: `integrators-disagree`,
+    /// `end-wall-first`.
+    pub fn name(&self) -> &'static str {
+        match self {
+            Unresolved::IntegratorsDisagree { .. } => "integrators-disagree",
+            Unresolved::EndWallFirst { .. } => "end-wall-first",
+        }
+    }
 }
 
 impl fmt::Display for Unresolved {
@@ -217,6 +237,11 @@ impl fmt::Display for Unresolved {
                 f,
                 "the integrators disagree: verlet {:?} at t = {}, dop853 {:?} at t = {}",
                 verlet.0, verlet.1, dop853.0, dop853.1
+            ),
+            Unresolved::EndWallFirst { arrived, decided } => write!(
+                f,
+                "a wall from a free end reached the impurity at t = {arrived}, before the decision ({} at t = {})",
+                decided.0, decided.1
             ),
         }
     }
@@ -239,8 +264,11 @@ pub enum CrossChecked {
 }
 
 /// [`scatter_within_budget`] with Verlet and again with DOP853 (default tolerances): the point is
-/// [`CrossChecked::Resolved`] when both decide the same outcome, else
-/// [`CrossChecked::Unresolved`] with both outcomes and decision times. Twice the cost of one run;
+/// [`CrossChecked::Resolved`] when both decide the same outcome and no wall from a free end
+/// reached the impurity before the decision, else [`CrossChecked::Unresolved`] with the reason
+/// ([`Unresolved::IntegratorsDisagree`] with both outcomes and decision times first, then
+/// Verlet's [`Unresolved::EndWallFirst`]). 6.2 times the cost of a Verlet run on the paper's
+/// phase diagrams (docs/dynamics.md §6);
 /// the phase diagrams' honest label where a collision is chaotic (docs/dynamics.md §6: at
 /// `k_i/k ~ 0.01`, `v0 ~ 1` a pair nucleates at the impurity before the antikink arrives, and the
 /// integrators' rounding decides what it becomes).
@@ -260,15 +288,18 @@ pub fn cross_checked<M: ChainModel + ?Sized>(
     let verlet = with(Method::Verlet)?;
     let dop853 = with(Method::dop853())?;
     let (a, b) = (&verlet.scattering, &dop853.scattering);
-    if a.outcome == b.outcome {
-        return Ok(CrossChecked::Resolved(Box::new(verlet)));
-    }
-    Ok(CrossChecked::Unresolved {
-        reason: Unresolved::IntegratorsDisagree {
+    let reason = if a.outcome == b.outcome {
+        a.unresolved()
+    } else {
+        Some(Unresolved::IntegratorsDisagree {
             verlet: (a.outcome, a.decided_at),
             dop853: (b.outcome, b.decided_at),
-        },
-        verlet: Box::new(verlet),
-        dop853: Box::new(dop853),
+        })
+    };
+    Ok(match reason {
+        None => CrossChecked::Resolved(Box::new(verlet)),
+        Some(reason) => {
+            CrossChecked::Unresolved { reason, verlet: Box::new(verlet), dop853: Box::new(dop853) }
+        }
     })
 }

@@ -409,8 +409,24 @@ pub struct Scattering {
     pub confirmed: bool,
     /// An event after the outcome was settled, and when.
     pub later: Option<(LaterEvent, f64)>,
+    /// When a wall born at a free end first came within [`ScatterSetup::reach`] of the impurity
+    /// (`None`: none did while the run was watched). Before [`Scattering::decided_at`], the
+    /// outcome mixes what the impurity did with what the ends sent back
+    /// ([`Scattering::unresolved`]).
+    pub end_wall_at_impurity: Option<f64>,
     /// The run.
     pub run: Run,
+}
+
+impl Scattering {
+    /// Why this run's outcome is not the impurity's alone, if it is not: a wall born at a free
+    /// end reached the impurity's range at or before the decision
+    /// ([`Unresolved::EndWallFirst`]). An undecided run has no outcome to doubt (`None`).
+    pub fn unresolved(&self) -> Option<Unresolved> {
+        let arrived = self.end_wall_at_impurity?;
+        (self.outcome != Outcome::Undecided && arrived <= self.decided_at)
+            .then_some(Unresolved::EndWallFirst { arrived, decided: (self.outcome, self.decided_at) })
+    }
 }
 
 /// Launches the defect of `setup` towards the impurity and runs until the outcome is decided,
@@ -452,16 +468,23 @@ pub fn scatter_with<M: ChainModel + ?Sized>(
     let mut classifier = rules::Classifier::new(setup, model.rotor_count());
     let run = propagate(model, launched.state, &setup.run, &mut |s| classifier.observe(s) || stop(s))?;
     let end = run.final_state.time;
+    let end_wall_at_impurity = classifier.end_wall_at_impurity;
     Ok(match classifier.verdict {
         Some(v) => Scattering {
             outcome: v.outcome,
             decided_at: v.decided_at,
             confirmed: v.confirmed_at.is_some(),
             later: v.later,
+            end_wall_at_impurity,
             run,
         },
-        None => {
-            Scattering { outcome: Outcome::Undecided, decided_at: end, confirmed: false, later: None, run }
-        }
+        None => Scattering {
+            outcome: Outcome::Undecided,
+            decided_at: end,
+            confirmed: false,
+            later: None,
+            end_wall_at_impurity,
+            run,
+        },
     })
 }

@@ -99,6 +99,9 @@ pub(super) struct Classifier {
     departed: Vec<(f64, Charge)>,
     /// Since when the defect, not yet at the impurity, has had three walls or more.
     breaking: Option<f64>,
+    /// When a wall born at a free end first came within `reach` of the impurity: from then on
+    /// the run shows what the finite chain's ends sent back as well as what the impurity did.
+    pub end_wall_at_impurity: Option<f64>,
     pub verdict: Option<Verdict>,
 }
 
@@ -123,6 +126,7 @@ impl Classifier {
             exited: None,
             departed: Vec::new(),
             breaking: None,
+            end_wall_at_impurity: None,
             verdict: None,
         }
     }
@@ -312,6 +316,17 @@ impl Classifier {
                 self.exited = Some(v.wall.seen);
                 let end = if v.wall.position < 0.5 * self.last_rotor { 0.0 } else { self.last_rotor };
                 self.departed.push((end, v.wall.charge));
+            }
+        }
+        if self.end_wall_at_impurity.is_none() {
+            let (x_imp, reach) = (self.x_imp, self.setup.reach);
+            let arrived = self
+                .follower
+                .walls
+                .iter()
+                .any(|w| w.origin == Origin::End && (w.position - x_imp).abs() <= reach);
+            if arrived {
+                self.end_wall_at_impurity = Some(time);
             }
         }
         let (pattern, single) = self.pattern(time);

@@ -88,6 +88,12 @@ pub struct Scattering {
     /// Points per axis of `fig:phasediagram` in full (quick: 6): 40, where the four antikink
     /// regimes and their boundaries' slopes are resolved in seconds.
     pub points: usize,
+    /// Cross-check every point of `fig:phasediagram` with DOP853 and draw the points where the
+    /// integrators disagree as unresolved (chain-sweep's `PhaseDiagram::cross_check`): `true`.
+    /// It costs 6.2 times the Verlet points (measured, docs/dynamics.md §6: 3.7 s instead of
+    /// 0.6 s for the 40 x 40 antikink diagram in release on 2 cores), affordable at 40 x 40;
+    /// `paper --resolution`'s 400 x 400 diagrams are not cross-checked.
+    pub cross_check: bool,
     /// `v0` range (`a/t`) of the antikink's stability in a perfect chain: 10 to 25, either side of
     /// the paper's "unstable above 12".
     pub stability_v0: (f64, f64),
@@ -111,6 +117,7 @@ impl Default for Scattering {
             ki_range: (0.01, 3.0),
             v0_range: (0.5, 12.0),
             points: 40,
+            cross_check: true,
             stability_v0: (10.0, 25.0),
             window: (0.75, (2.5, 5.0)),
             resolution: ((0.6, 0.9), (2.5, 5.0), 400),

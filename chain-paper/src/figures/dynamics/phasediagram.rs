@@ -14,7 +14,7 @@ use rotor_chain::statics::walls::Charge;
 use super::{chain, middle_spring};
 use crate::figures::{Cause, FigureError, Params};
 use crate::model::{Chart, Figure, Panel, Quality, Quantity, Row, Series, Style};
-use crate::outcomes::{Cell, FAILED, OutcomeGrid};
+use crate::outcomes::{Cell, FAILED, OutcomeGrid, UNRESOLVED};
 
 /// The phase diagram of `defect` for the chain of `params` at
 /// [`Scattering::theta_bar`](super::Scattering::theta_bar): the paper's free ends and Verlet.
@@ -27,9 +27,16 @@ fn settings(params: &Params, defect: Defect) -> Result<PhaseDiagram, Cause> {
 
 /// One phase diagram over `grid` (x: `k_i/k`, y: `v0`) of the chain of `params` at
 /// [`Scattering::theta_bar`](super::Scattering::theta_bar), computed by chain-sweep's
-/// `PhaseDiagram::compute_point` in parallel.
-pub(crate) fn phase_diagram(params: &Params, defect: Defect, grid: &Grid) -> Result<OutcomeGrid, Cause> {
-    let d = settings(params, defect)?;
+/// `PhaseDiagram::compute_point` in parallel, every point cross-checked with DOP853 if
+/// `cross_check` (points whose outcome is not the impurity's alone are
+/// [`Cell::Unresolved`] either way).
+pub(crate) fn phase_diagram(
+    params: &Params,
+    defect: Defect,
+    grid: &Grid,
+    cross_check: bool,
+) -> Result<OutcomeGrid, Cause> {
+    let d = PhaseDiagram { cross_check, ..settings(params, defect)? };
     let points = compute_grid(grid, |ki, v0| d.compute_point(ki, v0), None)?;
     Ok(OutcomeGrid::new(grid, &points)?)
 }
@@ -38,18 +45,20 @@ pub(crate) fn phase_diagram(params: &Params, defect: Defect, grid: &Grid) -> Res
 fn cell_name(cell: &Cell) -> &'static str {
     match cell {
         Cell::Outcome(o) => o.name(),
+        Cell::Unresolved { .. } => UNRESOLVED,
         Cell::Failed(_) => FAILED,
         _ => "not computed",
     }
 }
 
-/// What the isolated cells of `outcomes` ([`OutcomeGrid::isolated`], the diagram of `defect`)
-/// are: each point is run again with DOP853 and with absorbing ends (the checks of
+/// What the isolated cells of `outcomes` ([`OutcomeGrid::isolated`], the diagram of `defect`;
+/// unresolved cells, which say why themselves, left out) are: each point is run again with DOP853 and with absorbing ends (the checks of
 /// docs/dynamics.md §6). A label both keep is a real outcome in a window narrower than the grid's
 /// spacing; one that changes depends on rounding and on what the free ends send back (the late
 /// events of a chaotic run). Empty when no cell is isolated.
 fn isolated_cells(params: &Params, defect: Defect, outcomes: &OutcomeGrid) -> Result<Vec<String>, Cause> {
-    let cells = outcomes.isolated();
+    let mut cells = outcomes.isolated();
+    cells.retain(|&(i, j)| !matches!(outcomes.cells()[j][i], Cell::Unresolved { .. }));
     let dop853 = PhaseDiagram { integrator: Method::dop853(), ..settings(params, defect)? };
     let absorbing = PhaseDiagram { ends: Ends::Absorbing, ..settings(params, defect)? };
     cells
@@ -73,24 +82,36 @@ fn count(labels: &[Vec<Option<Outcome>>], which: Option<Outcome>) -> usize {
     labels.iter().flatten().filter(|&&o| o == which).count()
 }
 
-/// `1536 transmitted, 55 split, ...`: every label that occurs, with its count.
-pub(crate) fn label_counts(labels: &[Vec<Option<Outcome>>]) -> Vec<String> {
+/// `1536 transmitted, 55 split, 8 unresolved, ...`: every label that occurs, with its count.
+pub(crate) fn label_counts(outcomes: &OutcomeGrid) -> Vec<String> {
     Outcome::ALL
         .iter()
-        .map(|&o| (count(labels, Some(o)), o.name()))
-        .chain([(count(labels, None), FAILED)])
+        .map(|&o| (outcomes.count(o), o.name()))
+        .chain([(outcomes.unresolved(), UNRESOLVED), (outcomes.failed(), FAILED)])
         .filter(|(c, _)| *c > 0)
         .map(|(c, name)| format!("{c} {name}"))
         .collect()
 }
 
-/// [`label_counts`] and the share of undecided points: `..., undecided 0.0 %`.
-fn counts(labels: &[Vec<Option<Outcome>>]) -> String {
-    let total = labels.iter().map(Vec::len).sum::<usize>().max(1);
-    let mut parts = label_counts(labels);
-    let undecided = count(labels, Some(Outcome::Undecided));
-    parts.push(format!("undecided {:.1} %", 100.0 * undecided as f64 / total as f64));
+/// [`label_counts`] and the shares of undecided and unresolved points: `..., undecided 0.0 %,
+/// unresolved 0.5 %`.
+fn counts(outcomes: &OutcomeGrid) -> String {
+    let total = outcomes.cells().iter().map(Vec::len).sum::<usize>().max(1);
+    let share = |c: usize| 100.0 * c as f64 / total as f64;
+    let mut parts = label_counts(outcomes);
+    parts.push(format!("undecided {:.1} %", share(outcomes.count(Outcome::Undecided))));
+    parts.push(format!("unresolved {:.1} %", share(outcomes.unresolved())));
     parts.join(", ")
+}
+
+/// What "unresolved" means in the diagrams' rows and caption.
+fn unresolved_note(cross_check: bool) -> &'static str {
+    if cross_check {
+        "Verlet and DOP853 decide differently, or a wall from a free end reached the impurity before the \
+         decision"
+    } else {
+        "a wall from a free end reached the impurity before the decision (not cross-checked with DOP853)"
+    }
 }
 
 /// The boundary between two regimes along each `v0` row: where the longest run of `left` labels
@@ -234,11 +255,13 @@ pub fn phasediagram(params: &Params, quality: Quality) -> Result<Figure, FigureE
     let mut panels = Vec::new();
     let mut diagrams = Vec::new();
     let mut isolated = Vec::new();
+    let mut grids = Vec::new();
     for (tag, defect) in [("(a)", Defect::Kink), ("(b)", Defect::Antikink)] {
-        let outcomes = phase_diagram(params, defect, &grid).map_err(&fail)?;
+        let outcomes = phase_diagram(params, defect, &grid, s.cross_check).map_err(&fail)?;
         panels.push(Chart::Heat(outcomes.heatmap(format!("{tag} {}, θ̄ = {theta_bar}", defect.name()))));
         isolated.extend(isolated_cells(params, defect, &outcomes).map_err(&fail)?);
         diagrams.push(outcomes.labels());
+        grids.push(outcomes);
     }
     let (kink, antikink) = (&diagrams[0], &diagrams[1]);
     let (stable_from, stable_to) = s.stability_v0;
@@ -280,7 +303,7 @@ pub fn phasediagram(params: &Params, quality: Quality) -> Result<Figure, FigureE
         Axis::linspace(window_from, window_to, quality.pick(26, 6)).map_err(FigureError::on(LABEL))?;
     let column = Grid::new(Axis::from_values(vec![window_ki]).map_err(FigureError::on(LABEL))?, window_v0s)
         .map_err(FigureError::on(LABEL))?;
-    let window = phase_diagram(params, Defect::Antikink, &column).map_err(&fail)?.labels();
+    let window = phase_diagram(params, Defect::Antikink, &column, s.cross_check).map_err(&fail)?.labels();
     let runs = alternation(&window.iter().map(|row| row[0]).collect::<Vec<_>>(), column.ys());
     let rows = vec![
         Row::words(
@@ -291,7 +314,7 @@ pub fn phasediagram(params: &Params, quality: Quality) -> Result<Figure, FigureE
                 count(kink, Some(Outcome::Trapped)) + count(kink, Some(Outcome::Reflected)),
                 size * size
             ),
-            format!("{grid_note}; {}", counts(kink)),
+            format!("{grid_note}; {}", counts(&grids[0])),
         ),
         boundary_row(
             "kink",
@@ -304,9 +327,11 @@ pub fn phasediagram(params: &Params, quality: Quality) -> Result<Figure, FigureE
         Row::words(
             format!("antikink phase diagram: regimes ({size} x {size})"),
             "reflected (soft), trapped, transmitted, reflected (stiff)",
-            &counts(antikink),
+            &counts(&grids[1]),
             format!(
-                "{grid_note}; free ends; annihilated = by a wall from a free end before anything settled"
+                "{grid_note}; free ends; annihilated = by a wall from a free end before anything settled; \
+                 unresolved (hatched grey) = {}",
+                unresolved_note(s.cross_check)
             ),
         ),
         boundary_row(
@@ -368,13 +393,49 @@ pub fn phasediagram(params: &Params, quality: Quality) -> Result<Figure, FigureE
             "Scattering phase diagrams of (a) the kink and (b) the antikink over k_i/k ({ki_from}..{ki_to}, \
              log-spaced) and v0 ({v0_from}..{v0_to}), {size} x {size}; (c, d) the antikink in a perfect chain \
              against v0 up to {stable_to}: θ̄ = {theta_bar}, n = {}, r/a = {}, k = {}, impurity on spring {}, free \
-             ends{isolated}",
+             ends; hatched grey: unresolved, {}{isolated}",
             params.n,
             params.r,
             params.k,
-            middle_spring(params)
+            middle_spring(params),
+            unresolved_note(s.cross_check)
         ),
         panels,
         rows,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::outcomes::categories;
+    use crate::palette;
+
+    /// The chaotic corner's known point (antikink, k_i/k = 0.01, v0 = 1.1: Verlet and DOP853
+    /// decide differently, docs/dynamics.md §6) is drawn unresolved, hatched, with its legend
+    /// entry, beside the paper's reflected point (0.2, 4.8); the rows count it.
+    #[test]
+    fn the_diagram_draws_an_unresolved_point_hatched_and_counts_it() {
+        let params = Params::default();
+        assert!(params.scattering.cross_check);
+        let grid = Grid::new(
+            Axis::from_values(vec![0.01, 0.2]).unwrap(),
+            Axis::from_values(vec![1.1, 4.8]).unwrap(),
+        )
+        .unwrap();
+        let outcomes = phase_diagram(&params, Defect::Antikink, &grid, true).unwrap();
+        assert!(matches!(outcomes.cells()[0][0], Cell::Unresolved { .. }), "{:?}", outcomes.cells()[0][0]);
+        assert_eq!(outcomes.outcome(1, 1), Some(Outcome::Reflected));
+        assert_eq!(outcomes.unresolved(), 1);
+        let map = outcomes.heatmap("t");
+        let name = &map.categories[map.values[0][0] as usize];
+        assert_eq!(name, UNRESOLVED);
+        assert!(palette::hatched(name) && !Outcome::ALL.iter().any(|o| palette::hatched(o.name())));
+        assert_eq!(map.categories, categories());
+        assert_eq!(map.categories[map.values[1][1] as usize], "reflected");
+        assert!(counts(&outcomes).contains("1 unresolved"), "{}", counts(&outcomes));
+        // Not cross-checked, the point keeps Verlet's outcome (no wall from an end came first).
+        let plain = phase_diagram(&params, Defect::Antikink, &grid, false).unwrap();
+        assert!(matches!(plain.cells()[0][0], Cell::Outcome(_)), "{:?}", plain.cells()[0][0]);
+    }
 }
