@@ -9,6 +9,7 @@ use super::stencil::Stencil;
 use crate::cell::{BondLaw, NodeKind};
 use crate::error::NetworkError;
 use crate::patch::Patch;
+use std::collections::HashMap;
 use std::sync::OnceLock;
 
 /// A builder for a [`NetworkModel`]; see [`NetworkModel::builder`]. Overrides name a spring by
@@ -142,8 +143,9 @@ impl<'p, 'c> NetworkModelBuilder<'p, 'c> {
             }
         }
 
-        let mut laws: Vec<BondLaw> =
-            patch.bonds().iter().map(|pb| self.law.unwrap_or(cell.bonds()[pb.bond].law)).collect();
+        // Each spring's law, looked up rather than listed: a list would hold 48 B per spring
+        // during the build (a million-cell patch's peak).
+        let mut overrides: HashMap<usize, BondLaw> = HashMap::new();
         for &(p, law) in &self.spring_laws {
             if p >= springs_count {
                 return Err(NetworkError::Argument {
@@ -151,9 +153,15 @@ impl<'p, 'c> NetworkModelBuilder<'p, 'c> {
                     problem: format!("spring {p}: the patch has {springs_count} springs"),
                 });
             }
-            laws[p] = law;
+            overrides.insert(p, law);
         }
-        let (kernel, coefficients) = kernel_of(&laws)?;
+        let law_of = |p: usize| {
+            overrides
+                .get(&p)
+                .copied()
+                .unwrap_or_else(|| self.law.unwrap_or(cell.bonds()[patch.bonds()[p].bond].law))
+        };
+        let (kernel, coefficients) = kernel_of(springs_count, law_of)?;
 
         let dof = patch.dof();
         let mut inertia = vec![0.0; dof];
