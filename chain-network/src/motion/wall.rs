@@ -83,10 +83,10 @@ pub struct CoupledChains {
     pub stagger: f64,
     /// Damping rate `gamma >= 0` of every rotor (1 / t). Default 0: the energy is conserved.
     pub damping: f64,
-    /// Length of the run. Default 360: at the defaults the wall moves about 28 rotors, from 12
-    /// to 40 of 48.
+    /// Length of the run. Default 300: at the defaults the wall moves about 27 rotors, from 12
+    /// to 39 of 48.
     pub duration: f64,
-    /// Samples of the state (frames), at least 2. Default 37 (every 10).
+    /// Samples of the state (frames), at least 2. Default 31 (every 10).
     pub frames: usize,
 }
 
@@ -104,8 +104,8 @@ impl Default for CoupledChains {
             start: 12.0,
             stagger: 1.0,
             damping: 0.0,
-            duration: 360.0,
-            frames: 37,
+            duration: 300.0,
+            frames: 31,
         }
     }
 }
