@@ -29,7 +29,7 @@ fn small(stagger: f64) -> CoupledChains {
 
 /// The chain angles' tips: rotor `i` of chain `j` at `(i a + r sin theta, j h + (-1)^i r cos theta)`.
 fn tip(c: &CoupledChains, j: usize, i: usize, theta: f64) -> [f64; 2] {
-    let sign = if i % 2 == 0 { 1.0 } else { -1.0 };
+    let sign = if i.is_multiple_of(2) { 1.0 } else { -1.0 };
     let r = c.rotor_length;
     [i as f64 * c.spacing + r * theta.sin(), j as f64 * c.row_spacing + sign * r * theta.cos()]
 }

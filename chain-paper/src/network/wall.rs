@@ -22,7 +22,7 @@ pub fn wall_frame(c: &CoupledChains, run: &MovingWall, k: usize) -> NetworkDrawi
     let theta = &run.theta[k];
     let (a, r, h) = (c.spacing, c.rotor_length, c.row_spacing);
     let tip = |j: usize, i: usize| {
-        let up = if i % 2 == 0 { 1.0 } else { -1.0 };
+        let up = if i.is_multiple_of(2) { 1.0 } else { -1.0 };
         let t = theta[j][i];
         (i as f64 * a + r * t.sin(), j as f64 * h + up * r * t.cos())
     };
