@@ -18,7 +18,7 @@ mod common;
 use common::Reference;
 use rotor_chain::RuntimeChain;
 use rotor_chain::statics::StaticsError;
-use rotor_chain::statics::antikink::{AntikinkOptions, Ends, antikink_at, antikink_relaxed};
+use rotor_chain::statics::antikink::{AntikinkOptions, Ends, antikink_at, antikink_relaxed, peierls_nabarro};
 use rotor_chain::statics::kink::reflected_kink;
 use rotor_chain::statics::path::{Descent, at_centre, descend};
 
@@ -259,4 +259,42 @@ fn a_descent_that_leaves_its_region_reports_where_it_went() {
         Descent::Bottom(b) => assert!(b.centre < 17.0 && b.slope.abs() < 1e-6 && b.index == 0, "{b:?}"),
         other => panic!("{other:?}"),
     }
+}
+
+/// A wide antikink (`theta_bar = 0.2`, n = 60, ends held): the ends push it toward the middle with
+/// a force above the Peierls-Nabarro pinning until about nine sites from it. From the saddle the
+/// descent ends at the minimum next to it (its translation curvature, `6e-11 ||K||`, is resolved
+/// and not held); from near an end at the first well that holds it, off the centrings. Checked
+/// with the reference's exact (num-dual) gradient and Hessian: the finite differences above do
+/// not resolve a curvature of `4e-7`.
+#[test]
+fn a_wide_antikink_stops_in_the_first_well_that_holds_it() {
+    let (model, reference) = chains(60, 0.2, &[]);
+    let options = AntikinkOptions::default();
+    let pn = peierls_nabarro(&model, &options).unwrap();
+    let minimum = pn.minimum().unwrap();
+    let from_saddle = antikink_relaxed(&model, 29.5, &options).unwrap();
+    assert!(from_saddle.is_free_minimum());
+    assert!((from_saddle.centre - minimum.centre).abs() < 1e-4, "{} vs {}", from_saddle.centre, minimum.centre);
+    assert!((from_saddle.energy - minimum.energy).abs() < 1e-11 * minimum.energy);
+    let from_end = antikink_relaxed(&model, 3.0, &options).unwrap();
+    assert!(from_end.is_free_minimum() && off_centring(from_end.centre) > 0.05, "{}", from_end.centre);
+    let n = from_end.theta.len();
+    for a in [&from_saddle, &from_end] {
+        let d: Vec<f64> = (1..n - 1).map(|i| reference.hessian_entry(&a.theta, i, i)).collect();
+        let o: Vec<f64> = (1..n - 2).map(|i| reference.hessian_entry(&a.theta, i, i + 1)).collect();
+        let scale = d.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+        let force = reference.gradient(&a.theta)[1..n - 1].iter().fold(0.0f64, |m, g| m.max(g.abs()));
+        assert!(force < 1e-12 * scale, "at {}: force {force:e}", a.centre);
+        let curvature = lowest(&d, &o);
+        // Above the rounding of a Sturm count (64 n eps ||K|| ~ 1e-12 ||K||), so resolved and positive.
+        assert!(curvature > 1e-11 * scale, "at {}: lowest curvature {curvature:e}", a.centre);
+        println!(
+            "theta_bar = 0.2, n = 60: centre {:.6}, energy {:.12}, lowest curvature {curvature:.4e}",
+            a.centre,
+            reference.energy(&a.theta)
+        );
+    }
+    // Higher than the middle's minimum: a local well, held by the pinning against the ends' pull.
+    assert!(from_end.energy > minimum.energy);
 }

@@ -39,7 +39,6 @@ use super::classify::{Classification, EquilibriumKind, classify, rounding_tolera
 use super::equilibrium::{NewtonOptions, RelaxOptions, newton, polish, relax};
 use super::error::StaticsError;
 use super::kink::reflected_kink;
-use super::landscape::LANDSCAPE_REACH;
 use super::path::{Descent, descend};
 use super::walls::{Charge, domain_walls};
 use crate::linalg::SymmetricMatrix;
@@ -253,7 +252,7 @@ pub(crate) fn solve_centring<M: ChainModel + ?Sized>(
 /// started on a saddle, stops where it is, and the polish then returns the saddle or a
 /// fixed-centring point. From there the antikink descends its adiabatic path
 /// ([`super::path::descend`]: its lowest energy with the centre held, at any centre, not only the
-/// centrings) within [`LANDSCAPE_REACH`] sites, to where `dE/dc` changes sign, and a free Newton
+/// centrings) anywhere between the held end rotors, to where `dE/dc` changes sign, and a free Newton
 /// polish from that point gives the equilibrium, classified by the Sturm count of its tangent
 /// stiffness. In a uniform chain that is the neighbouring centring; next to an impurity the well
 /// lies between the centrings (n = 40, `theta_bar = 0.4`, the middle spring at `2k`, from 15: at
@@ -266,8 +265,9 @@ pub(crate) fn solve_centring<M: ChainModel + ?Sized>(
 /// stopped is returned as it is.
 ///
 /// # Errors
-/// [`StaticsError::DescentLeftRegion`] when the energy still falls at the edge of the region
-/// (the start, the region, the centre reached, its energy and slope: where the antikink went);
+/// [`StaticsError::DescentLeftRegion`] when the energy still falls next to a held end rotor
+/// (centre 1 or `n - 2`: the start, the region, the centre reached, its energy and slope: where
+/// the antikink went);
 /// [`StaticsError::NoMinimum`] when the equilibrium at the bottom is not a free minimum (never a
 /// saddle called a minimum), with its centre, index and held directions; the errors of the
 /// relaxation, of the path and of Newton's method.
@@ -301,9 +301,15 @@ pub fn antikink_relaxed<M: ChainModel + ?Sized>(
         return Ok(start);
     }
     let newton_options = NewtonOptions { hold_ends: true, ..options.newton };
-    let found = match descend(model, &start.theta, LANDSCAPE_REACH, options)? {
+    let n = model.rotor_count();
+    let found = match descend(model, &start.theta, n as f64, options)? {
         Descent::Bottom(bottom) => {
-            let solution = polish(model, newton(model, &bottom.theta, &newton_options)?, &newton_options)?;
+            // The bottom is an equilibrium already; nothing is held that the classification
+            // resolves (the translation at `theta_bar = 0.2`, n = 60, is `6e-11 ||K||`, below
+            // Newton's default null tolerance but far above rounding).
+            let resolved = options.zero_tolerance.unwrap_or_else(|| rounding_tolerance(n - 2));
+            let free = NewtonOptions { null_tolerance: resolved, ..newton_options };
+            let solution = polish(model, newton(model, &bottom.theta, &free)?, &free)?;
             let mut found = Antikink::from_solution(model, bottom.centre, solution, start.relax_steps, options)?;
             found.requested = found.centre;
             found
