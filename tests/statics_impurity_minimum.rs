@@ -25,6 +25,9 @@ use rotor_chain::statics::path::{Descent, at_centre, descend};
 const K: f64 = 1.0e4;
 const R: f64 = 0.8;
 
+/// Impurity springs: (spring, stiffness factor, rest-length factor).
+type Overrides = &'static [(usize, f64, f64)];
+
 /// A chain and its reference twin with `overrides` (spring, stiffness factor, rest-length factor).
 fn chains(n: usize, theta_bar: f64, overrides: &[(usize, f64, f64)]) -> (RuntimeChain, Reference) {
     let mut reference = Reference::uniform(n, theta_bar);
@@ -53,7 +56,8 @@ fn energy_moved(reference: &Reference, theta: &[f64], (i, hi): (usize, f64), (j,
 /// `dV/dtheta_i` of the reference by central differences (step 1e-6 rad).
 fn fd_gradient(reference: &Reference, theta: &[f64], i: usize) -> f64 {
     let h = 1e-6;
-    (energy_moved(reference, theta, (i, h), (i, 0.0)) - energy_moved(reference, theta, (i, -h), (i, 0.0))) / (2.0 * h)
+    (energy_moved(reference, theta, (i, h), (i, 0.0)) - energy_moved(reference, theta, (i, -h), (i, 0.0)))
+        / (2.0 * h)
 }
 
 /// The reference's Hessian on the moving rotors `1..n-1` by second differences (step 1e-4 rad),
@@ -191,8 +195,8 @@ fn off_centring(c: f64) -> f64 {
 /// at the minimum of the reference.
 #[test]
 fn the_minimum_between_centrings_next_to_impurities_is_the_references_minimum() {
-    // (overrides, theta_bar, start, the well's side: the nearest centring it is off by at least)
-    let cases: [(&[(usize, f64, f64)], f64, f64, f64); 6] = [
+    // (overrides, theta_bar, start, the least distance of the well from every centring)
+    let cases: [(Overrides, f64, f64, f64); 6] = [
         (&[(19, 2.0, 1.0)], 0.4, 15.0, 0.02),
         (&[(19, 5.0, 1.0)], 0.4, 15.0, 0.02),
         (&[(19, 0.3, 1.0)], 0.55, 16.0, 0.02),
@@ -208,7 +212,10 @@ fn the_minimum_between_centrings_next_to_impurities_is_the_references_minimum() 
         assert!(ours.is_free_minimum() && ours.classification.index == 0, "{what}");
         assert!(off_centring(ours.centre) >= off, "{what}: {} is on a centring", ours.centre);
         let (centre, energy, curvature) = check_minimum(&reference, &ours.theta, &what);
-        assert!((centre - ours.centre).abs() < 1e-12 && (energy - ours.energy).abs() < 1e-9 * energy, "{what}");
+        assert!(
+            (centre - ours.centre).abs() < 1e-12 && (energy - ours.energy).abs() < 1e-9 * energy,
+            "{what}"
+        );
         println!("{what}: centre {centre:.6}, energy {energy:.9}, lowest curvature {curvature:.6e}");
     }
 }
@@ -275,7 +282,12 @@ fn a_wide_antikink_stops_in_the_first_well_that_holds_it() {
     let minimum = pn.minimum().unwrap();
     let from_saddle = antikink_relaxed(&model, 29.5, &options).unwrap();
     assert!(from_saddle.is_free_minimum());
-    assert!((from_saddle.centre - minimum.centre).abs() < 1e-4, "{} vs {}", from_saddle.centre, minimum.centre);
+    assert!(
+        (from_saddle.centre - minimum.centre).abs() < 1e-4,
+        "{} vs {}",
+        from_saddle.centre,
+        minimum.centre
+    );
     assert!((from_saddle.energy - minimum.energy).abs() < 1e-11 * minimum.energy);
     let from_end = antikink_relaxed(&model, 3.0, &options).unwrap();
     assert!(from_end.is_free_minimum() && off_centring(from_end.centre) > 0.05, "{}", from_end.centre);

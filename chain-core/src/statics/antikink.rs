@@ -300,30 +300,27 @@ pub fn antikink_relaxed<M: ChainModel + ?Sized>(
     if start.is_free_minimum() {
         return Ok(start);
     }
-    let newton_options = NewtonOptions { hold_ends: true, ..options.newton };
+    // What follows starts at an equilibrium or next to one; nothing is held that the
+    // classification resolves (the translation at `theta_bar = 0.2`, n = 60, is `6e-11 ||K||`,
+    // below Newton's default null tolerance but far above rounding).
     let n = model.rotor_count();
-    let found = match descend(model, &start.theta, n as f64, options)? {
-        Descent::Bottom(bottom) => {
-            // The bottom is an equilibrium already; nothing is held that the classification
-            // resolves (the translation at `theta_bar = 0.2`, n = 60, is `6e-11 ||K||`, below
-            // Newton's default null tolerance but far above rounding).
-            let resolved = options.zero_tolerance.unwrap_or_else(|| rounding_tolerance(n - 2));
-            let free = NewtonOptions { null_tolerance: resolved, ..newton_options };
-            let solution = polish(model, newton(model, &bottom.theta, &free)?, &free)?;
-            let mut found = Antikink::from_solution(model, bottom.centre, solution, start.relax_steps, options)?;
-            found.requested = found.centre;
-            found
-        }
+    let resolved = options.zero_tolerance.unwrap_or_else(|| rounding_tolerance(n.saturating_sub(2)));
+    let free = NewtonOptions { hold_ends: true, null_tolerance: resolved, ..options.newton };
+    let (theta, bottom, steps) = match descend(model, &start.theta, n as f64, options)? {
+        Descent::Bottom(bottom) => (bottom.theta, bottom.centre, 0),
         // The path ends on a slope (a pair would nucleate at a soft impurity ahead): the paper's
         // relaxation from its last point slides on down.
         Descent::End(last) => {
-            let (relaxed, steps) = relax(model, &last.theta, &RelaxOptions { hold_ends: true, ..options.relax })?;
-            let solution = polish(model, newton(model, &relaxed, &newton_options)?, &newton_options)?;
-            let mut found = Antikink::from_solution(model, f64::NAN, solution, start.relax_steps + steps, options)?;
-            found.requested = found.centre;
-            found
+            let (relaxed, steps) =
+                relax(model, &last.theta, &RelaxOptions { hold_ends: true, ..options.relax })?;
+            (relaxed, f64::NAN, steps)
         }
     };
+    let solution = polish(model, newton(model, &theta, &free)?, &free)?;
+    let mut found = Antikink::from_solution(model, bottom, solution, start.relax_steps + steps, options)?;
+    if bottom.is_nan() {
+        found.requested = found.centre;
+    }
     if found.is_free_minimum() {
         return Ok(found);
     }

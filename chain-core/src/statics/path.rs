@@ -83,7 +83,8 @@ impl Constraint {
     fn new(c: f64, first: usize, last: usize) -> Self {
         let i = (libm::floor(c) as usize).clamp(first, last - 1);
         let f = c - i as f64;
-        let (eliminated, partner, s) = if f <= 0.5 { (i, i + 1, -f / (1.0 - f)) } else { (i + 1, i, -(1.0 - f) / f) };
+        let (eliminated, partner, s) =
+            if f <= 0.5 { (i, i + 1, -f / (1.0 - f)) } else { (i + 1, i, -(1.0 - f) / f) };
         Self { i, f, eliminated, partner, s }
     }
 
@@ -258,8 +259,13 @@ pub fn at_centre<M: ChainModel + ?Sized>(
     let walls = domain_walls(&theta);
     let antikinks = walls.iter().filter(|w| w.charge == Charge::Antikink).count();
     let held = walls.first().map_or(f64::NAN, |w| w.position);
-    if walls.len() != 1 || antikinks != 1 || !((held - centre).abs() <= 1e-9 * centre.max(1.0)) {
-        return Err(StaticsError::DefectLost { expected: "antikink", kinks: walls.len() - antikinks, antikinks });
+    let off = (held - centre).abs();
+    if walls.len() != 1 || antikinks != 1 || off.is_nan() || off > 1e-9 * centre.max(1.0) {
+        return Err(StaticsError::DefectLost {
+            expected: "antikink",
+            kinks: walls.len() - antikinks,
+            antikinks,
+        });
     }
     let index = kr.count_below(-rounding_tolerance(kr.dim()) * kr.inf_norm())?;
     Ok(PathPoint {
