@@ -261,6 +261,13 @@ fn a_descent_that_leaves_its_region_reports_where_it_went() {
         }
         other => panic!("{other:?}"),
     }
+    // A reach that is no region is an error with the value, not a panic.
+    for reach in [-1.0, f64::NAN] {
+        match descend(&model, &slope.theta, reach, &options) {
+            Err(StaticsError::InvalidValue { value, .. }) => assert!(value.is_nan() || value == reach),
+            other => panic!("{reach}: {other:?}"),
+        }
+    }
     // With room the same descent ends at the bottom of a well.
     match descend(&model, &slope.theta, 8.0, &options).unwrap() {
         Descent::Bottom(b) => assert!(b.centre < 17.0 && b.slope.abs() < 1e-6 && b.index == 0, "{b:?}"),

@@ -302,8 +302,9 @@ pub const MIN_STEP: f64 = PATH_STEP / 64.0;
 ///
 /// # Errors
 /// [`StaticsError::DescentLeftRegion`] when the energy still falls at the edge of that region
-/// (the start, the region, where the descent reached, its energy and slope); the errors of
-/// [`at_centre`] at the start.
+/// (the start, the region, where the descent reached, its energy and slope);
+/// [`StaticsError::InvalidValue`] for a negative or NaN `reach` or fewer than 4 rotors; the errors
+/// of [`at_centre`] at the start.
 pub fn descend<M: ChainModel + ?Sized>(
     model: &M,
     start: &[f64],
@@ -317,14 +318,22 @@ pub fn descend<M: ChainModel + ?Sized>(
         .map(|w| w.position)
         .ok_or(StaticsError::DefectLost { expected: "antikink", kinks: 0, antikinks: 0 })?;
     let n = model.rotor_count() as f64;
+    if !(reach >= 0.0 && n >= 4.0) {
+        return Err(StaticsError::InvalidValue {
+            what: "the reach of the antikink's descent (and the chain's rotor count)",
+            value: reach,
+            expected: "a reach >= 0 sites on a chain of at least 4 rotors (a wall between held ends)",
+        });
+    }
     let (lo, hi) = ((from - reach).max(1.0), (from + reach).min(n - 2.0));
     let from = from.clamp(lo, hi);
     let mut p = at_centre(model, start, from, options)?;
     // A start exactly at a stationary point goes right: past a maximum the slope falls on, at a
     // minimum the first step brackets it.
     let dir = if p.slope > 0.0 { -1.0 } else { 1.0 };
-    // Each step moves at least MIN_STEP one way, so the region is crossed in a bounded number.
-    let steps = libm::ceil((hi - lo) / MIN_STEP) as usize + 1;
+    // Each accepted step moves at least MIN_STEP one way after at most six halvings, so the
+    // region is crossed in a bounded number of tries.
+    let steps = 7 * (libm::ceil((hi - lo) / MIN_STEP) as usize + 1);
     let mut step = PATH_STEP;
     for _ in 0..steps {
         let c = (p.centre + dir * step).clamp(lo, hi);
