@@ -230,6 +230,15 @@ pub fn statics(py: Python<'_>, e: &StaticsError) -> PyErr {
             .f("found", found)
             .f("index", index)
             .f("held", held),
+        &StaticsError::DescentLeftRegion { start, lo, hi, reached, energy, slope } => {
+            Details { variant: "DescentLeftRegion", ..d }
+                .f("start", start)
+                .f("lo", lo)
+                .f("hi", hi)
+                .f("reached", reached)
+                .f("energy", energy)
+                .f("slope", slope)
+        }
         _ => Details { variant: "Other", ..d },
     };
     d.raise("StaticsError", e.to_string())

@@ -39,6 +39,7 @@ use super::classify::{Classification, EquilibriumKind, classify, rounding_tolera
 use super::equilibrium::{NewtonOptions, RelaxOptions, newton, polish, relax};
 use super::error::StaticsError;
 use super::kink::reflected_kink;
+use super::path::{Descent, descend};
 use super::walls::{Charge, domain_walls};
 use crate::linalg::SymmetricMatrix;
 use crate::model::ChainModel;
@@ -105,7 +106,8 @@ pub struct Antikink {
     /// The angles, radians, one per rotor.
     pub theta: Vec<f64>,
     /// The centring asked for (an integer or a half-integer; for [`antikink_relaxed`], the
-    /// centring it ended at). [`Antikink::moved`] compares it with `centre`.
+    /// centring it ended at, or the centre where the descent along the adiabatic path found the
+    /// well, [`super::path`]). [`Antikink::moved`] compares it with `centre`.
     pub requested: f64,
     /// Potential energy `V`.
     pub energy: f64,
@@ -248,20 +250,27 @@ pub(crate) fn solve_centring<M: ChainModel + ?Sized>(
 /// The relaxation slides the antikink into a minimum only where the Peierls-Nabarro force beats
 /// the relaxation's tolerance (measured: `theta_bar >= 0.45` at n = 60); a wider antikink, or one
 /// started on a saddle, stops where it is, and the polish then returns the saddle or a
-/// fixed-centring point. In those cases both centrings next to where the relaxation stopped are
-/// solved ([`antikink_at`]), and from the lower one the search walks downhill along the centrings
-/// (half a site at a time, each solved at fixed centring) until it reaches a minimum: in a
-/// uniform chain the neighbouring centring; next to an impurity that repels the antikink, the
-/// first minimum where the Peierls-Nabarro pinning beats the repulsion (docs/statics.md §5).
+/// fixed-centring point. From there the antikink descends its adiabatic path
+/// ([`super::path::descend`]: its lowest energy with the centre held, at any centre, not only the
+/// centrings) anywhere between the held end rotors, to where `dE/dc` changes sign, and a free Newton
+/// polish from that point gives the equilibrium, classified by the Sturm count of its tangent
+/// stiffness. In a uniform chain that is the neighbouring centring; next to an impurity the well
+/// lies between the centrings (n = 40, `theta_bar = 0.4`, the middle spring at `2k`, from 15: at
+/// 13.9714, where no centring is an equilibrium, docs/statics.md "Chains that are not uniform").
+/// Where the path ends on a slope (one more step would nucleate a kink-antikink pair at a soft
+/// impurity ahead) the relaxation is run again from its last point.
 ///
-/// With [`Ends::Free`] there is no walk: the near-null edge modes of the two domains are held and
-/// counted in the index, so the lower of the two centrings is returned as it is.
+/// With [`Ends::Free`] there is no descent: the near-null edge modes of the two domains are held
+/// and counted in the index, so the lower of the two centrings next to where the relaxation
+/// stopped is returned as it is.
 ///
 /// # Errors
-/// [`StaticsError::NoMinimum`] when the walk ends without a minimum (near an end, the ends' pull
-/// on a wide antikink can beat the barrier everywhere on the way: an independent audit found such
-/// starts at `theta_bar` 0.25 - 0.3, n = 60), with the centre, index and held directions of where
-/// it ended; the errors of the relaxation and of Newton's method.
+/// [`StaticsError::DescentLeftRegion`] when the energy still falls next to a held end rotor
+/// (centre 1 or `n - 2`: the start, the region, the centre reached, its energy and slope: where
+/// the antikink went);
+/// [`StaticsError::NoMinimum`] when the equilibrium at the bottom is not a free minimum (never a
+/// saddle called a minimum), with its centre, index and held directions; the errors of the
+/// relaxation, of the path and of Newton's method.
 /// # Example
 ///
 /// ```
@@ -281,51 +290,51 @@ pub fn antikink_relaxed<M: ChainModel + ?Sized>(
     centre: f64,
     options: &AntikinkOptions,
 ) -> Result<Antikink, StaticsError> {
-    let start = relaxed_nearest(model, centre, options)?;
     // With free ends the domains' edge modes are held and enter the index (at `theta_bar = 0.5`
     // they can be slightly negative), so "a free minimum" is not defined: the lower centring is
     // returned, as its `held` and classification say.
-    if start.is_free_minimum() || options.ends == Ends::Free {
+    if options.ends == Ends::Free {
+        return relaxed_nearest(model, centre, options);
+    }
+    let start = relaxed_polished(model, centre, options)?;
+    if start.is_free_minimum() {
         return Ok(start);
     }
-    let steps = start.relax_steps;
-    let mut best = start;
-    // Each step moves half a site downhill, so a walk longer than the chain has looped.
-    for _ in 0..2 * model.rotor_count() {
-        let here = best.requested;
-        let mut next: Option<Antikink> = None;
-        for c in [here - 0.5, here + 0.5] {
-            if !(c >= 1.0 && c <= model.rotor_count() as f64 - 2.0) {
-                continue;
-            }
-            // A centring that loses the antikink (annihilated at an end) is not a way down.
-            let Ok(a) = solve_centring(model, c, options) else { continue };
-            if !a.moved() && a.energy < next.as_ref().map_or(best.energy, |n| n.energy) {
-                next = Some(a);
-            }
+    // What follows starts at an equilibrium or next to one; nothing is held that the
+    // classification resolves (the translation at `theta_bar = 0.2`, n = 60, is `6e-11 ||K||`,
+    // below Newton's default null tolerance but far above rounding).
+    let n = model.rotor_count();
+    let resolved = options.zero_tolerance.unwrap_or_else(|| rounding_tolerance(n.saturating_sub(2)));
+    let free = NewtonOptions { hold_ends: true, null_tolerance: resolved, ..options.newton };
+    let (theta, bottom, steps) = match descend(model, &start.theta, n as f64, options)? {
+        Descent::Bottom(bottom) => (bottom.theta, bottom.centre, 0),
+        // The path ends on a slope (a pair would nucleate at a soft impurity ahead): the paper's
+        // relaxation from its last point slides on down.
+        Descent::End(last) => {
+            let (relaxed, steps) =
+                relax(model, &last.theta, &RelaxOptions { hold_ends: true, ..options.relax })?;
+            (relaxed, f64::NAN, steps)
         }
-        match next {
-            Some(a) => best = a,
-            None => break,
-        }
-        if best.is_free_minimum() {
-            best.relax_steps = steps;
-            return Ok(best);
-        }
+    };
+    let solution = polish(model, newton(model, &theta, &free)?, &free)?;
+    let mut found = Antikink::from_solution(model, bottom, solution, start.relax_steps + steps, options)?;
+    if bottom.is_nan() {
+        found.requested = found.centre;
+    }
+    if found.is_free_minimum() {
+        return Ok(found);
     }
     Err(StaticsError::NoMinimum {
         near: centre,
-        found: best.centre,
-        index: best.classification.index,
-        held: best.held,
+        found: found.centre,
+        index: found.classification.index,
+        held: found.held,
     })
 }
 
-/// The relaxation and polish of [`antikink_relaxed`], and where that is not a free minimum the
-/// lower of the two centrings next to it, whatever it is: the launches' static antikink
-/// (`dynamics::launch`), which near an end may be a fixed-centring point or a saddle, as `held`
-/// and the classification say (docs/dynamics.md §2).
-pub(crate) fn relaxed_nearest<M: ChainModel + ?Sized>(
+/// The paper's relaxation of the reflected kink centred at `centre`, polished by Newton's method,
+/// with the centring it reached as `requested`.
+fn relaxed_polished<M: ChainModel + ?Sized>(
     model: &M,
     centre: f64,
     options: &AntikinkOptions,
@@ -338,6 +347,20 @@ pub(crate) fn relaxed_nearest<M: ChainModel + ?Sized>(
     let mut polished = Antikink::from_solution(model, f64::NAN, solution, steps, options)?;
     // What the relaxation reached is its own centring.
     polished.requested = libm::round(2.0 * polished.centre) / 2.0;
+    Ok(polished)
+}
+
+/// The relaxation and polish of [`antikink_relaxed`], and where that is not a free minimum the
+/// lower of the two centrings next to it, whatever it is: the launches' static antikink
+/// (`dynamics::launch`), which near an end may be a fixed-centring point or a saddle, as `held`
+/// and the classification say (docs/dynamics.md §2).
+pub(crate) fn relaxed_nearest<M: ChainModel + ?Sized>(
+    model: &M,
+    centre: f64,
+    options: &AntikinkOptions,
+) -> Result<Antikink, StaticsError> {
+    let polished = relaxed_polished(model, centre, options)?;
+    let steps = polished.relax_steps;
     if polished.classification.index == 0 && polished.is_free() {
         return Ok(polished);
     }

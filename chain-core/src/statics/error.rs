@@ -122,6 +122,27 @@ pub enum StaticsError {
         /// Its held directions (above 0: a fixed-centring point, not a free equilibrium).
         held: usize,
     },
+    /// The descent along the antikink's adiabatic path ([`super::path::descend`]) reached the edge
+    /// of its region with the energy still falling: no well within it. `reached` is where the
+    /// antikink went, with its energy and `dE/dc` there (the sign says which way it kept going).
+    #[error(
+        "the antikink started at {start} slid out of [{lo}, {hi}] without reaching a minimum: at \
+         centre {reached} its energy {energy} still falls ({slope:e} per site)"
+    )]
+    DescentLeftRegion {
+        /// The centre the descent started from.
+        start: f64,
+        /// The region's lower end (sites).
+        lo: f64,
+        /// The region's upper end.
+        hi: f64,
+        /// The centre the descent reached.
+        reached: f64,
+        /// The antikink's energy there.
+        energy: f64,
+        /// `dE/dc` there.
+        slope: f64,
+    },
     /// A slice with the wrong length for the chain.
     #[error("{what} has {}, the chain needs {expected}", chain_geometry::Counted(*len, "value"))]
     WrongLength {

@@ -15,6 +15,8 @@
 //! - [`antikink`]: the antikink, its minimum and saddle, the Peierls-Nabarro barrier (Secs. II, V);
 //! - [`landscape`]: the antikink's equilibria near a place on a non-uniform chain, impurity
 //!   pinning and repulsion energies, the default placement;
+//! - [`path`]: the antikink's adiabatic path (its energy at any fixed centre) and the descent to a
+//!   well between centrings;
 //! - [`modes`]: eigenmodes and frequencies, classified as translation, shape, edge, extended (Sec. IV);
 //! - [`counting`]: Maxwell-Calladine counting, zero modes, states of self-stress, tensional modes;
 //! - [`impurity`]: a spring-length impurity, its two-kink state, soft modes, `l_critical` (Sec. VII-A);
@@ -49,6 +51,8 @@ pub mod landscape;
 pub mod linkage;
 #[cfg(feature = "alloc")]
 pub mod modes;
+#[cfg(feature = "alloc")]
+pub mod path;
 #[cfg(feature = "alloc")]
 mod validate;
 pub mod walls;

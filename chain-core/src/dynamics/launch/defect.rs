@@ -62,7 +62,7 @@ pub fn near_null_count(charge: Charge) -> usize {
 }
 
 /// The static defect of `charge` at `position`: the kink centred there, or the antikink relaxed
-/// from there (as [`antikink_relaxed`](crate::statics::antikink::antikink_relaxed) before its walk
+/// from there (as [`antikink_relaxed`](crate::statics::antikink::antikink_relaxed) before its descent
 /// downhill): in the middle of a chain the Peierls-Nabarro minimum nearest
 /// to it; near an end the ends push a wide antikink inward, possibly far (docs/dynamics.md §2), so
 /// the launch's `position` is the centre actually used.

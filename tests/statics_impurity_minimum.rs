@@ -1,0 +1,319 @@
+//! The antikink's Peierls-Nabarro minimum next to impurities, where the well lies between the
+//! rotor and spring centrings (issue 34): `antikink_relaxed` descends the adiabatic path and
+//! returns the minimum, never a saddle, or says where the antikink went.
+//!
+//! Every minimum is checked against the Cartesian reference model of tests/common (tip positions
+//! from the angles, the springs' energies summed there; it shares no code with the library), with
+//! derivatives taken here by finite differences:
+//! - its gradient by central differences vanishes at the returned angles (moving rotors; the end
+//!   rotors are held at `-theta_bar`, `+theta_bar`);
+//! - its Hessian by second differences is positive definite (index 0: every pivot of its `LDL^T`
+//!   positive) and its lowest eigenvalue (bisection of Sturm counts) is printed for the report;
+//! - the energy along an independent constrained path (one core rotor's angle held on a grid,
+//!   every other moving rotor relaxed by the test's own Newton iteration on the reference) is
+//!   lowest at the returned configuration, to the grid's resolution.
+
+mod common;
+
+use common::Reference;
+use rotor_chain::RuntimeChain;
+use rotor_chain::statics::StaticsError;
+use rotor_chain::statics::antikink::{AntikinkOptions, Ends, antikink_at, antikink_relaxed, peierls_nabarro};
+use rotor_chain::statics::kink::reflected_kink;
+use rotor_chain::statics::path::{Descent, at_centre, descend};
+
+const K: f64 = 1.0e4;
+const R: f64 = 0.8;
+
+/// Impurity springs: (spring, stiffness factor, rest-length factor).
+type Overrides = &'static [(usize, f64, f64)];
+
+/// A chain and its reference twin with `overrides` (spring, stiffness factor, rest-length factor).
+fn chains(n: usize, theta_bar: f64, overrides: &[(usize, f64, f64)]) -> (RuntimeChain, Reference) {
+    let mut reference = Reference::uniform(n, theta_bar);
+    let mut builder = RuntimeChain::builder(n, R, K, theta_bar);
+    for &(p, k, l) in overrides {
+        reference.k[p] *= k;
+        reference.l0[p] *= l;
+        if k != 1.0 {
+            builder = builder.spring_constant(p, reference.k[p]);
+        }
+        if l != 1.0 {
+            builder = builder.spring_rest_length(p, reference.l0[p]);
+        }
+    }
+    (builder.build().unwrap(), reference)
+}
+
+/// The reference energy with rotor `i` moved by `hi` and rotor `j` by `hj`.
+fn energy_moved(reference: &Reference, theta: &[f64], (i, hi): (usize, f64), (j, hj): (usize, f64)) -> f64 {
+    let mut t = theta.to_vec();
+    t[i] += hi;
+    t[j] += hj;
+    reference.energy(&t)
+}
+
+/// `dV/dtheta_i` of the reference by central differences (step 1e-6 rad).
+fn fd_gradient(reference: &Reference, theta: &[f64], i: usize) -> f64 {
+    let h = 1e-6;
+    (energy_moved(reference, theta, (i, h), (i, 0.0)) - energy_moved(reference, theta, (i, -h), (i, 0.0)))
+        / (2.0 * h)
+}
+
+/// The reference's Hessian on the moving rotors `1..n-1` by second differences (step 1e-4 rad),
+/// tridiagonal: each spring couples two neighbouring rotors only.
+fn fd_hessian(reference: &Reference, theta: &[f64]) -> (Vec<f64>, Vec<f64>) {
+    let n = theta.len();
+    let h = 1e-4;
+    let v0 = reference.energy(theta);
+    let d = (1..n - 1)
+        .map(|i| {
+            (energy_moved(reference, theta, (i, h), (i, 0.0)) - 2.0 * v0
+                + energy_moved(reference, theta, (i, -h), (i, 0.0)))
+                / (h * h)
+        })
+        .collect();
+    let o = (1..n - 2)
+        .map(|i| {
+            let e = |a: f64, b: f64| energy_moved(reference, theta, (i, a), (i + 1, b));
+            (e(h, h) - e(h, -h) - e(-h, h) + e(-h, -h)) / (4.0 * h * h)
+        })
+        .collect();
+    (d, o)
+}
+
+/// The pivots of `LDL^T` of the tridiagonal `(d, o) - x I`: their negative count is the number of
+/// eigenvalues below `x` (Sturm).
+fn pivots(d: &[f64], o: &[f64], x: f64) -> Vec<f64> {
+    let mut p = vec![d[0] - x];
+    for i in 1..d.len() {
+        let last = p[i - 1];
+        p.push(d[i] - x - o[i - 1] * o[i - 1] / last);
+    }
+    p
+}
+
+/// The lowest eigenvalue of `(d, o)` by 200 bisections of the Sturm count.
+fn lowest(d: &[f64], o: &[f64]) -> f64 {
+    let r = d.iter().map(|x| x.abs()).sum::<f64>() + 2.0 * o.iter().map(|x| x.abs()).sum::<f64>();
+    let (mut a, mut b) = (-r, r);
+    for _ in 0..200 {
+        let m = 0.5 * (a + b);
+        if pivots(d, o, m).iter().any(|&p| p < 0.0) { b = m } else { a = m }
+    }
+    0.5 * (a + b)
+}
+
+/// Solves the tridiagonal `(d, o) x = b` (Thomas algorithm; used on positive definite blocks).
+fn solve(d: &[f64], o: &[f64], b: &[f64]) -> Vec<f64> {
+    let m = d.len();
+    let (mut c, mut y) = (vec![0.0; m], vec![0.0; m]);
+    for i in 0..m {
+        let den = d[i] - if i > 0 { o[i - 1] * c[i - 1] } else { 0.0 };
+        if i + 1 < m {
+            c[i] = o[i] / den;
+        }
+        y[i] = (b[i] - if i > 0 { o[i - 1] * y[i - 1] } else { 0.0 }) / den;
+    }
+    for i in (0..m.saturating_sub(1)).rev() {
+        y[i] -= c[i] * y[i + 1];
+    }
+    y
+}
+
+/// The reference's lowest energy with rotor `j` held at `t` (and the ends held), by Newton's
+/// method on its exact (num-dual) gradient and Hessian: holding `theta_j` splits the moving rotors
+/// into the two tridiagonal blocks `1..j` and `j+1..n-1`, each solved on its own.
+fn constrained_minimum(reference: &Reference, start: &[f64], j: usize, t: f64) -> Vec<f64> {
+    let n = start.len();
+    let mut theta = start.to_vec();
+    theta[j] = t;
+    for _ in 0..30 {
+        let g = reference.gradient(&theta);
+        for block in [1..j, j + 1..n - 1] {
+            let rows: Vec<usize> = block.collect();
+            let d: Vec<f64> = rows.iter().map(|&i| reference.hessian_entry(&theta, i, i)).collect();
+            let o: Vec<f64> = rows.windows(2).map(|w| reference.hessian_entry(&theta, w[0], w[1])).collect();
+            let rhs: Vec<f64> = rows.iter().map(|&i| -g[i]).collect();
+            for (&i, s) in rows.iter().zip(solve(&d, &o, &rhs)) {
+                theta[i] += s;
+            }
+        }
+    }
+    let g = reference.gradient(&theta);
+    let force = (1..n - 1).filter(|&i| i != j).fold(0.0f64, |m, i| m.max(g[i].abs()));
+    assert!(force < 1e-8, "the test's constrained Newton: force {force:e}");
+    theta
+}
+
+/// The antikink's wall position (Appendix C), written here: the sign change from `-` to `+`.
+fn wall(theta: &[f64]) -> f64 {
+    let i = (0..theta.len() - 1).find(|&i| theta[i] < 0.0 && theta[i + 1] >= 0.0).expect("an antikink");
+    i as f64 + theta[i] / (theta[i] - theta[i + 1])
+}
+
+/// What the reference says about a returned minimum: `(centre, energy, lowest curvature)`.
+fn check_minimum(reference: &Reference, theta: &[f64], what: &str) -> (f64, f64, f64) {
+    let n = theta.len();
+    // Gradient: zero to the differences' accuracy. Scale: a spring's stiffness times r^2 (the
+    // force on a rotor displaced by 1 rad); a point a hundredth of a site off the minimum carries
+    // forces above 1e-4 of it.
+    let force = (1..n - 1).fold(0.0f64, |m, i| m.max(fd_gradient(reference, theta, i).abs()));
+    assert!(force < 1e-6 * K * R * R, "{what}: finite-difference force {force:e}");
+    // Hessian: positive definite (every pivot positive), index 0.
+    let (d, o) = fd_hessian(reference, theta);
+    let negative = pivots(&d, &o, 0.0).iter().filter(|&&p| p < 0.0).count();
+    assert_eq!(negative, 0, "{what}: finite-difference Hessian index");
+    let curvature = lowest(&d, &o);
+    assert!(curvature > 0.0, "{what}: lowest curvature {curvature:e}");
+    // The constrained path: the core rotor nearest the wall held at t on a grid of 0.004 rad
+    // (about 1/100 site) either side of its returned angle; the energy is lowest at the middle.
+    let centre = wall(theta);
+    let j = centre.round() as usize;
+    let dt = 0.004;
+    let path: Vec<(f64, f64)> = (-5..=5)
+        .map(|m| {
+            let t = constrained_minimum(reference, theta, j, theta[j] + m as f64 * dt);
+            (wall(&t), reference.energy(&t))
+        })
+        .collect();
+    let lowest_at = (0..path.len()).min_by(|&a, &b| path[a].1.total_cmp(&path[b].1)).unwrap();
+    assert_eq!(lowest_at, 5, "{what}: the constrained path {path:?}");
+    // The path passes through the centre and moves the wall monotonically.
+    assert!(path.windows(2).all(|w| (w[1].0 - w[0].0) * (path[10].0 - path[0].0) > 0.0), "{what}: {path:?}");
+    assert!((path[5].0 - centre).abs() < 1e-6, "{what}: {path:?}");
+    (centre, reference.energy(theta), curvature)
+}
+
+/// The distance from `c` to the nearest rotor or spring centring.
+fn off_centring(c: f64) -> f64 {
+    (c - (2.0 * c).round() / 2.0).abs()
+}
+
+/// Impurities whose minimum lies between the centrings: stiff (2k, 5k), soft (0.3k), a shorter
+/// rest length, and two impurities. `antikink_relaxed` from a start on the impurity's slope ends
+/// at the minimum of the reference.
+#[test]
+fn the_minimum_between_centrings_next_to_impurities_is_the_references_minimum() {
+    // (overrides, theta_bar, start, the least distance of the well from every centring)
+    let cases: [(Overrides, f64, f64, f64); 6] = [
+        (&[(19, 2.0, 1.0)], 0.4, 15.0, 0.02),
+        (&[(19, 5.0, 1.0)], 0.4, 15.0, 0.02),
+        (&[(19, 0.3, 1.0)], 0.55, 16.0, 0.02),
+        (&[(19, 1.0, 0.995)], 0.4, 13.0, 0.2),
+        (&[(19, 1.0, 1.01)], 0.5, 15.0, 0.1),
+        (&[(16, 2.0, 1.0), (22, 0.3, 1.0)], 0.4, 12.0, 0.02),
+    ];
+    for (overrides, theta_bar, start, off) in cases {
+        let what = format!("{overrides:?} at theta_bar = {theta_bar} from {start}");
+        let (model, reference) = chains(40, theta_bar, overrides);
+        let ours = antikink_relaxed(&model, start, &AntikinkOptions::default())
+            .unwrap_or_else(|e| panic!("{what}: {e}"));
+        assert!(ours.is_free_minimum() && ours.classification.index == 0, "{what}");
+        assert!(off_centring(ours.centre) >= off, "{what}: {} is on a centring", ours.centre);
+        let (centre, energy, curvature) = check_minimum(&reference, &ours.theta, &what);
+        assert!(
+            (centre - ours.centre).abs() < 1e-12 && (energy - ours.energy).abs() < 1e-9 * energy,
+            "{what}"
+        );
+        println!("{what}: centre {centre:.6}, energy {energy:.9}, lowest curvature {curvature:.6e}");
+    }
+}
+
+/// With free ends there is no descent: the relaxed antikink is a centring solved as it is (the
+/// lower of the two next to where the relaxation stopped), not a point between centrings.
+#[test]
+fn free_ends_keep_a_centring() {
+    let (model, _) = chains(40, 0.4, &[(19, 2.0, 1.0)]);
+    let free = AntikinkOptions { ends: Ends::Free, ..AntikinkOptions::default() };
+    let a = antikink_relaxed(&model, 15.0, &free).unwrap();
+    assert_eq!(a.requested, (2.0 * a.requested).round() / 2.0, "{}", a.requested);
+    let at = antikink_at(&model, a.requested, &free).unwrap();
+    assert_eq!((at.energy, at.centre, at.held), (a.energy, a.centre, a.held));
+    // With held ends the same start ends between centrings (the first test's case).
+    let held = antikink_relaxed(&model, 15.0, &AntikinkOptions::default()).unwrap();
+    assert!(off_centring(held.centre) > 0.02, "{}", held.centre);
+}
+
+/// A descent confined to a region narrower than the way down says where it went: the region's
+/// edge, its energy (lower than the start's) and the slope still falling outward.
+#[test]
+fn a_descent_that_leaves_its_region_reports_where_it_went() {
+    let (model, reference) = chains(40, 0.4, &[(19, 2.0, 1.0)]);
+    let options = AntikinkOptions::default();
+    // On the impurity's slope: the antikink held at 17.0 by the path, descended within 0.3 sites.
+    let guess = reflected_kink(&model, 17.0).unwrap();
+    let slope = at_centre(&model, &guess, 17.0, &options).unwrap();
+    // The reference's energy falls leftwards from there (the impurity repels).
+    let mut left = slope.theta.clone();
+    let j = 17;
+    left = constrained_minimum(&reference, &left, j, left[j] + 0.02);
+    assert!(wall(&left) < 17.0 && reference.energy(&left) < reference.energy(&slope.theta));
+    assert!(slope.slope > 0.0, "{}", slope.slope);
+    match descend(&model, &slope.theta, 0.3, &options) {
+        Err(StaticsError::DescentLeftRegion { start, lo, hi, reached, energy, slope: s }) => {
+            assert!((start - 17.0).abs() < 1e-9 && (lo - 16.7).abs() < 1e-9 && (hi - 17.3).abs() < 1e-9);
+            assert_eq!(reached, lo);
+            assert!(energy < slope.energy && s > 0.0, "{energy} {s}");
+            // The reported energy is the reference's at that centre (the path's own point).
+            let at = at_centre(&model, &slope.theta, reached, &options).unwrap();
+            assert!((reference.energy(&at.theta) - energy).abs() < 1e-9 * energy);
+        }
+        other => panic!("{other:?}"),
+    }
+    // A reach that is no region is an error with the value, not a panic.
+    for reach in [-1.0, f64::NAN] {
+        match descend(&model, &slope.theta, reach, &options) {
+            Err(StaticsError::InvalidValue { value, .. }) => assert!(value.is_nan() || value == reach),
+            other => panic!("{reach}: {other:?}"),
+        }
+    }
+    // With room the same descent ends at the bottom of a well.
+    match descend(&model, &slope.theta, 8.0, &options).unwrap() {
+        Descent::Bottom(b) => assert!(b.centre < 17.0 && b.slope.abs() < 1e-6 && b.index == 0, "{b:?}"),
+        other => panic!("{other:?}"),
+    }
+}
+
+/// A wide antikink (`theta_bar = 0.2`, n = 60, ends held): the ends push it toward the middle with
+/// a force above the Peierls-Nabarro pinning until about nine sites from it. From the saddle the
+/// descent ends at the minimum next to it (its translation curvature, `6e-11 ||K||`, is resolved
+/// and not held); from near an end at the first well that holds it, off the centrings. Checked
+/// with the reference's exact (num-dual) gradient and Hessian: the finite differences above do
+/// not resolve a curvature of `4e-7`.
+#[test]
+fn a_wide_antikink_stops_in_the_first_well_that_holds_it() {
+    let (model, reference) = chains(60, 0.2, &[]);
+    let options = AntikinkOptions::default();
+    let pn = peierls_nabarro(&model, &options).unwrap();
+    let minimum = pn.minimum().unwrap();
+    let from_saddle = antikink_relaxed(&model, 29.5, &options).unwrap();
+    assert!(from_saddle.is_free_minimum());
+    assert!(
+        (from_saddle.centre - minimum.centre).abs() < 1e-4,
+        "{} vs {}",
+        from_saddle.centre,
+        minimum.centre
+    );
+    assert!((from_saddle.energy - minimum.energy).abs() < 1e-11 * minimum.energy);
+    let from_end = antikink_relaxed(&model, 3.0, &options).unwrap();
+    assert!(from_end.is_free_minimum() && off_centring(from_end.centre) > 0.05, "{}", from_end.centre);
+    let n = from_end.theta.len();
+    for a in [&from_saddle, &from_end] {
+        let d: Vec<f64> = (1..n - 1).map(|i| reference.hessian_entry(&a.theta, i, i)).collect();
+        let o: Vec<f64> = (1..n - 2).map(|i| reference.hessian_entry(&a.theta, i, i + 1)).collect();
+        let scale = d.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+        let force = reference.gradient(&a.theta)[1..n - 1].iter().fold(0.0f64, |m, g| m.max(g.abs()));
+        assert!(force < 1e-12 * scale, "at {}: force {force:e}", a.centre);
+        let curvature = lowest(&d, &o);
+        // Above the rounding of a Sturm count (64 n eps ||K|| ~ 1e-12 ||K||), so resolved and positive.
+        assert!(curvature > 1e-11 * scale, "at {}: lowest curvature {curvature:e}", a.centre);
+        println!(
+            "theta_bar = 0.2, n = 60: centre {:.6}, energy {:.12}, lowest curvature {curvature:.4e}",
+            a.centre,
+            reference.energy(&a.theta)
+        );
+    }
+    // Higher than the middle's minimum: a local well, held by the pinning against the ends' pull.
+    assert!(from_end.energy > minimum.energy);
+}
