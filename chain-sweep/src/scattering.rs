@@ -33,6 +33,7 @@ use rotor_chain::geometry::Short;
 pub use rotor_chain::integrate::Method;
 use rotor_chain::integrate::{IntegrateError, Schedule, VerletOptions};
 use rotor_chain::statics::walls::Charge;
+use rotor_chain::validate::{Fields, InvalidOption, Validate};
 use rotor_chain::{ParameterError, RuntimeChain};
 
 use crate::record::{ParseError, Record, expect_fields, format_f64, parse_field};
@@ -159,8 +160,11 @@ pub enum ConfigError {
     #[error("invalid chain: {0}")]
     /// The chain breaks a parameter rule.
     Chain(#[from] ParameterError),
+    #[error(transparent)]
+    /// A field of [`PhaseDiagram`] outside its range ([`Validate`]).
+    InvalidOption(#[from] InvalidOption),
     #[error("invalid {name}: {} must be {rule}", Short(*value))]
-    /// A setting out of its range.
+    /// An argument out of its range (`k_i/k`).
     Value {
         /// The setting.
         name: &'static str,
@@ -294,6 +298,67 @@ pub struct PhaseDiagram {
     pub cross_check: bool,
 }
 
+impl Validate for PhaseDiagram {
+    type Error = ConfigError;
+
+    /// Every field in its range, on its own: `n >= 2`, `r`, `k`, `theta_bar`, `mass`,
+    /// `energy_tolerance` and `t_max` positive and finite, the integrator's tolerances
+    /// (`rtol >= 0`, `atol > 0`), `dt > 0`, `impurity_rest_length > 0`, `start` and `damping`
+    /// finite (`damping >= 0`). The chain's own rules (the flipper phase, the impurity's rest
+    /// length against the chain) and the experiment's fit are [`PhaseDiagram::check`]'s.
+    fn validate(&self) -> Result<(), ConfigError> {
+        // No `..`: a field added here does not compile until it is checked.
+        let Self {
+            n,
+            r,
+            k,
+            theta_bar,
+            mass,
+            defect: _,
+            ends: _,
+            integrator,
+            dt,
+            energy_tolerance,
+            recompute: _,
+            t_max,
+            impurity_spring: _,
+            impurity_rest_length,
+            direction: _,
+            start,
+            damping,
+            cross_check: _,
+        } = *self;
+        // `impurity_spring` is any index: whether the chain has it is the experiment's check.
+        let fields = Fields("PhaseDiagram");
+        fields.rule("n", n as f64, n >= 2, "at least 2 (a chain has a spring)")?;
+        for (name, value) in [
+            ("r", r),
+            ("k", k),
+            ("theta_bar", theta_bar),
+            ("mass", mass),
+            ("energy_tolerance", energy_tolerance),
+            ("t_max", t_max),
+        ] {
+            fields.positive(name, value)?;
+        }
+        if let Method::Dop853 { rtol, atol } = integrator {
+            fields.non_negative("integrator.rtol", rtol)?;
+            fields.positive("integrator.atol", atol)?;
+        }
+        if let Some(dt) = dt {
+            fields.positive("dt", dt)?;
+        }
+        if let Some(l0) = impurity_rest_length {
+            fields.positive("impurity_rest_length", l0)?;
+        }
+        if let Some(start) = start {
+            fields.finite("start", start)?;
+        }
+        fields.non_negative("damping", damping)?;
+        Ok(())
+    }
+}
+
 impl PhaseDiagram {
     /// The paper's chain of Sec. VI with these parameters, checked: free ends, Verlet, the
     /// default energy tolerance, `t_max = 20`.
@@ -345,36 +410,10 @@ impl PhaseDiagram {
             .find(|&n| Self { n, ..self.clone() }.setup(1.0, self.integrator).check(n).is_ok())
     }
 
-    /// Checks the settings that [`PhaseDiagram::new`] does not see.
+    /// Checks the settings before any point: every field ([`Validate::validate`]), the run's
+    /// output and step budgets, the experiment's fit on the chain and the chain itself.
     pub fn check(&self) -> Result<(), ConfigError> {
-        let positive = |name, value: f64| {
-            if value > 0.0 && value.is_finite() {
-                Ok(())
-            } else {
-                Err(ConfigError::Value { name, value, rule: "positive and finite" })
-            }
-        };
-        positive("energy tolerance", self.energy_tolerance)?;
-        positive("mass", self.mass)?;
-        positive("t_max", self.t_max)?;
-        if !(self.damping >= 0.0 && self.damping.is_finite()) {
-            return Err(ConfigError::Value {
-                name: "damping",
-                value: self.damping,
-                rule: "non-negative and finite",
-            });
-        }
-        if let Some(l0) = self.impurity_rest_length {
-            positive("impurity rest length", l0)?;
-        }
-        if let Some(start) = self.start
-            && !start.is_finite()
-        {
-            return Err(ConfigError::Value { name: "start", value: start, rule: "finite" });
-        }
-        if let Some(dt) = self.dt {
-            positive("dt", dt)?;
-        }
+        self.validate()?;
         // The output budget every point's run would meet (the run's own check, at its start).
         let run = self.setup(1.0, self.integrator).run;
         if let Err(IntegrateError::OutputBudget { outputs, budget }) =

@@ -34,6 +34,7 @@ use crate::grid::Grid;
 use crate::record::Record;
 use crate::shard::Shard;
 use crate::threads::worker_threads;
+use rotor_chain::validate::Validate;
 
 /// How a sweep runs. Build with [`SweepOptions::new`] and change fields as needed.
 #[derive(Clone, Debug)]
@@ -81,6 +82,30 @@ impl SweepOptions {
             shard: None,
             stop: None,
         }
+    }
+}
+
+impl Validate for SweepOptions {
+    type Error = SweepError;
+
+    /// `threads` between 1 and [`crate::threads::max_threads`] when given
+    /// ([`SweepError::Threads`], [`worker_threads`]'s rule). The other fields take any value:
+    /// `name` is only shown, `run` is stored on one line (newlines escaped), any
+    /// `sync_interval` is a valid rhythm (0: after every point), a [`Shard`] is checked when it
+    /// is made, and the flags are choices.
+    fn validate(&self) -> Result<(), SweepError> {
+        // No `..`: a field added here does not compile until it is checked.
+        let Self {
+            name: _,
+            run: _,
+            threads,
+            retry_failed: _,
+            sync_interval: _,
+            progress: _,
+            shard: _,
+            stop: _,
+        } = self;
+        worker_threads(*threads, 1).map(|_| ())
     }
 }
 
@@ -134,7 +159,8 @@ where
 {
     let start = Instant::now();
     // A bad count is refused before the file is touched; the pool is sized by the work left.
-    worker_threads(options.threads, usize::MAX)?;
+    options.validate()?;
+    grid.validate()?;
     let file = ResultsFile::<R>::open(grid, path, options)?;
     let mut summary = file.summary.clone();
     let todo = file.missing();

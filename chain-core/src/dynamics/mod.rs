@@ -23,6 +23,8 @@ pub mod scatter;
 #[cfg(feature = "alloc")]
 pub mod track;
 
+use chain_geometry::Short;
+
 use crate::integrate::IntegrateError;
 use crate::statics::StaticsError;
 
@@ -56,10 +58,14 @@ pub enum DynamicsError {
         /// How many springs the chain has (`n - 1`).
         springs: usize,
     },
-    /// A number of a scattering setup outside its range.
-    #[error("{name} = {value} is invalid: it must be {rule}")]
+    /// A number of a scattering setup outside its range (a field of an options struct,
+    /// [`crate::validate::Validate`], or where the setup lies on the chain), or an argument of a
+    /// dynamics function.
+    #[error("{options}.{name} = {} is invalid: it must be {rule}", Short(*value))]
     InvalidSetup {
-        /// The setting of [`scatter::ScatterSetup`].
+        /// The options struct (`ScatterSetup`), or the function whose argument it is.
+        options: &'static str,
+        /// The setting.
         name: &'static str,
         /// The value given.
         value: f64,
@@ -88,4 +94,10 @@ pub enum DynamicsError {
         /// `C[p][p + 1]`.
         right: f64,
     },
+}
+
+impl From<crate::validate::InvalidOption> for DynamicsError {
+    fn from(e: crate::validate::InvalidOption) -> Self {
+        DynamicsError::InvalidSetup { options: e.options, name: e.field, value: e.value, rule: e.rule }
+    }
 }

@@ -111,9 +111,13 @@ pub enum IntegrateError {
         /// The largest relative change allowed.
         limit: f64,
     },
-    /// An option outside its range.
-    #[error("{name} = {} is invalid: it must be {rule}", Short(*value))]
+    /// An option outside its range: a field of an options struct ([`crate::validate::Validate`])
+    /// or an argument of an integrator's function.
+    #[error("{options}.{name} = {} is invalid: it must be {rule}", Short(*value))]
     InvalidOption {
+        /// The options struct (`VerletOptions`, `AdaptiveOptions`, `RunOptions`, `Sponge`), or
+        /// the function whose argument it is.
+        options: &'static str,
         /// The name of the setting.
         name: &'static str,
         /// The value given.
@@ -190,4 +194,10 @@ pub enum IntegrateError {
         /// The step.
         dt: f64,
     },
+}
+
+impl From<crate::validate::InvalidOption> for IntegrateError {
+    fn from(e: crate::validate::InvalidOption) -> Self {
+        IntegrateError::InvalidOption { options: e.options, name: e.field, value: e.value, rule: e.rule }
+    }
 }

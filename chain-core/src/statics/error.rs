@@ -1,5 +1,7 @@
 //! Errors of the static analyses. Each carries the numbers that explain it.
 
+use chain_geometry::Short;
+
 use crate::error::BranchError;
 use crate::linalg::LinalgError;
 
@@ -152,6 +154,18 @@ pub enum StaticsError {
         /// What it must be.
         expected: &'static str,
     },
+    /// A field of an options struct outside its range ([`crate::validate::Validate`]).
+    #[error("{options}.{name} = {} is invalid: it must be {rule}", Short(*value))]
+    InvalidOption {
+        /// The options struct (`NewtonOptions`, `RelaxOptions`, `ModeOptions`, `AntikinkOptions`).
+        options: &'static str,
+        /// The field.
+        name: &'static str,
+        /// The value given.
+        value: f64,
+        /// The rule it breaks, in words.
+        rule: &'static str,
+    },
     /// A count larger than the analysis accepts (its result would not fit in memory).
     #[error("{what} = {value} is too large: at most {max}")]
     TooLarge {
@@ -162,4 +176,10 @@ pub enum StaticsError {
         /// The most allowed.
         max: usize,
     },
+}
+
+impl From<crate::validate::InvalidOption> for StaticsError {
+    fn from(e: crate::validate::InvalidOption) -> Self {
+        StaticsError::InvalidOption { options: e.options, name: e.field, value: e.value, rule: e.rule }
+    }
 }

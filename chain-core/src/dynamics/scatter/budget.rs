@@ -18,6 +18,7 @@ use super::{ScatterSetup, Scattering, scatter};
 use crate::dynamics::DynamicsError;
 use crate::integrate::Method;
 use crate::model::ChainModel;
+use crate::validate::{Fields, InvalidOption, Validate};
 
 /// The default energy tolerance: 5e-3 of the run's initial energy.
 ///
@@ -45,6 +46,16 @@ impl Default for EnergyBudget {
     }
 }
 
+impl Validate for EnergyBudget {
+    type Error = BudgetError;
+
+    /// `tolerance` positive and finite (`recompute` is a choice).
+    fn validate(&self) -> Result<(), BudgetError> {
+        let Self { tolerance, recompute: _ } = *self;
+        Ok(Fields("EnergyBudget").positive("tolerance", tolerance)?)
+    }
+}
+
 /// A scattering run that met its energy budget.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Budgeted {
@@ -62,6 +73,9 @@ pub struct Budgeted {
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 #[non_exhaustive]
 pub enum BudgetError {
+    /// A field of the [`EnergyBudget`] outside its range.
+    #[error(transparent)]
+    InvalidOption(#[from] InvalidOption),
     /// The run of `integrator` failed: the launch, or the integration (for example its own
     /// 10 % energy limit, or a state that is not finite).
     #[error("{integrator}: {source}")]
@@ -152,6 +166,7 @@ pub fn scatter_within_budget<M: ChainModel + ?Sized>(
     setup: &ScatterSetup,
     budget: &EnergyBudget,
 ) -> Result<Budgeted, BudgetError> {
+    budget.validate()?;
     let first = setup.run.method;
     let run = |method: Method| -> Result<Scattering, BudgetError> {
         let mut setup = *setup;
