@@ -395,7 +395,9 @@ pub fn point(py: Python<'_>, e: &PointError) -> PyErr {
         _ => Details { variant: "Other", ..d },
     };
     let class = match e {
-        PointError::Scatter(BudgetError::InvalidOption(_)) => "PointOptionError",
+        PointError::Scatter(
+            BudgetError::InvalidOption(_) | BudgetError::Setup(DynamicsError::InvalidSetup { .. }),
+        ) => "PointOptionError",
         _ => "PointError",
     };
     d.raise(class, e.to_string())
@@ -429,6 +431,7 @@ fn budget<'py>(py: Python<'py>, e: &BudgetError, d: Details<'py>) -> Details<'py
         }
         BudgetError::NothingRecorded => Details { variant: "NothingRecorded", ..d },
         &BudgetError::InvalidOption(o) => option(d, "InvalidOption", o.options, o.field, o.value, o.rule),
+        BudgetError::Setup(source) => Details { variant: "Setup", ..d }.source(dynamics(py, source)),
         _ => Details { variant: "Other", ..d },
     }
 }

@@ -39,13 +39,13 @@ pub enum DynamicsError {
     #[error("statics: {0}")]
     Statics(#[from] StaticsError),
     /// No mode localised at the defect was classified as its translation mode.
-    #[error("no translation mode found for the defect at {position}")]
+    #[error("no translation mode found for the defect at {position}", position = Short(*position))]
     NoTranslationMode {
         /// Where the defect was, in rotor indices.
         position: f64,
     },
     /// A launch speed that is negative or not finite.
-    #[error("launch speed v0 = {v0} must be finite and >= 0")]
+    #[error("launch speed v0 = {v0} must be finite and >= 0", v0 = Short(*v0))]
     BadSpeed {
         /// The launch speed given, in `a / t`.
         v0: f64,
@@ -84,7 +84,7 @@ pub enum DynamicsError {
     /// divides by zero or the recurrence overflows.
     #[error(
         "no translation mode: spring {spring} has compatibility entries C[p][p] = {left}, \
-         C[p][p+1] = {right}, so its zero mode cannot be continued past it"
+         C[p][p+1] = {right}, so its zero mode cannot be continued past it", left = Short(*left), right = Short(*right)
     )]
     NoZeroMode {
         /// The spring.

@@ -19,7 +19,7 @@ pub enum StaticsError {
     #[error("linear algebra: {0}")]
     Linalg(#[from] LinalgError),
     /// A requested defect centre outside the chain.
-    #[error("centre {centre} is outside the chain: it must lie in [0, {max}] for {n} rotors")]
+    #[error("centre {centre} is outside the chain: it must lie in [0, {max}] for {n} rotors", centre = Short(*centre), max = Short(*max))]
     CentreOutOfRange {
         /// The centre given, in rotor indices.
         centre: f64,
@@ -48,7 +48,7 @@ pub enum StaticsError {
     #[error(
         "the {expected} centred at {centre} has no wall inside the chain: at theta_bar = {theta_bar} it \
          is far wider than the chain and its angles round to zero (found {kinks} kink(s), {antikinks} \
-         antikink(s))"
+         antikink(s))", centre = Short(*centre), theta_bar = Short(*theta_bar)
     )]
     NoWall {
         /// The wall asked for: `kink` or `antikink` (the reflected kink).
@@ -79,7 +79,7 @@ pub enum StaticsError {
     /// Sec. VII-A), or shorter than the spring between rotors leaning at `+theta_bar`, `-theta_bar`.
     #[error(
         "spring {spring} with rest length {rest_length} has no symmetric zero-energy state: with its \
-         rotors at -phi, +phi (|phi| <= theta_bar) it spans lengths from {min} to {max} (= l_critical)"
+         rotors at -phi, +phi (|phi| <= theta_bar) it spans lengths from {min} to {max} (= l_critical)", max = Short(*max), min = Short(*min), rest_length = Short(*rest_length)
     )]
     NoZeroEnergyState {
         /// The impurity spring.
@@ -96,7 +96,7 @@ pub enum StaticsError {
     /// it, whose force beats the Peierls-Nabarro pinning), or had to hold the translation.
     #[error(
         "no antikink equilibrium centred at {requested}: Newton's method went to {found} (index \
-         {index}, {held} direction(s) held); see peierls_nabarro's landscape for the equilibria near it"
+         {index}, {held} direction(s) held); see peierls_nabarro's landscape for the equilibria near it", found = Short(*found), requested = Short(*requested)
     )]
     NotAnEquilibrium {
         /// The centring asked for.
@@ -112,7 +112,7 @@ pub enum StaticsError {
     /// `found` is what the search ended at, with its index and held directions.
     #[error(
         "no antikink minimum near {near}: the search ended at an antikink centred at {found} of index \
-         {index} with {held} direction(s) held"
+         {index} with {held} direction(s) held", found = Short(*found), near = Short(*near)
     )]
     NoMinimum {
         /// Where the minimum was looked for.
@@ -135,7 +135,7 @@ pub enum StaticsError {
         expected: usize,
     },
     /// A non-finite number where a finite one is needed.
-    #[error("{what} is not finite ({value}) at index {index}")]
+    #[error("{what} is not finite ({value}) at index {index}", value = Short(*value))]
     NotFinite {
         /// Which input.
         what: &'static str,
@@ -145,7 +145,7 @@ pub enum StaticsError {
         value: f64,
     },
     /// A setting or a model parameter outside its range (`expected` says the range).
-    #[error("{what} = {value} is invalid: expected {expected}")]
+    #[error("{what} = {value} is invalid: expected {expected}", value = Short(*value))]
     InvalidValue {
         /// What the value is (the name of the input or quantity).
         what: &'static str,
