@@ -301,15 +301,17 @@ pub struct PhaseDiagram {
 impl Validate for PhaseDiagram {
     type Error = ConfigError;
 
-    /// Every field in its range, on its own: `n >= 2`, `r`, `k`, `theta_bar`, `mass`,
+    /// Every field in its range, on its own: `r`, `k`, `theta_bar`, `mass`,
     /// `energy_tolerance` and `t_max` positive and finite, the integrator's tolerances
     /// (`rtol >= 0`, `atol > 0`), `dt > 0`, `impurity_rest_length > 0`, `start` and `damping`
     /// finite (`damping >= 0`). The chain's own rules (the flipper phase, the impurity's rest
-    /// length against the chain) and the experiment's fit are [`PhaseDiagram::check`]'s.
+    /// length against the chain) and the experiment's fit are [`PhaseDiagram::check`]'s, and so
+    /// is `n`: any count passes here, and `check` names the shortest chain that holds the
+    /// experiment ([`ConfigError::Experiment`]).
     fn validate(&self) -> Result<(), ConfigError> {
         // No `..`: a field added here does not compile until it is checked.
         let Self {
-            n,
+            n: _,
             r,
             k,
             theta_bar,
@@ -330,7 +332,6 @@ impl Validate for PhaseDiagram {
         } = *self;
         // `impurity_spring` is any index: whether the chain has it is the experiment's check.
         let fields = Fields("PhaseDiagram");
-        fields.rule("n", n as f64, n >= 2, "at least 2 (a chain has a spring)")?;
         for (name, value) in [
             ("r", r),
             ("k", k),
@@ -561,6 +562,7 @@ impl PhaseDiagram {
     /// with DOP853 if [`PhaseDiagram::cross_check`], and the record, with the reason if the
     /// point is unresolved (the outcome then is the kept run's: Verlet's when cross-checked).
     pub fn compute_point(&self, ki_ratio: f64, v0: f64) -> Result<PointRecord, PointError> {
+        self.validate()?;
         let model = self.chain(ki_ratio)?;
         let budget = EnergyBudget { tolerance: self.energy_tolerance, recompute: self.recompute };
         let setup = self.setup(v0, self.integrator);
@@ -904,10 +906,21 @@ mod tests {
 
         // Settings out of range, and experiments that do not fit, name their rule.
         let refused = |d: PhaseDiagram| d.check().unwrap_err().to_string();
-        assert!(refused(PhaseDiagram { damping: -1.0, ..d.clone() }).contains("invalid damping: -1"));
-        assert!(refused(PhaseDiagram { start: Some(f64::NAN), ..d.clone() }).contains("invalid start: NaN"));
+        assert!(
+            refused(PhaseDiagram { damping: -1.0, ..d.clone() })
+                .contains("PhaseDiagram.damping = -1 is invalid")
+        );
+        assert!(
+            refused(PhaseDiagram { start: Some(f64::NAN), ..d.clone() })
+                .contains("PhaseDiagram.start = NaN is invalid")
+        );
         let text = refused(PhaseDiagram { impurity_rest_length: Some(-0.0), ..d.clone() });
-        assert!(text.contains("invalid impurity rest length: -0 must be positive and finite"), "{text}");
+        assert!(
+            text.contains(
+                "PhaseDiagram.impurity_rest_length = -0 is invalid: it must be positive and finite"
+            ),
+            "{text}"
+        );
         // Spring 50, launched leftwards from 65.5: the start needs n - 4 > 65.5, so n >= 70.
         let text = refused(PhaseDiagram { impurity_spring: Some(50), ..paper.clone() });
         assert!(

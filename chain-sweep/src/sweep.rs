@@ -598,3 +598,37 @@ fn progress_bar(name: &str, total: usize, skipped: usize, todo: usize, enabled: 
 
 #[cfg(test)]
 mod tests;
+
+#[cfg(test)]
+mod validation {
+    use super::*;
+    use crate::threads::max_threads;
+
+    /// Every field of [`SweepOptions`] (non-exhaustive, so destructured here in its crate, without
+    /// `..`: a new field does not compile until it is listed): the thread count is refused at 0
+    /// and above [`max_threads`], naming the count; the other fields take any value.
+    #[test]
+    fn every_field_of_the_sweep_options_is_validated() {
+        let base = SweepOptions::new("name", "run");
+        let SweepOptions { name, run, threads, retry_failed, sync_interval, progress, shard, stop } =
+            base.clone();
+        assert!(base.validate().is_ok() && threads.is_none());
+        for bad in [0, max_threads() + 1, usize::MAX] {
+            let e = SweepOptions { threads: Some(bad), ..base.clone() }.validate().unwrap_err();
+            assert!(matches!(e, SweepError::Threads { requested, .. } if requested == bad), "{e}");
+        }
+        assert!(SweepOptions { threads: Some(max_threads()), ..base.clone() }.validate().is_ok());
+        // Any text, rhythm, shard and flag.
+        let anything = SweepOptions {
+            name: format!("{name}\n\u{0}"),
+            run: format!("{run}\nsecond line"),
+            threads: Some(1),
+            retry_failed: !retry_failed,
+            sync_interval: if sync_interval.is_zero() { Duration::MAX } else { Duration::ZERO },
+            progress: !progress,
+            shard: shard.or(Shard::new(0, 3).ok()),
+            stop: stop.or(Some(Arc::new(AtomicBool::new(true)))),
+        };
+        assert!(anything.validate().is_ok());
+    }
+}

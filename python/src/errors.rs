@@ -397,7 +397,8 @@ pub fn point(py: Python<'_>, e: &PointError) -> PyErr {
     let class = match e {
         PointError::Scatter(
             BudgetError::InvalidOption(_) | BudgetError::Setup(DynamicsError::InvalidSetup { .. }),
-        ) => "PointOptionError",
+        )
+        | PointError::Config(ConfigError::InvalidOption(_)) => "PointOptionError",
         _ => "PointError",
     };
     d.raise(class, e.to_string())
