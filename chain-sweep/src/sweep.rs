@@ -336,6 +336,7 @@ where
     E: Display,
     F: Fn(f64, f64) -> Result<R, E> + Sync,
 {
+    grid.validate()?;
     let pool = thread_pool(threads, grid.len())?;
     let indices: Vec<(usize, usize)> = grid.indices().collect();
     Ok(pool.install(|| {

@@ -28,6 +28,12 @@ GridError          ValueError                  an axis ``"FROM:TO:COUNT[:log]"``
 SweepError         RuntimeError                a results file (another sweep's, locked, ...)
 CellError          ValueError                  a network cell (``Network``): ``key``, ``line``
 NetworkError       RuntimeError                a network analysis (``WindingUndefined``, ...)
+InvalidOptionError ValueError                  a setting outside its range (``options``,
+                                               ``name``, ``value``, ``rule``): raised as
+                                               ``StaticsOptionError``, ``DynamicsOptionError``,
+                                               ``IntegrateOptionError``, ``ConfigOptionError``,
+                                               ``PointOptionError`` or ``NetworkOptionError``,
+                                               each also its family's class
 =================  ==========================  ===========================================
 
 All derive from :class:`RotorChainError`. A wrong array length or an unknown option name is a
