@@ -170,8 +170,8 @@
 pub use chain_core::batch;
 pub use chain_core::{
     Bidiagonal, BranchError, ChainGeometry, ChainModel, ParameterError, Potential, Real, SpringNetwork,
-    Stiffness, Tridiagonal, banded, branch, dynamics, embedded, error, geometry, integrate, linalg, model,
-    statics,
+    Stiffness, Tridiagonal, Validate, banded, branch, dynamics, embedded, error, geometry, integrate, linalg,
+    model, statics, validate,
 };
 #[cfg(feature = "alloc")]
 pub use chain_core::{ChainBuilder, Law, RuntimeChain, runtime};

@@ -2,6 +2,7 @@
 //! chain's branch solve widens its numbers (exactly) into the same errors.
 
 pub use chain_geometry::ParameterError;
+use chain_geometry::Short;
 
 /// The branch solve of paper Appendix A has no real root: the two circles (the tip of rotor
 /// `p + 1` must lie on its circle of radius `r_{p+1}` about its pivot, and at distance `l0` from
@@ -12,7 +13,7 @@ pub enum BranchError {
     #[error(
         "spring {spring}: no real root for theta = {theta}: the known tip is {distance} from the \
          other rotor's pivot, but a spring of rest length {rest_length} reaches a rotor of length \
-         {rotor_length} only from distances in [{min}, {max}]"
+         {rotor_length} only from distances in [{min}, {max}]", distance = Short(*distance), max = Short(*max), min = Short(*min), rest_length = Short(*rest_length), rotor_length = Short(*rotor_length), theta = Short(*theta)
     )]
     /// The spring cannot reach the other rotor at its rest length (paper Appendix A: the quadratic has no real root).
     NoRealRoot {
@@ -31,7 +32,7 @@ pub enum BranchError {
         /// The largest such distance (`l0 + r`).
         max: f64,
     },
-    #[error("spring {spring}: the angle {theta} is not finite")]
+    #[error("spring {spring}: the angle {theta} is not finite", theta = Short(*theta))]
     /// The known angle is NaN or infinite.
     NotFinite {
         /// The spring being solved.
@@ -51,7 +52,7 @@ pub enum BranchError {
     /// length equals that rotor's length): every angle puts the spring at rest, none is singled out.
     #[error(
         "spring {spring}: for theta = {theta} the known tip sits on the other rotor's pivot, so \
-         every angle of that rotor puts the spring at rest length"
+         every angle of that rotor puts the spring at rest length", theta = Short(*theta)
     )]
     Degenerate {
         /// The spring being solved.

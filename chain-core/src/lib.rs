@@ -37,6 +37,7 @@ pub mod runtime;
 #[doc(hidden)]
 pub mod simd;
 pub mod statics;
+pub mod validate;
 
 pub use banded::{Bidiagonal, Tridiagonal};
 pub use chain_geometry as geometry;
@@ -45,3 +46,4 @@ pub use model::{ChainGeometry, ChainModel, Potential, SpringNetwork, Stiffness};
 pub use real::Real;
 #[cfg(feature = "alloc")]
 pub use runtime::{ChainBuilder, Law, RuntimeChain};
+pub use validate::Validate;

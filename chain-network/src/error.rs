@@ -99,6 +99,10 @@ pub enum NetworkError {
         /// The winding on each.
         windings: Vec<i64>,
     },
+    /// A field of an options struct ([`crate::winding::WindingOptions`], [`crate::strip::Strip`])
+    /// outside its range ([`chain_core::Validate`]).
+    #[error(transparent)]
+    InvalidOption(#[from] chain_core::validate::InvalidOption),
     /// An argument out of its range (lattice direction, wave number, path).
     #[error("{what}: {problem}")]
     Argument {

@@ -29,6 +29,7 @@ use crate::compatibility::bond_rows;
 use crate::error::NetworkError;
 use crate::linalg;
 use crate::winding::{PathWinding, path_winding};
+use chain_core::validate::{Fields, Validate};
 use faer::{Mat, c64};
 
 /// The default wave number along the strip, `Q = k . a_I = 2.0` rad (issue 33): generic, away
@@ -87,14 +88,17 @@ impl Strip {
         (cell.dimension() == 2).then_some(self.along)
     }
 
+    /// [`Validate::validate`], then the direction in `cell` and the strip's size in its degrees
+    /// of freedom.
     fn check(&self, cell: &Cell) -> Result<(), NetworkError> {
+        self.validate()?;
         if self.along > cell.dimension() - 1 {
             return Err(NetworkError::Argument {
                 what: "along",
                 problem: format!("{}: the cell has {} lattice vector(s)", self.along + 1, cell.dimension()),
             });
         }
-        if self.cells == 0 || self.cells.saturating_mul(cell.dof()) > MAX_STRIP_DOF {
+        if self.cells.saturating_mul(cell.dof()) > MAX_STRIP_DOF {
             return Err(NetworkError::PatchSize {
                 what: "strip",
                 direction: self.across(cell) + 1,
@@ -106,9 +110,28 @@ impl Strip {
                 ),
             });
         }
-        if !self.q.is_finite() {
-            return Err(NetworkError::Argument { what: "q", problem: format!("{} is not finite", self.q) });
-        }
+        Ok(())
+    }
+}
+
+impl Validate for Strip {
+    type Error = NetworkError;
+
+    /// `along` 0 or 1 (a lattice direction of a 2D cell; 1D cells take 0), `cells` between 1 and
+    /// [`MAX_STRIP_DOF`] (a cell has at least one degree of freedom; the bound in degrees of
+    /// freedom is checked against the cell), `q` finite.
+    fn validate(&self) -> Result<(), NetworkError> {
+        // No `..`: a field added here does not compile until it is checked.
+        let Self { along, cells, q } = *self;
+        let fields = Fields("Strip");
+        fields.rule("along", along as f64, along <= 1, "0 or 1 (a lattice direction)")?;
+        fields.rule(
+            "cells",
+            cells as f64,
+            (1..=MAX_STRIP_DOF).contains(&cells),
+            "between 1 and MAX_STRIP_DOF = 4000 cells",
+        )?;
+        fields.finite("q", q)?;
         Ok(())
     }
 }

@@ -29,6 +29,7 @@ use crate::bloch;
 use crate::cell::Cell;
 use crate::compatibility::bond_rows;
 use crate::error::NetworkError;
+use chain_core::validate::{Fields, Validate};
 use faer::{Mat, c64};
 use std::f64::consts::TAU;
 
@@ -51,6 +52,23 @@ pub struct WindingOptions {
 impl Default for WindingOptions {
     fn default() -> Self {
         WindingOptions { transverse: vec![0.1234, 0.2871, 0.4119, 0.6533, 0.8462] }
+    }
+}
+
+impl Validate for WindingOptions {
+    type Error = NetworkError;
+
+    /// `transverse` holds at least one position (the value reported for an empty list is its
+    /// length, 0), each finite. Any finite fraction is a position (the zone is periodic).
+    fn validate(&self) -> Result<(), NetworkError> {
+        // No `..`: a field added here does not compile until it is checked.
+        let Self { transverse } = self;
+        let fields = Fields("WindingOptions");
+        fields.rule("transverse", 0.0, !transverse.is_empty(), "at least one transverse position")?;
+        for &t in transverse {
+            fields.finite("transverse", t)?;
+        }
+        Ok(())
     }
 }
 
@@ -251,12 +269,7 @@ pub fn winding(cell: &Cell, options: &WindingOptions) -> Result<Winding, Network
     if bonds != dof {
         return Err(NetworkError::NotSquare { bonds, dof });
     }
-    if options.transverse.is_empty() || options.transverse.iter().any(|t| !t.is_finite()) {
-        return Err(NetworkError::Argument {
-            what: "transverse",
-            problem: "at least one finite transverse position".into(),
-        });
-    }
+    options.validate()?;
     let mut windings = Vec::with_capacity(cell.dimension());
     let mut closest_approach = f64::INFINITY;
     for i in 0..cell.dimension() {

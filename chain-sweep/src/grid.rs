@@ -4,6 +4,8 @@
 use std::fmt::Write as _;
 use std::str::FromStr;
 
+use rotor_chain::validate::Validate;
+
 /// The most samples one axis may have. A point is one simulation (milliseconds to seconds), so a
 /// larger count is a typo, and refusing it keeps a typo from allocating gigabytes.
 pub const MAX_AXIS_COUNT: usize = 100_000;
@@ -242,6 +244,26 @@ impl Grid {
         }
         let _ = write!(out, "fnv1a={:016x}", hash.0);
         out
+    }
+}
+
+impl Validate for Grid {
+    type Error = GridError;
+
+    /// Both axes hold between 1 and [`MAX_AXIS_COUNT`] finite values, and the grid at most
+    /// [`MAX_GRID_POINTS`] points: what [`Grid::new`] and the [`Axis`] constructors establish
+    /// (the fields are private), checked again where a sweep starts.
+    fn validate(&self) -> Result<(), GridError> {
+        // No `..`: a field added here does not compile until it is checked.
+        let Self { xs, ys } = self;
+        for axis in [xs, ys] {
+            check_count(axis.len())?;
+            axis.iter().try_for_each(|&v| check_finite(v))?;
+        }
+        if xs.len().saturating_mul(ys.len()) > MAX_GRID_POINTS {
+            return Err(GridError::TooLarge { nx: xs.len(), ny: ys.len() });
+        }
+        Ok(())
     }
 }
 

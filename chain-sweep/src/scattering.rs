@@ -33,6 +33,7 @@ use rotor_chain::geometry::Short;
 pub use rotor_chain::integrate::Method;
 use rotor_chain::integrate::{IntegrateError, Schedule, VerletOptions};
 use rotor_chain::statics::walls::Charge;
+use rotor_chain::validate::{Fields, InvalidOption, Validate};
 use rotor_chain::{ParameterError, RuntimeChain};
 
 use crate::record::{ParseError, Record, expect_fields, format_f64, parse_field};
@@ -159,8 +160,11 @@ pub enum ConfigError {
     #[error("invalid chain: {0}")]
     /// The chain breaks a parameter rule.
     Chain(#[from] ParameterError),
+    #[error(transparent)]
+    /// A field of [`PhaseDiagram`] outside its range ([`Validate`]).
+    InvalidOption(#[from] InvalidOption),
     #[error("invalid {name}: {} must be {rule}", Short(*value))]
-    /// A setting out of its range.
+    /// An argument out of its range (`k_i/k`).
     Value {
         /// The setting.
         name: &'static str,
@@ -294,6 +298,68 @@ pub struct PhaseDiagram {
     pub cross_check: bool,
 }
 
+impl Validate for PhaseDiagram {
+    type Error = ConfigError;
+
+    /// Every field in its range, on its own: `r`, `k`, `theta_bar`, `mass`,
+    /// `energy_tolerance` and `t_max` positive and finite, the integrator's tolerances
+    /// (`rtol >= 0`, `atol > 0`), `dt > 0`, `impurity_rest_length > 0`, `start` and `damping`
+    /// finite (`damping >= 0`). The chain's own rules (the flipper phase, the impurity's rest
+    /// length against the chain) and the experiment's fit are [`PhaseDiagram::check`]'s, and so
+    /// is `n`: any count passes here, and `check` names the shortest chain that holds the
+    /// experiment ([`ConfigError::Experiment`]).
+    fn validate(&self) -> Result<(), ConfigError> {
+        // No `..`: a field added here does not compile until it is checked.
+        let Self {
+            n: _,
+            r,
+            k,
+            theta_bar,
+            mass,
+            defect: _,
+            ends: _,
+            integrator,
+            dt,
+            energy_tolerance,
+            recompute: _,
+            t_max,
+            impurity_spring: _,
+            impurity_rest_length,
+            direction: _,
+            start,
+            damping,
+            cross_check: _,
+        } = *self;
+        // `impurity_spring` is any index: whether the chain has it is the experiment's check.
+        let fields = Fields("PhaseDiagram");
+        for (name, value) in [
+            ("r", r),
+            ("k", k),
+            ("theta_bar", theta_bar),
+            ("mass", mass),
+            ("energy_tolerance", energy_tolerance),
+            ("t_max", t_max),
+        ] {
+            fields.positive(name, value)?;
+        }
+        if let Method::Dop853 { rtol, atol } = integrator {
+            fields.non_negative("integrator.rtol", rtol)?;
+            fields.positive("integrator.atol", atol)?;
+        }
+        if let Some(dt) = dt {
+            fields.positive("dt", dt)?;
+        }
+        if let Some(l0) = impurity_rest_length {
+            fields.positive("impurity_rest_length", l0)?;
+        }
+        if let Some(start) = start {
+            fields.finite("start", start)?;
+        }
+        fields.non_negative("damping", damping)?;
+        Ok(())
+    }
+}
+
 impl PhaseDiagram {
     /// The paper's chain of Sec. VI with these parameters, checked: free ends, Verlet, the
     /// default energy tolerance, `t_max = 20`.
@@ -345,36 +411,10 @@ impl PhaseDiagram {
             .find(|&n| Self { n, ..self.clone() }.setup(1.0, self.integrator).check(n).is_ok())
     }
 
-    /// Checks the settings that [`PhaseDiagram::new`] does not see.
+    /// Checks the settings before any point: every field ([`Validate::validate`]), the run's
+    /// output and step budgets, the experiment's fit on the chain and the chain itself.
     pub fn check(&self) -> Result<(), ConfigError> {
-        let positive = |name, value: f64| {
-            if value > 0.0 && value.is_finite() {
-                Ok(())
-            } else {
-                Err(ConfigError::Value { name, value, rule: "positive and finite" })
-            }
-        };
-        positive("energy tolerance", self.energy_tolerance)?;
-        positive("mass", self.mass)?;
-        positive("t_max", self.t_max)?;
-        if !(self.damping >= 0.0 && self.damping.is_finite()) {
-            return Err(ConfigError::Value {
-                name: "damping",
-                value: self.damping,
-                rule: "non-negative and finite",
-            });
-        }
-        if let Some(l0) = self.impurity_rest_length {
-            positive("impurity rest length", l0)?;
-        }
-        if let Some(start) = self.start
-            && !start.is_finite()
-        {
-            return Err(ConfigError::Value { name: "start", value: start, rule: "finite" });
-        }
-        if let Some(dt) = self.dt {
-            positive("dt", dt)?;
-        }
+        self.validate()?;
         // The output budget every point's run would meet (the run's own check, at its start).
         let run = self.setup(1.0, self.integrator).run;
         if let Err(IntegrateError::OutputBudget { outputs, budget }) =
@@ -522,6 +562,7 @@ impl PhaseDiagram {
     /// with DOP853 if [`PhaseDiagram::cross_check`], and the record, with the reason if the
     /// point is unresolved (the outcome then is the kept run's: Verlet's when cross-checked).
     pub fn compute_point(&self, ki_ratio: f64, v0: f64) -> Result<PointRecord, PointError> {
+        self.validate()?;
         let model = self.chain(ki_ratio)?;
         let budget = EnergyBudget { tolerance: self.energy_tolerance, recompute: self.recompute };
         let setup = self.setup(v0, self.integrator);
@@ -865,10 +906,21 @@ mod tests {
 
         // Settings out of range, and experiments that do not fit, name their rule.
         let refused = |d: PhaseDiagram| d.check().unwrap_err().to_string();
-        assert!(refused(PhaseDiagram { damping: -1.0, ..d.clone() }).contains("invalid damping: -1"));
-        assert!(refused(PhaseDiagram { start: Some(f64::NAN), ..d.clone() }).contains("invalid start: NaN"));
+        assert!(
+            refused(PhaseDiagram { damping: -1.0, ..d.clone() })
+                .contains("PhaseDiagram.damping = -1 is invalid")
+        );
+        assert!(
+            refused(PhaseDiagram { start: Some(f64::NAN), ..d.clone() })
+                .contains("PhaseDiagram.start = NaN is invalid")
+        );
         let text = refused(PhaseDiagram { impurity_rest_length: Some(-0.0), ..d.clone() });
-        assert!(text.contains("invalid impurity rest length: -0 must be positive and finite"), "{text}");
+        assert!(
+            text.contains(
+                "PhaseDiagram.impurity_rest_length = -0 is invalid: it must be positive and finite"
+            ),
+            "{text}"
+        );
         // Spring 50, launched leftwards from 65.5: the start needs n - 4 > 65.5, so n >= 70.
         let text = refused(PhaseDiagram { impurity_spring: Some(50), ..paper.clone() });
         assert!(

@@ -34,6 +34,7 @@ use crate::grid::Grid;
 use crate::record::Record;
 use crate::shard::Shard;
 use crate::threads::worker_threads;
+use rotor_chain::validate::Validate;
 
 /// How a sweep runs. Build with [`SweepOptions::new`] and change fields as needed.
 #[derive(Clone, Debug)]
@@ -81,6 +82,30 @@ impl SweepOptions {
             shard: None,
             stop: None,
         }
+    }
+}
+
+impl Validate for SweepOptions {
+    type Error = SweepError;
+
+    /// `threads` between 1 and [`crate::threads::max_threads`] when given
+    /// ([`SweepError::Threads`], [`worker_threads`]'s rule). The other fields take any value:
+    /// `name` is only shown, `run` is stored on one line (newlines escaped), any
+    /// `sync_interval` is a valid rhythm (0: after every point), a [`Shard`] is checked when it
+    /// is made, and the flags are choices.
+    fn validate(&self) -> Result<(), SweepError> {
+        // No `..`: a field added here does not compile until it is checked.
+        let Self {
+            name: _,
+            run: _,
+            threads,
+            retry_failed: _,
+            sync_interval: _,
+            progress: _,
+            shard: _,
+            stop: _,
+        } = self;
+        worker_threads(*threads, 1).map(|_| ())
     }
 }
 
@@ -134,7 +159,8 @@ where
 {
     let start = Instant::now();
     // A bad count is refused before the file is touched; the pool is sized by the work left.
-    worker_threads(options.threads, usize::MAX)?;
+    options.validate()?;
+    grid.validate()?;
     let file = ResultsFile::<R>::open(grid, path, options)?;
     let mut summary = file.summary.clone();
     let todo = file.missing();
@@ -310,6 +336,7 @@ where
     E: Display,
     F: Fn(f64, f64) -> Result<R, E> + Sync,
 {
+    grid.validate()?;
     let pool = thread_pool(threads, grid.len())?;
     let indices: Vec<(usize, usize)> = grid.indices().collect();
     Ok(pool.install(|| {
@@ -572,3 +599,37 @@ fn progress_bar(name: &str, total: usize, skipped: usize, todo: usize, enabled: 
 
 #[cfg(test)]
 mod tests;
+
+#[cfg(test)]
+mod validation {
+    use super::*;
+    use crate::threads::max_threads;
+
+    /// Every field of [`SweepOptions`] (non-exhaustive, so destructured here in its crate, without
+    /// `..`: a new field does not compile until it is listed): the thread count is refused at 0
+    /// and above [`max_threads`], naming the count; the other fields take any value.
+    #[test]
+    fn every_field_of_the_sweep_options_is_validated() {
+        let base = SweepOptions::new("name", "run");
+        let SweepOptions { name, run, threads, retry_failed, sync_interval, progress, shard, stop } =
+            base.clone();
+        assert!(base.validate().is_ok() && threads.is_none());
+        for bad in [0, max_threads() + 1, usize::MAX] {
+            let e = SweepOptions { threads: Some(bad), ..base.clone() }.validate().unwrap_err();
+            assert!(matches!(e, SweepError::Threads { requested, .. } if requested == bad), "{e}");
+        }
+        assert!(SweepOptions { threads: Some(max_threads()), ..base.clone() }.validate().is_ok());
+        // Any text, rhythm, shard and flag.
+        let anything = SweepOptions {
+            name: format!("{name}\n\u{0}"),
+            run: format!("{run}\nsecond line"),
+            threads: Some(1),
+            retry_failed: !retry_failed,
+            sync_interval: if sync_interval.is_zero() { Duration::MAX } else { Duration::ZERO },
+            progress: !progress,
+            shard: shard.or(Shard::new(0, 3).ok()),
+            stop: stop.or(Some(Arc::new(AtomicBool::new(true)))),
+        };
+        assert!(anything.validate().is_ok());
+    }
+}

@@ -77,15 +77,21 @@ fn bad_arguments_exit_2_before_anything_is_written() {
         (&[("--n", "20")], "start = 24.5 is invalid"),
         (&[("--n", "37")], "a chain of 37 rotors cannot hold the experiment (this experiment needs n >= 38)"),
         (&[("--impurity", "50")], "cannot hold the experiment (this experiment needs n >= 70)"),
-        (&[("--damping", "-1")], "invalid damping: -1 must be non-negative and finite"),
+        (&[("--damping", "-1")], "PhaseDiagram.damping = -1 is invalid: it must be non-negative and finite"),
         (&[("--direction", "up")], "invalid value 'up' for '--direction <DIRECTION>'"),
-        (&[("--impurity-rest-length", "0")], "invalid impurity rest length: 0 must be positive and finite"),
+        (
+            &[("--impurity-rest-length", "0")],
+            "PhaseDiagram.impurity_rest_length = 0 is invalid: it must be positive and finite",
+        ),
         (&[("--k", "-5")], "`k` must be a finite number > 0"),
         (&[("--r", "nan")], "`r` must be a finite number > 0"),
-        (&[("--dt", "0")], "dt: 0 must be positive and finite"),
-        (&[("--dt=-1e-3", "")], "dt: -0.001 must be positive and finite"),
-        (&[("--energy-tolerance", "0")], "energy tolerance: 0 must be positive and finite"),
-        (&[("--t-max", "inf")], "t_max: inf must be positive and finite"),
+        (&[("--dt", "0")], "PhaseDiagram.dt = 0 is invalid: it must be positive and finite"),
+        (&[("--dt=-1e-3", "")], "PhaseDiagram.dt = -0.001 is invalid: it must be positive and finite"),
+        (
+            &[("--energy-tolerance", "0")],
+            "PhaseDiagram.energy_tolerance = 0 is invalid: it must be positive and finite",
+        ),
+        (&[("--t-max", "inf")], "PhaseDiagram.t_max = inf is invalid: it must be positive and finite"),
         // A step no run could take to t_max within its budget: refused before any point, as
         // t_max past the output budget is (1e-300 and 1e-7: 2e301 and 2e8 steps against 1e8).
         (

@@ -53,7 +53,11 @@ impl Scenario {
             return Err(StaticsError::CentreOutOfRange { centre: self.centre, n, max }.into());
         }
         let rule = |ok: bool, name, value, rule| {
-            if ok { Ok(()) } else { Err(DynamicsError::InvalidSetup { name, value, rule }) }
+            if ok {
+                Ok(())
+            } else {
+                Err(DynamicsError::InvalidSetup { options: "Scenario", name, value, rule })
+            }
         };
         rule(self.v0.is_finite() && self.v0 >= 0.0, "v0", self.v0, "finite and >= 0")?;
         rule(self.dt.is_finite() && self.dt > 0.0, "dt", self.dt, "positive and finite")?;

@@ -233,6 +233,7 @@ impl From<NetworkError> for Failure {
             | NetworkError::PeriodicImage { .. }
             | NetworkError::NotSquare { .. }
             | NetworkError::Argument { .. }
+            | NetworkError::InvalidOption(_)
             | NetworkError::TooLarge { .. } => 2,
             _ => 1,
         };
@@ -244,7 +245,7 @@ impl From<MotionError> for Failure {
     fn from(e: MotionError) -> Self {
         match e {
             MotionError::Network(e) => e.into(),
-            MotionError::Parameter { .. } | MotionError::Cell(_) => {
+            MotionError::Parameter { .. } | MotionError::InvalidOption(_) | MotionError::Cell(_) => {
                 Failure { status: 2, message: e.to_string() }
             }
             _ => Failure { status: 1, message: e.to_string() },

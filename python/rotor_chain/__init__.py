@@ -59,6 +59,7 @@ from .errors import (
     DynamicsError,
     GridError,
     IntegrateError,
+    InvalidOptionError,
     NetworkError,
     ParameterError,
     PointError,
@@ -97,5 +98,6 @@ __all__ = [
     "SweepError",
     "CellError",
     "NetworkError",
+    "InvalidOptionError",
     "__version__",
 ]

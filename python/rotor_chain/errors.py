@@ -28,6 +28,12 @@ GridError          ValueError                  an axis ``"FROM:TO:COUNT[:log]"``
 SweepError         RuntimeError                a results file (another sweep's, locked, ...)
 CellError          ValueError                  a network cell (``Network``): ``key``, ``line``
 NetworkError       RuntimeError                a network analysis (``WindingUndefined``, ...)
+InvalidOptionError ValueError                  a setting outside its range (``options``,
+                                               ``name``, ``value``, ``rule``): raised as
+                                               ``StaticsOptionError``, ``DynamicsOptionError``,
+                                               ``IntegrateOptionError``, ``ConfigOptionError``,
+                                               ``PointOptionError`` or ``NetworkOptionError``,
+                                               each also its family's class
 =================  ==========================  ===========================================
 
 All derive from :class:`RotorChainError`. A wrong array length or an unknown option name is a
@@ -51,6 +57,13 @@ __all__ = [
     "SweepError",
     "CellError",
     "NetworkError",
+    "InvalidOptionError",
+    "StaticsOptionError",
+    "DynamicsOptionError",
+    "IntegrateOptionError",
+    "ConfigOptionError",
+    "PointOptionError",
+    "NetworkOptionError",
 ]
 
 
@@ -119,3 +132,36 @@ class NetworkError(RotorChainError, RuntimeError):
     """A network analysis that cannot be carried out (Rust ``NetworkError``): ``variant``
     ``WindingUndefined`` or ``WeylPoints`` for a winding that does not exist, ``PatchSize`` for a
     patch that cannot be built, ..."""
+
+
+class InvalidOptionError(RotorChainError, ValueError):
+    """A setting outside its range: a field of a Rust options struct (``RunOptions``,
+    ``ScatterSetup``, ``NewtonOptions``, ``PhaseDiagram``, ...) or the keyword argument that set
+    it. ``options`` names the struct, ``name`` the field, ``value`` the value given and ``rule``
+    what it must be (Rust ``InvalidOption``, checked by ``Validate``). Each family's own class
+    below derives from it and from the family's class, so ``except ValueError``,
+    ``except InvalidOptionError`` and ``except StaticsError`` (and so on) all catch it."""
+
+
+class StaticsOptionError(StaticsError, InvalidOptionError):
+    """An invalid setting of a static analysis (``NewtonOptions``, ``ModeOptions``, ...)."""
+
+
+class DynamicsOptionError(DynamicsError, InvalidOptionError):
+    """An invalid scattering set-up (``ScatterSetup``, Rust ``InvalidSetup``)."""
+
+
+class IntegrateOptionError(IntegrateError, InvalidOptionError):
+    """An invalid run or integrator setting (``RunOptions``, ``VerletOptions``, ...)."""
+
+
+class ConfigOptionError(ConfigError, InvalidOptionError):
+    """An invalid phase-diagram setting (``PhaseDiagram``)."""
+
+
+class PointOptionError(PointError, InvalidOptionError):
+    """An invalid energy budget of a phase-diagram point (``EnergyBudget``)."""
+
+
+class NetworkOptionError(NetworkError, InvalidOptionError):
+    """An invalid setting of a network analysis (``WindingOptions``, ``Strip``)."""

@@ -324,9 +324,7 @@ pub fn scatter(chain: &Chain, py: Python<'_>, a: ScatterArgs<'_>) -> PyResult<Sc
         (None, Direction::Left) => setup.start,
         (None, Direction::Right) => a.impurity as f64 + 0.5 - 15.0,
     };
-    if !(a.watch >= 0.0 && a.watch.is_finite()) {
-        return Err(value_error(format!("watch = {} must be >= 0 and finite", a.watch)));
-    }
+    // Checked with every other field by `ScatterSetup`'s validation, in `scatter_with`.
     setup.watch = a.watch;
     setup.run = a.options;
     let mut interrupt = Interrupt::default();

@@ -61,6 +61,21 @@ impl<'py> Details<'py> {
     }
 }
 
+/// A field of an options struct outside its range (the `InvalidOption` of every family, and
+/// the dynamics' `InvalidSetup`): `options` names the struct (or the function whose argument it
+/// is), `name` the field (also the keyword argument that set it), `value` and `rule`. Raised as
+/// the family's `...OptionError`, which is also `InvalidOptionError` and a `ValueError`.
+fn option<'py>(
+    d: Details<'py>,
+    variant: &'static str,
+    options: &'static str,
+    name: &'static str,
+    value: f64,
+    rule: &'static str,
+) -> Details<'py> {
+    Details { variant, ..d }.f("options", options).f("name", name).f("value", value).f("rule", rule)
+}
+
 fn errors_module(py: Python<'_>) -> PyResult<&Bound<'_, PyModule>> {
     static MODULE: PyOnceLock<Py<PyModule>> = PyOnceLock::new();
     MODULE.get_or_try_init(py, || py.import("rotor_chain.errors").map(Bound::unbind)).map(|m| m.bind(py))
@@ -215,6 +230,9 @@ pub fn statics(py: Python<'_>, e: &StaticsError) -> PyErr {
         &StaticsError::InvalidValue { what, value, expected } => {
             Details { variant: "InvalidValue", ..d }.f("what", what).f("value", value).f("expected", expected)
         }
+        &StaticsError::InvalidOption { options, name, value, rule } => {
+            option(d, "InvalidOption", options, name, value, rule)
+        }
         &StaticsError::TooLarge { what, value, max } => {
             Details { variant: "TooLarge", ..d }.f("what", what).f("value", value).f("max", max)
         }
@@ -241,7 +259,9 @@ pub fn statics(py: Python<'_>, e: &StaticsError) -> PyErr {
         }
         _ => Details { variant: "Other", ..d },
     };
-    d.raise("StaticsError", e.to_string())
+    let class =
+        if matches!(e, StaticsError::InvalidOption { .. }) { "StaticsOptionError" } else { "StaticsError" };
+    d.raise(class, e.to_string())
 }
 
 pub fn integrate(py: Python<'_>, e: &IntegrateError) -> PyErr {
@@ -284,8 +304,8 @@ pub fn integrate(py: Python<'_>, e: &IntegrateError) -> PyErr {
                 .f("relative", relative)
                 .f("limit", limit)
         }
-        IntegrateError::InvalidOption { name, value, rule } => {
-            Details { variant: "InvalidOption", ..d }.f("name", name).f("value", value).f("rule", rule)
+        IntegrateError::InvalidOption { options, name, value, rule } => {
+            option(d, "InvalidOption", options, name, value, rule)
         }
         IntegrateError::EndBeforeStart { start, end } => {
             Details { variant: "EndBeforeStart", ..d }.f("start", start).f("end", end)
@@ -305,7 +325,12 @@ pub fn integrate(py: Python<'_>, e: &IntegrateError) -> PyErr {
         }
         _ => Details { variant: "Other", ..d },
     };
-    d.raise("IntegrateError", e.to_string())
+    let class = if matches!(e, IntegrateError::InvalidOption { .. }) {
+        "IntegrateOptionError"
+    } else {
+        "IntegrateError"
+    };
+    d.raise(class, e.to_string())
 }
 
 pub fn dynamics(py: Python<'_>, e: &DynamicsError) -> PyErr {
@@ -323,18 +348,21 @@ pub fn dynamics(py: Python<'_>, e: &DynamicsError) -> PyErr {
         &DynamicsError::NoSuchSpring { spring, springs } => {
             Details { variant: "NoSuchSpring", ..d }.f("spring", spring).f("springs", springs)
         }
-        &DynamicsError::InvalidSetup { name, value, rule } => {
-            Details { variant: "InvalidSetup", ..d }.f("name", name).f("value", value).f("rule", rule)
+        &DynamicsError::InvalidSetup { options, name, value, rule } => {
+            option(d, "InvalidSetup", options, name, value, rule)
         }
         _ => Details { variant: "Other", ..d },
     };
-    d.raise("DynamicsError", e.to_string())
+    let class =
+        if matches!(e, DynamicsError::InvalidSetup { .. }) { "DynamicsOptionError" } else { "DynamicsError" };
+    d.raise(class, e.to_string())
 }
 
 pub fn config(py: Python<'_>, e: &ConfigError) -> PyErr {
     let d = Details::new(py, "");
     let d = match e {
         ConfigError::Chain(p) => Details { variant: "Chain", ..d }.source(parameter(py, p)),
+        &ConfigError::InvalidOption(o) => option(d, "InvalidOption", o.options, o.field, o.value, o.rule),
         &ConfigError::Value { name, value, rule } => {
             Details { variant: "Value", ..d }.f("name", name).f("value", value).f("rule", rule)
         }
@@ -356,7 +384,8 @@ pub fn config(py: Python<'_>, e: &ConfigError) -> PyErr {
             .source(dynamics(py, source)),
         _ => Details { variant: "Other", ..d },
     };
-    d.raise("ConfigError", e.to_string())
+    let class = if matches!(e, ConfigError::InvalidOption(_)) { "ConfigOptionError" } else { "ConfigError" };
+    d.raise(class, e.to_string())
 }
 
 /// chain-sweep's `ConfigError::Chain` (worded as its `Display`, "invalid chain: ...") around a
@@ -374,7 +403,14 @@ pub fn point(py: Python<'_>, e: &PointError) -> PyErr {
         PointError::Scatter(b) => budget(py, b, d),
         _ => Details { variant: "Other", ..d },
     };
-    d.raise("PointError", e.to_string())
+    let class = match e {
+        PointError::Scatter(
+            BudgetError::InvalidOption(_) | BudgetError::Setup(DynamicsError::InvalidSetup { .. }),
+        )
+        | PointError::Config(ConfigError::InvalidOption(_)) => "PointOptionError",
+        _ => "PointError",
+    };
+    d.raise(class, e.to_string())
 }
 
 /// The details of a point that broke its energy budget (the dynamics' `BudgetError`), under the
@@ -404,6 +440,8 @@ fn budget<'py>(py: Python<'py>, e: &BudgetError, d: Details<'py>) -> Details<'py
             Details { variant: "SpunThroughPi", ..d }.f("time", time).f("outputs", outputs)
         }
         BudgetError::NothingRecorded => Details { variant: "NothingRecorded", ..d },
+        &BudgetError::InvalidOption(o) => option(d, "InvalidOption", o.options, o.field, o.value, o.rule),
+        BudgetError::Setup(source) => Details { variant: "Setup", ..d }.source(dynamics(py, source)),
         _ => Details { variant: "Other", ..d },
     }
 }
@@ -599,7 +637,10 @@ pub fn network(py: Python<'_>, e: &NetworkError) -> PyErr {
         NetworkError::Argument { what, problem } => {
             Details { variant: "Argument", ..d }.f("what", *what).f("problem", problem.clone())
         }
+        &NetworkError::InvalidOption(o) => option(d, "InvalidOption", o.options, o.field, o.value, o.rule),
         _ => Details { variant: "Other", ..d },
     };
-    d.raise("NetworkError", e.to_string())
+    let class =
+        if matches!(e, NetworkError::InvalidOption(_)) { "NetworkOptionError" } else { "NetworkError" };
+    d.raise(class, e.to_string())
 }

@@ -129,7 +129,7 @@ def test_options_of_the_other_method_are_refused():
     assert c.propagate(theta, omega, t_max=0.1, dt=1e-3).time >= 0.1
     with pytest.raises(rc.IntegrateError) as info:
         c.propagate(theta, omega, t_max=0.1, method="dop853", atol=-1.0)
-    assert (info.value.variant, info.value.name) == ("InvalidOption", "atol")
+    assert (info.value.variant, info.value.options, info.value.name) == ("InvalidOption", "RunOptions", "method.atol")
 
 
 def test_a_run_ends_at_the_first_output_at_or_past_t_max_with_steps_of_at_most_dt():
@@ -202,7 +202,7 @@ def test_a_bad_t_max_is_named_as_the_user_passed_it(t_max):
             assert (e.variant, e.start, e.end) == ("EndBeforeStart", 0.0, t_max), name
         else:
             assert (e.variant, e.name, e.rule) == ("InvalidOption", "t_max", "finite"), name
-            assert str(e).startswith(f"t_max = {'NaN' if math.isnan(t_max) else 'inf'} is invalid"), str(e)
+            assert str(e).startswith(f"RunOptions.t_max = {'NaN' if math.isnan(t_max) else 'inf'} is invalid"), str(e)
             assert e.value == t_max or (math.isnan(e.value) and math.isnan(t_max))
 
 

@@ -110,8 +110,14 @@ fn springs_the_chain_does_not_have_are_errors() {
 fn settings_out_of_range_are_errors() {
     let model = chain();
     let theta = kink(&model, 9.0).unwrap();
+    // A function's argument is `InvalidValue`, an options struct's field `InvalidOption`.
     let invalid = |err: StaticsError, name: &str| {
-        assert!(matches!(&err, StaticsError::InvalidValue { what, .. } if what.contains(name)), "{err}");
+        let named = match &err {
+            StaticsError::InvalidValue { what, .. } => what.contains(name),
+            StaticsError::InvalidOption { name: field, .. } => *field == name,
+            _ => false,
+        };
+        assert!(named, "{err}");
     };
     for bad in [f64::NAN, f64::INFINITY, -1.0] {
         let o = NewtonOptions { tolerance: bad, ..NewtonOptions::default() };

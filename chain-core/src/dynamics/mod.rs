@@ -23,6 +23,8 @@ pub mod scatter;
 #[cfg(feature = "alloc")]
 pub mod track;
 
+use chain_geometry::Short;
+
 use crate::integrate::IntegrateError;
 use crate::statics::StaticsError;
 
@@ -37,13 +39,13 @@ pub enum DynamicsError {
     #[error("statics: {0}")]
     Statics(#[from] StaticsError),
     /// No mode localised at the defect was classified as its translation mode.
-    #[error("no translation mode found for the defect at {position}")]
+    #[error("no translation mode found for the defect at {position}", position = Short(*position))]
     NoTranslationMode {
         /// Where the defect was, in rotor indices.
         position: f64,
     },
     /// A launch speed that is negative or not finite.
-    #[error("launch speed v0 = {v0} must be finite and >= 0")]
+    #[error("launch speed v0 = {v0} must be finite and >= 0", v0 = Short(*v0))]
     BadSpeed {
         /// The launch speed given, in `a / t`.
         v0: f64,
@@ -56,10 +58,14 @@ pub enum DynamicsError {
         /// How many springs the chain has (`n - 1`).
         springs: usize,
     },
-    /// A number of a scattering setup outside its range.
-    #[error("{name} = {value} is invalid: it must be {rule}")]
+    /// A number of a scattering setup outside its range (a field of an options struct,
+    /// [`crate::validate::Validate`], or where the setup lies on the chain), or an argument of a
+    /// dynamics function.
+    #[error("{options}.{name} = {} is invalid: it must be {rule}", Short(*value))]
     InvalidSetup {
-        /// The setting of [`scatter::ScatterSetup`].
+        /// The options struct (`ScatterSetup`), or the function whose argument it is.
+        options: &'static str,
+        /// The setting.
         name: &'static str,
         /// The value given.
         value: f64,
@@ -78,7 +84,7 @@ pub enum DynamicsError {
     /// divides by zero or the recurrence overflows.
     #[error(
         "no translation mode: spring {spring} has compatibility entries C[p][p] = {left}, \
-         C[p][p+1] = {right}, so its zero mode cannot be continued past it"
+         C[p][p+1] = {right}, so its zero mode cannot be continued past it", left = Short(*left), right = Short(*right)
     )]
     NoZeroMode {
         /// The spring.
@@ -88,4 +94,10 @@ pub enum DynamicsError {
         /// `C[p][p + 1]`.
         right: f64,
     },
+}
+
+impl From<crate::validate::InvalidOption> for DynamicsError {
+    fn from(e: crate::validate::InvalidOption) -> Self {
+        DynamicsError::InvalidSetup { options: e.options, name: e.field, value: e.value, rule: e.rule }
+    }
 }

@@ -163,6 +163,7 @@ pub fn damping_to_stop_at<M: ChainModel + ?Sized>(
     let (mut low, mut high) = bracket;
     if !(low > 0.0 && high > low && high.is_finite()) {
         return Err(DynamicsError::InvalidSetup {
+            options: "damping_to_stop_at",
             name: "bracket",
             value: low,
             rule: "0 < low < high, finite",
@@ -185,6 +186,7 @@ pub fn damping_to_stop_at<M: ChainModel + ?Sized>(
     };
     if travel(low)?.0 <= goal {
         return Err(DynamicsError::InvalidSetup {
+            options: "damping_to_stop_at",
             name: "bracket low",
             value: low,
             rule: "so small that the defect passes the target",
@@ -193,6 +195,7 @@ pub fn damping_to_stop_at<M: ChainModel + ?Sized>(
     let mut best = travel(high)?;
     if best.0 > goal {
         return Err(DynamicsError::InvalidSetup {
+            options: "damping_to_stop_at",
             name: "bracket high",
             value: high,
             rule: "so large that the defect stops before the target",

@@ -18,6 +18,7 @@ use crate::integrate::{
     VerletOptions, kinetic_energy,
 };
 use crate::model::{ChainModel, Potential, Stiffness};
+use crate::validate::{Fields, Validate};
 
 /// The most angles a space-time image ([`RunOptions::space_time`]) may hold: 2^27, 1 GiB of
 /// `f64`. Checked before the run starts ([`IntegrateError::SpaceTimeBudget`]), so a run of a long
@@ -71,6 +72,49 @@ impl Default for RunOptions {
     }
 }
 
+impl Validate for RunOptions {
+    type Error = IntegrateError;
+
+    /// Every field in its range: `t_max` finite (a `t_max` before the state's time is
+    /// [`IntegrateError::EndBeforeStart`] at the run), `output_interval > 0` and finite, the
+    /// method's tolerances (`rtol >= 0`, `atol > 0`, finite), `dt > 0` and finite, `damping >= 0`
+    /// and finite, the sponge's, `max_outputs >= 1`, `max_steps >= 1`, `energy_limit > 0`
+    /// (infinite: no check). The errors are the integrator's, as the run would report them.
+    fn validate(&self) -> Result<(), IntegrateError> {
+        // No `..`: a field added here does not compile until it is checked.
+        let Self {
+            t_max,
+            output_interval,
+            method,
+            dt,
+            damping,
+            absorbing_ends,
+            space_time: _,
+            max_outputs,
+            max_steps,
+            energy_limit,
+        } = *self;
+        let fields = Fields("RunOptions");
+        fields.finite("t_max", t_max)?;
+        fields.positive("output_interval", output_interval)?;
+        if let Method::Dop853 { rtol, atol } = method {
+            fields.non_negative("method.rtol", rtol)?;
+            fields.positive("method.atol", atol)?;
+        }
+        if let Some(dt) = dt {
+            fields.positive("dt", dt)?;
+        }
+        fields.non_negative("damping", damping)?;
+        if let Some(sponge) = absorbing_ends {
+            sponge.validate()?;
+        }
+        fields.at_least_one("max_outputs", max_outputs as u64)?;
+        fields.at_least_one("max_steps", max_steps)?;
+        fields.rule("energy_limit", energy_limit, energy_limit > 0.0, "positive (infinite: no check)")?;
+        Ok(())
+    }
+}
+
 /// The sponge of [`RunOptions::absorbing_ends`] that the docs measure: 10 rotors at each end, a
 /// rate of 30 / t at the end rotor. It absorbs the phonons that would otherwise flip a free end
 /// of an antikink's domain (docs/dynamics.md §5).
@@ -116,6 +160,7 @@ impl RunOptions {
         model: &M,
         theta: &[f64],
     ) -> Result<RunIntegrator, DynamicsError> {
+        self.validate()?;
         Ok(match self.method {
             Method::Verlet => {
                 // A given `dt` is checked where every Verlet run checks it (`VerletOptions::integrate`).
@@ -203,6 +248,7 @@ pub fn propagate_with<M: ChainModel + ?Sized, I: Integrator + ?Sized>(
     stop: &mut dyn FnMut(&Snapshot) -> bool,
 ) -> Result<Run, DynamicsError> {
     state.check(model)?;
+    options.validate()?;
     let schedule =
         Schedule::covering(state.time, options.t_max, options.output_interval, options.max_outputs)?;
     if options.space_time {

@@ -34,10 +34,10 @@ use alloc::vec::Vec;
 use super::tableau::{A, B, BHH, D, E5};
 use super::{
     DEFAULT_ENERGY_LIMIT, Flow, IntegrateError, Integrator, Monitor, Report, Schedule, Sponge, State,
-    check_energy_limit, check_non_negative, check_option, check_positive, damping_rates, inverse_inertia,
-    not_finite,
+    check_energy_limit, check_positive, damping_rates, inverse_inertia, not_finite,
 };
 use crate::model::Potential;
+use crate::validate::{Fields, Validate};
 
 /// Settings of [`adaptive`]. Times in the unit `t` of paper Appendix B.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -100,22 +100,45 @@ impl Default for AdaptiveOptions {
     }
 }
 
-impl AdaptiveOptions {
-    fn check(&self) -> Result<(), IntegrateError> {
-        check_non_negative("rtol", self.rtol)?;
-        check_positive("atol", self.atol)?;
-        if let Some(h) = self.initial_step {
-            check_positive("initial_step", h)?;
+impl Validate for AdaptiveOptions {
+    type Error = IntegrateError;
+
+    /// Every field in its range: `rtol >= 0`, `atol > 0`, `initial_step > 0`, `max_step > 0`
+    /// (infinite: no limit), `0 <= min_step <= max_step`, `max_steps >= 1`, `damping >= 0`, the
+    /// sponge's, `omega_max > 0`, `energy_limit > 0` (infinite: no check); every finite one
+    /// finite.
+    fn validate(&self) -> Result<(), IntegrateError> {
+        // No `..`: a field added here does not compile until it is checked.
+        let Self {
+            rtol,
+            atol,
+            initial_step,
+            max_step,
+            min_step,
+            max_steps,
+            damping,
+            sponge,
+            energy_limit,
+            omega_max,
+        } = *self;
+        let fields = Fields("AdaptiveOptions");
+        fields.non_negative("rtol", rtol)?;
+        fields.positive("atol", atol)?;
+        if let Some(h) = initial_step {
+            fields.positive("initial_step", h)?;
         }
-        check_option("max_step", self.max_step, self.max_step > 0.0, "positive (infinite: no limit)")?;
-        let ok = self.min_step >= 0.0 && self.min_step.is_finite() && self.min_step <= self.max_step;
-        check_option("min_step", self.min_step, ok, "non-negative, finite and at most max_step")?;
-        check_option("max_steps", self.max_steps as f64, self.max_steps > 0, "at least 1")?;
-        check_non_negative("damping", self.damping)?;
-        if let Some(omega) = self.omega_max {
-            check_positive("omega_max", omega)?;
+        fields.rule("max_step", max_step, max_step > 0.0, "positive (infinite: no limit)")?;
+        let ok = min_step >= 0.0 && min_step.is_finite() && min_step <= max_step;
+        fields.rule("min_step", min_step, ok, "non-negative, finite and at most max_step")?;
+        fields.at_least_one("max_steps", max_steps as u64)?;
+        fields.non_negative("damping", damping)?;
+        if let Some(sponge) = sponge {
+            sponge.validate()?;
         }
-        check_energy_limit(self.energy_limit)
+        if let Some(omega) = omega_max {
+            fields.positive("omega_max", omega)?;
+        }
+        check_energy_limit(fields, energy_limit)
     }
 }
 
@@ -149,7 +172,7 @@ pub fn adaptive<M: Potential + ?Sized>(
     observer: &mut dyn FnMut(&State) -> Flow,
 ) -> Result<Report, IntegrateError> {
     state.check(model)?;
-    options.check()?;
+    options.validate()?;
     check_outputs(state.time, outputs)?;
     run(model, state, &|k| outputs[k], outputs.len(), options, observer)
 }
@@ -284,8 +307,8 @@ impl Integrator for AdaptiveOptions {
         observer: &mut dyn FnMut(&State) -> Flow,
     ) -> Result<Report, IntegrateError> {
         state.check(model)?;
-        self.check()?;
-        check_positive("output_interval", schedule.interval)?;
+        self.validate()?;
+        check_positive("Schedule", "interval", schedule.interval)?;
         let start = state.time;
         let last = schedule.time(start, schedule.count);
         if !last.is_finite() {

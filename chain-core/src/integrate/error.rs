@@ -111,9 +111,13 @@ pub enum IntegrateError {
         /// The largest relative change allowed.
         limit: f64,
     },
-    /// An option outside its range.
-    #[error("{name} = {} is invalid: it must be {rule}", Short(*value))]
+    /// An option outside its range: a field of an options struct ([`crate::validate::Validate`])
+    /// or an argument of an integrator's function.
+    #[error("{options}.{name} = {} is invalid: it must be {rule}", Short(*value))]
     InvalidOption {
+        /// The options struct (`VerletOptions`, `AdaptiveOptions`, `RunOptions`, `Sponge`), or
+        /// the function whose argument it is.
+        options: &'static str,
         /// The name of the setting.
         name: &'static str,
         /// The value given.
@@ -122,7 +126,7 @@ pub enum IntegrateError {
         rule: &'static str,
     },
     /// The end time lies before the start: the integrators run forward in time.
-    #[error("the end time {end} lies before the start time {start}: integration runs forward")]
+    #[error("the end time {end} lies before the start time {start}: integration runs forward", end = Short(*end), start = Short(*start))]
     EndBeforeStart {
         /// The start time, in `t`.
         start: f64,
@@ -130,7 +134,7 @@ pub enum IntegrateError {
         end: f64,
     },
     /// Output times must not decrease, nor lie before the start time.
-    #[error("output time {time} (index {index}) lies before {previous}: outputs must not decrease")]
+    #[error("output time {time} (index {index}) lies before {previous}: outputs must not decrease", previous = Short(*previous), time = Short(*time))]
     OutputsOutOfOrder {
         /// The output that comes too early.
         index: usize,
@@ -142,7 +146,7 @@ pub enum IntegrateError {
     /// A rotor whose inertia `M r_i^2` is not positive and finite, or so small that its inverse
     /// overflows.
     #[error(
-        "degree of freedom {index} has inertia {inertia}: it must be positive and finite, with a finite inverse"
+        "degree of freedom {index} has inertia {inertia}: it must be positive and finite, with a finite inverse", inertia = Short(*inertia)
     )]
     BadInertia {
         /// The rotor.
@@ -152,7 +156,7 @@ pub enum IntegrateError {
     },
     /// The tangent stiffness vanishes or is not finite, so it sets no time scale to pick a step
     /// from.
-    #[error("the tangent stiffness has norm {norm}: no time scale to choose a step from")]
+    #[error("the tangent stiffness has norm {norm}: no time scale to choose a step from", norm = Short(*norm))]
     NoTimeScale {
         /// The norm of the tangent stiffness, which gives no finite stability limit.
         norm: f64,
@@ -176,7 +180,7 @@ pub enum IntegrateError {
     #[error(
         "energy {energy} after step {step} is {} from the reference {reference}, more than the \
          tolerance {tolerance}: is dt = {dt} within the stability limit omega_max dt < 2?",
-        (energy - reference).abs()
+        (energy - reference).abs(), dt = Short(*dt), energy = Short(*energy), reference = Short(*reference), tolerance = Short(*tolerance)
     )]
     EnergyDrift {
         /// Steps taken.
@@ -190,4 +194,10 @@ pub enum IntegrateError {
         /// The step.
         dt: f64,
     },
+}
+
+impl From<crate::validate::InvalidOption> for IntegrateError {
+    fn from(e: crate::validate::InvalidOption) -> Self {
+        IntegrateError::InvalidOption { options: e.options, name: e.field, value: e.value, rule: e.rule }
+    }
 }

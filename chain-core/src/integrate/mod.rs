@@ -93,6 +93,7 @@ pub use verlet::{VerletOptions, verlet};
 
 #[cfg(feature = "alloc")]
 use crate::model::Potential;
+use crate::validate::{Fields, Validate};
 
 /// What an observer returns after each output: keep going or stop (e.g. once a scattering
 /// outcome is decided).
@@ -183,6 +184,17 @@ pub struct Sponge {
     pub strength: f64,
 }
 
+impl Validate for Sponge {
+    type Error = IntegrateError;
+
+    /// `width` is any count (0: no sponge; wider than half the chain: the two overlap);
+    /// `strength` finite and `>= 0`.
+    fn validate(&self) -> Result<(), IntegrateError> {
+        let Self { width: _, strength } = *self;
+        Ok(Fields("Sponge").non_negative("strength", strength)?)
+    }
+}
+
 impl Sponge {
     /// The rate of rotor `i` of `n`.
     pub fn rate(&self, i: usize, n: usize) -> f64 {
@@ -199,9 +211,9 @@ impl Sponge {
 /// checked.
 #[cfg(feature = "alloc")]
 pub fn damping_rates(n: usize, uniform: f64, sponge: Option<Sponge>) -> Result<Vec<f64>, IntegrateError> {
-    check_non_negative("damping", uniform)?;
+    Fields("damping_rates").non_negative("uniform", uniform)?;
     if let Some(s) = sponge {
-        check_non_negative("sponge strength", s.strength)?;
+        s.validate()?;
     }
     Ok((0..n).map(|i| uniform + sponge.map_or(0.0, |s| s.rate(i, n))).collect())
 }
@@ -232,13 +244,11 @@ impl Schedule {
         interval: f64,
         max_outputs: usize,
     ) -> Result<Self, IntegrateError> {
-        if !t_max.is_finite() {
-            return Err(IntegrateError::InvalidOption { name: "t_max", value: t_max, rule: "finite" });
-        }
+        Fields("Schedule::covering").finite("t_max", t_max)?;
         if t_max < start {
             return Err(IntegrateError::EndBeforeStart { start, end: t_max });
         }
-        check_positive("output_interval", interval)?;
+        check_positive("Schedule::covering", "output_interval", interval)?;
         // An interval longer than the run still takes one output, at `start + interval`.
         let needed = step_count(t_max - start, interval);
         if needed > max_outputs as f64 {
@@ -312,27 +322,27 @@ pub(crate) fn step_count(span: f64, dt: f64) -> f64 {
     count.max(1.0)
 }
 
-/// `Ok` if `ok`, else `InvalidOption` with the rule the value broke.
-fn check_option(name: &'static str, value: f64, ok: bool, rule: &'static str) -> Result<(), IntegrateError> {
-    if ok { Ok(()) } else { Err(IntegrateError::InvalidOption { name, value, rule }) }
+/// `Ok` if `ok`, else `InvalidOption` naming the argument `name` of the function `options`.
+fn check_option(
+    options: &'static str,
+    name: &'static str,
+    value: f64,
+    ok: bool,
+    rule: &'static str,
+) -> Result<(), IntegrateError> {
+    Ok(Fields(options).rule(name, value, ok, rule)?)
 }
 
-/// `value > 0`, finite.
+/// `value > 0`, finite: an argument `name` of the function `options`.
 #[cfg_attr(not(feature = "alloc"), allow(dead_code))]
-fn check_positive(name: &'static str, value: f64) -> Result<(), IntegrateError> {
-    check_option(name, value, value > 0.0 && value.is_finite(), "positive and finite")
-}
-
-/// `value >= 0`, finite.
-#[cfg_attr(not(feature = "alloc"), allow(dead_code))]
-fn check_non_negative(name: &'static str, value: f64) -> Result<(), IntegrateError> {
-    check_option(name, value, value >= 0.0 && value.is_finite(), "non-negative and finite")
+fn check_positive(options: &'static str, name: &'static str, value: f64) -> Result<(), IntegrateError> {
+    Ok(Fields(options).positive(name, value)?)
 }
 
 /// The energy limit: positive (infinite switches the check off).
 #[cfg_attr(not(feature = "alloc"), allow(dead_code))]
-fn check_energy_limit(limit: f64) -> Result<(), IntegrateError> {
-    check_option("energy_limit", limit, limit > 0.0, "positive (infinite: no check)")
+fn check_energy_limit(fields: Fields, limit: f64) -> Result<(), IntegrateError> {
+    Ok(fields.rule("energy_limit", limit, limit > 0.0, "positive (infinite: no check)")?)
 }
 
 /// Hands a state to the observer after recording its energy in the report, and stops a run
@@ -352,7 +362,7 @@ impl Monitor {
         damped: bool,
         limit: f64,
     ) -> Result<Self, IntegrateError> {
-        check_energy_limit(limit)?;
+        check_energy_limit(Fields("Monitor::new"), limit)?;
         let e = total_energy(model, state);
         if !e.is_finite() {
             return Err(IntegrateError::NotFinite { what: "energy", time: state.time, index: 0, value: e });

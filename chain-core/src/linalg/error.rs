@@ -2,6 +2,8 @@
 
 use core::fmt;
 
+use chain_geometry::Short;
+
 /// Which input of a linear-algebra call held a bad number.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[non_exhaustive]
@@ -57,7 +59,7 @@ pub enum LinalgError {
         rhs: usize,
     },
     /// A NaN or an infinity in the input.
-    #[error("{input}[{index}] = {value} is not finite")]
+    #[error("{input}[{index}] = {value} is not finite", value = Short(*value))]
     NotFinite {
         /// Which input.
         input: Input,

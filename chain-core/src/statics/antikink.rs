@@ -43,6 +43,7 @@ use super::path::{Descent, descend};
 use super::walls::{Charge, domain_walls};
 use crate::linalg::SymmetricMatrix;
 use crate::model::ChainModel;
+use crate::validate::{Fields, Validate};
 
 /// How the chain's ends are treated (see the module doc).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
@@ -70,6 +71,23 @@ pub struct AntikinkOptions {
     pub ends: Ends,
 }
 
+impl Validate for AntikinkOptions {
+    type Error = StaticsError;
+
+    /// The Newton and relaxation settings ([`NewtonOptions`]'s and [`RelaxOptions`]'s rules),
+    /// `zero_tolerance` finite and `>= 0`.
+    fn validate(&self) -> Result<(), StaticsError> {
+        // No `..`: a field added here does not compile until it is checked.
+        let Self { newton, relax, zero_tolerance, ends: _ } = *self;
+        newton.validate()?;
+        relax.validate()?;
+        if let Some(tolerance) = zero_tolerance {
+            Fields("AntikinkOptions").non_negative("zero_tolerance", tolerance)?;
+        }
+        Ok(())
+    }
+}
+
 impl AntikinkOptions {
     fn hold(&self) -> bool {
         self.ends == Ends::Held
@@ -83,9 +101,7 @@ fn initial_guess<M: ChainModel + ?Sized>(
     centre: f64,
     options: &AntikinkOptions,
 ) -> Result<Vec<f64>, StaticsError> {
-    if let Some(tolerance) = options.zero_tolerance {
-        super::validate::non_negative("zero_tolerance", tolerance)?;
-    }
+    options.validate()?;
     let mut guess = reflected_kink(model, centre)?;
     if options.hold() {
         let n = guess.len();

@@ -47,6 +47,7 @@ use crate::integrate::bound::omega_bound;
 use crate::integrate::{State, Verlet};
 use crate::linalg::SymmetricMatrix;
 use crate::model::Stiffness;
+use crate::validate::{Fields, Validate};
 
 /// Settings of [`newton`].
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -137,22 +138,41 @@ fn max_abs(v: &[f64]) -> f64 {
     v.iter().fold(0.0, |m, x| nan_max(m, x.abs()))
 }
 
-impl NewtonOptions {
-    /// Every setting finite and in range.
-    fn check(&self) -> Result<(), StaticsError> {
-        validate::positive("NewtonOptions::tolerance", self.tolerance)?;
-        validate::non_negative("NewtonOptions::shift", self.shift)?;
-        validate::non_negative("NewtonOptions::null_tolerance", self.null_tolerance)?;
+impl Validate for NewtonOptions {
+    type Error = StaticsError;
+
+    /// `tolerance > 0`, `shift >= 0`, `null_tolerance >= 0`, all finite. The counts take any
+    /// value: `max_iterations = 0` only measures the start's residual, `max_held = 0` holds
+    /// nothing.
+    fn validate(&self) -> Result<(), StaticsError> {
+        // No `..`: a field added here does not compile until it is checked.
+        let Self { tolerance, max_iterations: _, shift, null_tolerance, hold_ends: _, max_held: _ } = *self;
+        let fields = Fields("NewtonOptions");
+        fields.positive("tolerance", tolerance)?;
+        fields.non_negative("shift", shift)?;
+        fields.non_negative("null_tolerance", null_tolerance)?;
         Ok(())
     }
 }
 
-impl RelaxOptions {
-    /// Every setting finite and in range.
-    fn check(&self) -> Result<(), StaticsError> {
-        validate::positive("RelaxOptions::tolerance", self.tolerance)?;
-        validate::positive("RelaxOptions::time_step", self.time_step)?;
-        validate::non_negative("RelaxOptions::damping", self.damping)?;
+impl Validate for RelaxOptions {
+    type Error = StaticsError;
+
+    /// `tolerance > 0`, `0 < time_step < 2` (velocity Verlet's stability limit, in `1 /
+    /// omega_max`), `damping >= 0`, all finite. `max_steps` takes any value (0: the start is
+    /// returned if it already meets the tolerance).
+    fn validate(&self) -> Result<(), StaticsError> {
+        // No `..`: a field added here does not compile until it is checked.
+        let Self { tolerance, max_steps: _, time_step, damping, hold_ends: _ } = *self;
+        let fields = Fields("RelaxOptions");
+        fields.positive("tolerance", tolerance)?;
+        fields.rule(
+            "time_step",
+            time_step,
+            time_step > 0.0 && time_step < 2.0,
+            "in (0, 2): velocity Verlet is stable below 2 / omega_max",
+        )?;
+        fields.non_negative("damping", damping)?;
         Ok(())
     }
 }
@@ -214,7 +234,7 @@ pub fn newton<M: Stiffness + ?Sized>(
     options: &NewtonOptions,
 ) -> Result<Solution, StaticsError> {
     validate::angles(model, theta)?;
-    options.check()?;
+    options.validate()?;
     const METHOD: &str = "Newton's method on the gradient";
     let n = model.dof_count();
     let range = moving(n, options.hold_ends);
@@ -302,7 +322,7 @@ pub fn relax<M: Stiffness + ?Sized>(
     options: &RelaxOptions,
 ) -> Result<(Vec<f64>, usize), StaticsError> {
     validate::angles(model, theta)?;
-    options.check()?;
+    options.validate()?;
     let n = model.dof_count();
     let no_convergence = |iterations: usize, residual: f64| StaticsError::NoConvergence {
         method: "dissipative dynamics",
@@ -360,7 +380,7 @@ pub fn polish<M: Stiffness + ?Sized>(
     solution: Solution,
     options: &NewtonOptions,
 ) -> Result<Solution, StaticsError> {
-    options.check()?;
+    options.validate()?;
     let n = model.dof_count();
     validate::angles(model, &solution.theta)?;
     let range = moving(n, options.hold_ends);

@@ -1,5 +1,7 @@
 //! Errors of the static analyses. Each carries the numbers that explain it.
 
+use chain_geometry::Short;
+
 use crate::error::BranchError;
 use crate::linalg::LinalgError;
 
@@ -17,7 +19,7 @@ pub enum StaticsError {
     #[error("linear algebra: {0}")]
     Linalg(#[from] LinalgError),
     /// A requested defect centre outside the chain.
-    #[error("centre {centre} is outside the chain: it must lie in [0, {max}] for {n} rotors")]
+    #[error("centre {centre} is outside the chain: it must lie in [0, {max}] for {n} rotors", centre = Short(*centre), max = Short(*max))]
     CentreOutOfRange {
         /// The centre given, in rotor indices.
         centre: f64,
@@ -46,7 +48,7 @@ pub enum StaticsError {
     #[error(
         "the {expected} centred at {centre} has no wall inside the chain: at theta_bar = {theta_bar} it \
          is far wider than the chain and its angles round to zero (found {kinks} kink(s), {antikinks} \
-         antikink(s))"
+         antikink(s))", centre = Short(*centre), theta_bar = Short(*theta_bar)
     )]
     NoWall {
         /// The wall asked for: `kink` or `antikink` (the reflected kink).
@@ -77,7 +79,7 @@ pub enum StaticsError {
     /// Sec. VII-A), or shorter than the spring between rotors leaning at `+theta_bar`, `-theta_bar`.
     #[error(
         "spring {spring} with rest length {rest_length} has no symmetric zero-energy state: with its \
-         rotors at -phi, +phi (|phi| <= theta_bar) it spans lengths from {min} to {max} (= l_critical)"
+         rotors at -phi, +phi (|phi| <= theta_bar) it spans lengths from {min} to {max} (= l_critical)", max = Short(*max), min = Short(*min), rest_length = Short(*rest_length)
     )]
     NoZeroEnergyState {
         /// The impurity spring.
@@ -94,7 +96,7 @@ pub enum StaticsError {
     /// it, whose force beats the Peierls-Nabarro pinning), or had to hold the translation.
     #[error(
         "no antikink equilibrium centred at {requested}: Newton's method went to {found} (index \
-         {index}, {held} direction(s) held); see peierls_nabarro's landscape for the equilibria near it"
+         {index}, {held} direction(s) held); see peierls_nabarro's landscape for the equilibria near it", found = Short(*found), requested = Short(*requested)
     )]
     NotAnEquilibrium {
         /// The centring asked for.
@@ -110,7 +112,7 @@ pub enum StaticsError {
     /// `found` is what the search ended at, with its index and held directions.
     #[error(
         "no antikink minimum near {near}: the search ended at an antikink centred at {found} of index \
-         {index} with {held} direction(s) held"
+         {index} with {held} direction(s) held", found = Short(*found), near = Short(*near)
     )]
     NoMinimum {
         /// Where the minimum was looked for.
@@ -154,7 +156,7 @@ pub enum StaticsError {
         expected: usize,
     },
     /// A non-finite number where a finite one is needed.
-    #[error("{what} is not finite ({value}) at index {index}")]
+    #[error("{what} is not finite ({value}) at index {index}", value = Short(*value))]
     NotFinite {
         /// Which input.
         what: &'static str,
@@ -164,7 +166,7 @@ pub enum StaticsError {
         value: f64,
     },
     /// A setting or a model parameter outside its range (`expected` says the range).
-    #[error("{what} = {value} is invalid: expected {expected}")]
+    #[error("{what} = {value} is invalid: expected {expected}", value = Short(*value))]
     InvalidValue {
         /// What the value is (the name of the input or quantity).
         what: &'static str,
@@ -172,6 +174,18 @@ pub enum StaticsError {
         value: f64,
         /// What it must be.
         expected: &'static str,
+    },
+    /// A field of an options struct outside its range ([`crate::validate::Validate`]).
+    #[error("{options}.{name} = {} is invalid: it must be {rule}", Short(*value))]
+    InvalidOption {
+        /// The options struct (`NewtonOptions`, `RelaxOptions`, `ModeOptions`, `AntikinkOptions`).
+        options: &'static str,
+        /// The field.
+        name: &'static str,
+        /// The value given.
+        value: f64,
+        /// The rule it breaks, in words.
+        rule: &'static str,
     },
     /// A count larger than the analysis accepts (its result would not fit in memory).
     #[error("{what} = {value} is too large: at most {max}")]
@@ -183,4 +197,10 @@ pub enum StaticsError {
         /// The most allowed.
         max: usize,
     },
+}
+
+impl From<crate::validate::InvalidOption> for StaticsError {
+    fn from(e: crate::validate::InvalidOption) -> Self {
+        StaticsError::InvalidOption { options: e.options, name: e.field, value: e.value, rule: e.rule }
+    }
 }

@@ -28,6 +28,7 @@ use super::walls::domain_walls;
 use crate::linalg::{self, LinalgError, SymmetricMatrix};
 use crate::math;
 use crate::model::{ChainModel, Stiffness};
+use crate::validate::{Fields, Validate};
 
 /// Where a mode lives.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -105,13 +106,25 @@ impl Default for ModeOptions {
     }
 }
 
-impl ModeOptions {
-    /// Every setting finite and in range.
-    fn check(&self) -> Result<(), StaticsError> {
-        validate::non_negative("ModeOptions::cluster", self.cluster)?;
-        validate::non_negative("ModeOptions::localised_fraction", self.localised_fraction)?;
-        validate::non_negative("ModeOptions::localised_widths", self.localised_widths)?;
-        validate::non_negative("ModeOptions::reach", self.reach)?;
+impl Validate for ModeOptions {
+    type Error = StaticsError;
+
+    /// `cluster`, `localised_widths` and `reach` finite and `>= 0`, `localised_fraction` in
+    /// `[0, 1]`. `count` takes any value (`Some(0)` asks for no mode; more than the chain's
+    /// degrees of freedom gives them all, within the size bound of [`modes`]).
+    fn validate(&self) -> Result<(), StaticsError> {
+        // No `..`: a field added here does not compile until it is checked.
+        let Self { count: _, cluster, localised_fraction, localised_widths, reach, hold_ends: _ } = *self;
+        let fields = Fields("ModeOptions");
+        fields.non_negative("cluster", cluster)?;
+        fields.rule(
+            "localised_fraction",
+            localised_fraction,
+            (0.0..=1.0).contains(&localised_fraction),
+            "in [0, 1] (a fraction of the rotors)",
+        )?;
+        fields.non_negative("localised_widths", localised_widths)?;
+        fields.non_negative("reach", reach)?;
         Ok(())
     }
 }
@@ -193,7 +206,7 @@ pub fn normal_modes_with<M: Stiffness + ?Sized>(
     stop: &mut dyn FnMut() -> bool,
 ) -> Result<Vec<Mode>, StaticsError> {
     validate::angles(model, x)?;
-    options.check()?;
+    options.validate()?;
     let n = model.dof_count();
     let k = SymmetricMatrix::tangent_stiffness(model, x)?;
     k.check_finite()?;

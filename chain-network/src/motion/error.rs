@@ -1,6 +1,7 @@
 //! [`MotionError`]: a run of [`crate::motion`] that cannot be set up or went wrong.
 
 use crate::error::NetworkError;
+use chain_core::geometry::Short;
 use chain_core::integrate::IntegrateError;
 
 /// A demonstration run that cannot be set up or did not give its measurement.
@@ -8,7 +9,7 @@ use chain_core::integrate::IntegrateError;
 #[non_exhaustive]
 pub enum MotionError {
     /// A parameter out of its range (the name, the value, the rule).
-    #[error("{name} = {value}: {rule}")]
+    #[error("{name} = {}: {rule}", Short(*value))]
     Parameter {
         /// The parameter.
         name: &'static str,
@@ -17,6 +18,10 @@ pub enum MotionError {
         /// What it must be.
         rule: &'static str,
     },
+    /// A field of an options struct ([`super::transition::BistableChain`]) outside its range
+    /// ([`chain_core::Validate`]).
+    #[error(transparent)]
+    InvalidOption(#[from] chain_core::validate::InvalidOption),
     /// The demonstration's cell is not valid.
     #[error(transparent)]
     Cell(#[from] crate::error::CellError),

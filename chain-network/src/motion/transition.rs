@@ -39,6 +39,7 @@ use crate::cell::{BondLaw, Cell, Polynomial};
 use crate::model::NetworkModel;
 use crate::patch::{Boundary, Patch};
 use chain_core::integrate::{Phase, Verlet};
+use chain_core::validate::{Fields, Validate};
 
 /// The chain's parameters. Units: the spacing `a = 1`, the mass `M = 1`; time in
 /// `sqrt(M / k)` of a unit spring.
@@ -121,52 +122,54 @@ impl TransitionWave {
 /// length; the elongation, not the length, enters the law).
 const GROUND_OFFSET: f64 = 0.5;
 
-impl BistableChain {
-    fn check(&self) -> Result<(), MotionError> {
-        let positive = |name, value: f64| {
-            if value.is_finite() && value > 0.0 {
-                Ok(())
-            } else {
-                Err(MotionError::Parameter { name, value, rule: "must be finite and > 0" })
-            }
-        };
-        positive("coupling", self.coupling)?;
-        positive("on_site", self.on_site)?;
-        positive("well", self.well)?;
-        positive("barrier", self.barrier)?;
-        positive("damping", self.damping)?;
-        positive("duration", self.duration)?;
-        if self.barrier >= self.well / 2.0 {
-            return Err(MotionError::Parameter {
-                name: "barrier",
-                value: self.barrier,
-                rule: "must be below well / 2, so the well at `well` is the deeper one",
-            });
-        }
-        if !(self.fit_from >= 0.0 && self.fit_from < self.duration) {
-            return Err(MotionError::Parameter {
-                name: "fit_from",
-                value: self.fit_from,
-                rule: "in [0, duration)",
-            });
-        }
-        if self.sites < 8 || self.launch_sites == 0 || self.launch_sites >= self.sites / 2 {
-            return Err(MotionError::Parameter {
-                name: "sites",
-                value: self.sites as f64,
-                rule: "at least 8, and more than twice launch_sites (> 0)",
-            });
-        }
-        if self.samples < 2 {
-            return Err(MotionError::Parameter {
-                name: "samples",
-                value: self.samples as f64,
-                rule: "at least 2",
-            });
-        }
+impl Validate for BistableChain {
+    type Error = MotionError;
+
+    /// `coupling`, `on_site`, `well`, `barrier`, `damping` and `duration` positive and finite,
+    /// `barrier < well / 2` (the well at `well` is the deeper one), `0 <= fit_from < duration`,
+    /// `sites >= 8`, `1 <= launch_sites < sites / 2` (the front needs room to run), `samples >= 2`
+    /// (a speed needs two times).
+    fn validate(&self) -> Result<(), MotionError> {
+        // No `..`: a field added here does not compile until it is checked.
+        let Self {
+            sites,
+            coupling,
+            on_site,
+            barrier,
+            well,
+            damping,
+            duration,
+            samples,
+            launch_sites,
+            fit_from,
+        } = *self;
+        let fields = Fields("BistableChain");
+        fields.positive("coupling", coupling)?;
+        fields.positive("on_site", on_site)?;
+        fields.positive("well", well)?;
+        fields.positive("barrier", barrier)?;
+        fields.rule(
+            "barrier",
+            barrier,
+            barrier < well / 2.0,
+            "below well / 2, so the well at `well` is the deeper one",
+        )?;
+        fields.positive("damping", damping)?;
+        fields.positive("duration", duration)?;
+        fields.rule("fit_from", fit_from, fit_from >= 0.0 && fit_from < duration, "in [0, duration)")?;
+        fields.rule("sites", sites as f64, sites >= 8, "at least 8")?;
+        fields.rule(
+            "launch_sites",
+            launch_sites as f64,
+            launch_sites >= 1 && launch_sites < sites / 2,
+            "at least 1 and below sites / 2",
+        )?;
+        fields.rule("samples", samples as f64, samples >= 2, "at least 2")?;
         Ok(())
     }
+}
 
+impl BistableChain {
     /// The unit cell: the mass `m` at the origin, its ground `g` `GROUND_OFFSET` behind it,
     /// the harmonic coupling `m -> m` to the next cell and the bistable bond `g -> m`.
     pub fn cell(&self) -> Result<Cell, MotionError> {
@@ -210,7 +213,7 @@ impl BistableChain {
     /// A parameter out of range, a failed integration, or a front not found in at least a
     /// quarter of the samples of the fitting window ([`MotionError::NoFront`]).
     pub fn run(&self) -> Result<TransitionWave, MotionError> {
-        self.check()?;
+        self.validate()?;
         let cell = self.cell()?;
         let patch = Patch::new(&cell, [self.sites, 1], Boundary::Free)?;
         let model = NetworkModel::builder(&patch).build()?;

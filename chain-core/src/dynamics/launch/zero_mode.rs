@@ -95,7 +95,12 @@ pub fn kink_launch_velocities<T: Real, M: ChainGeometry<T> + ?Sized, const N: us
     v0: T,
 ) -> Result<[T; N], DynamicsError> {
     if !v0.is_finite() {
-        return Err(DynamicsError::InvalidSetup { name: "v0", value: v0.widen(), rule: "finite" });
+        return Err(DynamicsError::InvalidSetup {
+            options: "kink_launch",
+            name: "v0",
+            value: v0.widen(),
+            rule: "finite",
+        });
     }
     let e = kink_translation_mode(model, theta)?;
     Ok(core::array::from_fn(|i| v0 * e[i] / model.rotor_length(i)))

@@ -14,10 +14,13 @@ use alloc::format;
 use alloc::string::String;
 use core::fmt;
 
+use chain_geometry::Short;
+
 use super::{ScatterSetup, Scattering, scatter};
 use crate::dynamics::DynamicsError;
 use crate::integrate::Method;
 use crate::model::ChainModel;
+use crate::validate::{Fields, InvalidOption, Validate};
 
 /// The default energy tolerance: 5e-3 of the run's initial energy.
 ///
@@ -45,6 +48,16 @@ impl Default for EnergyBudget {
     }
 }
 
+impl Validate for EnergyBudget {
+    type Error = BudgetError;
+
+    /// `tolerance` positive and finite (`recompute` is a choice).
+    fn validate(&self) -> Result<(), BudgetError> {
+        let Self { tolerance, recompute: _ } = *self;
+        Ok(Fields("EnergyBudget").positive("tolerance", tolerance)?)
+    }
+}
+
 /// A scattering run that met its energy budget.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Budgeted {
@@ -62,6 +75,13 @@ pub struct Budgeted {
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 #[non_exhaustive]
 pub enum BudgetError {
+    /// A field of the [`EnergyBudget`] outside its range.
+    #[error(transparent)]
+    InvalidOption(#[from] InvalidOption),
+    /// The setup does not describe an experiment on this chain ([`ScatterSetup::check`]):
+    /// refused before any run, so no integrator is tried, nor recomputed.
+    #[error("the setup: {0}")]
+    Setup(DynamicsError),
     /// The run of `integrator` failed: the launch, or the integration (for example its own
     /// 10 % energy limit, or a state that is not finite).
     #[error("{integrator}: {source}")]
@@ -94,7 +114,7 @@ pub enum BudgetError {
     /// The tracker's charge check failed: rotors spun through `|theta| = pi`, so the walls cannot
     /// be read from the signs of the angles. `time` is the first output where it failed.
     #[error(
-        "the rotors spun through |theta| = pi at t = {time} ({outputs} outputs): walls cannot be read from signs"
+        "the rotors spun through |theta| = pi at t = {time} ({outputs} outputs): walls cannot be read from signs", time = Short(*time)
     )]
     SpunThroughPi {
         /// The first output where it failed, in `t`.
@@ -152,6 +172,8 @@ pub fn scatter_within_budget<M: ChainModel + ?Sized>(
     setup: &ScatterSetup,
     budget: &EnergyBudget,
 ) -> Result<Budgeted, BudgetError> {
+    budget.validate()?;
+    setup.check(model.rotor_count()).map_err(BudgetError::Setup)?;
     let first = setup.run.method;
     let run = |method: Method| -> Result<Scattering, BudgetError> {
         let mut setup = *setup;

@@ -27,6 +27,7 @@ use super::run::{Run, RunOptions, propagate};
 use super::track::Snapshot;
 use crate::model::ChainModel;
 use crate::statics::walls::Charge;
+use crate::validate::{Fields, Validate};
 
 pub use budget::{
     BudgetError, Budgeted, CrossChecked, EnergyBudget, Unresolved, cross_checked, scatter_within_budget,
@@ -285,87 +286,20 @@ impl ScatterSetup {
     }
 
     /// Whether the setup describes an experiment on a chain of `n` rotors (what [`scatter`]
-    /// checks first): the impurity one of its springs, every window and distance finite and of
-    /// its sign, the start on the chain, farther than `edge_margin` from either end (nearer, the
+    /// checks first): every field in its range ([`Validate::validate`]), the impurity one of its
+    /// springs, the start on the chain, farther than `edge_margin` from either end (nearer, the
     /// launched wall would count as having reached that end at once), the impurity's range
     /// (`reach`) clear of the end zones, and the start beyond that range on the side the defect
     /// is launched from (otherwise no outcome would mean anything).
     pub fn check(&self, n: usize) -> Result<(), DynamicsError> {
-        // Every field is named here, without `..`: a field added to the setup does not compile
-        // until it is given its check below (or said to need none, as the enums and the count).
-        let Self {
-            charge: _,
-            v0,
-            impurity: _,
-            start: _,
-            direction: _,
-            reach: _,
-            clear,
-            edge_margin: _,
-            persistence: _,
-            progress: _,
-            trap_time: _,
-            trap_crossings: _,
-            turns: _,
-            turn_band: _,
-            entry_window: _,
-            cluster_gap: _,
-            pair_age: _,
-            pair_extent: _,
-            break_time: _,
-            grace: _,
-            max_jump: _,
-            confirm: _,
-            watch: _,
-            run: _,
-        } = *self;
-        if !(v0 >= 0.0 && v0.is_finite()) {
-            return Err(DynamicsError::InvalidSetup {
-                name: "v0",
-                value: v0,
-                rule: "non-negative and finite",
-            });
-        }
+        self.validate()?;
         if self.impurity >= n.saturating_sub(1) {
             return Err(DynamicsError::NoSuchSpring { spring: self.impurity, springs: n.saturating_sub(1) });
-        }
-        let times = [
-            ("persistence", self.persistence),
-            ("progress", self.progress),
-            ("trap_time", self.trap_time),
-            ("trap_crossings", self.trap_crossings),
-            ("turn_band", self.turn_band),
-            ("entry_window", self.entry_window),
-            ("pair_age", self.pair_age),
-            ("pair_extent", self.pair_extent),
-            ("grace", self.grace),
-            ("break_time", self.break_time),
-            ("confirm", self.confirm),
-            ("watch", self.watch),
-            ("edge_margin", self.edge_margin),
-        ];
-        for (name, value) in times {
-            if !(value >= 0.0 && value.is_finite()) {
-                return Err(DynamicsError::InvalidSetup { name, value, rule: "non-negative and finite" });
-            }
-        }
-        for (name, value) in
-            [("reach", self.reach), ("max_jump", self.max_jump), ("cluster_gap", self.cluster_gap)]
-        {
-            if !(value > 0.0 && value.is_finite()) {
-                return Err(DynamicsError::InvalidSetup { name, value, rule: "positive and finite" });
-            }
-        }
-        if !(clear >= self.reach && clear.is_finite()) {
-            return Err(DynamicsError::InvalidSetup {
-                name: "clear",
-                value: clear,
-                rule: "finite and at least reach (a wall leaves the impurity's range before it is clear of it)",
-            });
         }
         let last = n.saturating_sub(1) as f64;
         if !(self.start > self.edge_margin && self.start < last - self.edge_margin) {
             return Err(DynamicsError::InvalidSetup {
+                options: "ScatterSetup",
                 name: "start",
                 value: self.start,
                 rule: "a position on the chain, farther than edge_margin from either end",
@@ -377,6 +311,7 @@ impl ScatterSetup {
         let centre = self.impurity as f64 + 0.5;
         if !(centre - self.reach > self.edge_margin && centre + self.reach < last - self.edge_margin) {
             return Err(DynamicsError::InvalidSetup {
+                options: "ScatterSetup",
                 name: "impurity",
                 value: self.impurity as f64,
                 rule: "a spring whose range (reach) lies clear of the end zones (edge_margin)",
@@ -389,12 +324,84 @@ impl ScatterSetup {
         // `start` and `reach` are finite here (checked above), so `ahead` is a number.
         if ahead <= self.reach {
             return Err(DynamicsError::InvalidSetup {
+                options: "ScatterSetup",
                 name: "start",
                 value: self.start,
                 rule: "farther than reach from the impurity, on the side the defect is launched from",
             });
         }
         Ok(())
+    }
+}
+
+impl Validate for ScatterSetup {
+    type Error = DynamicsError;
+
+    /// Every field in its range, whatever the chain: `v0`, the windows and distances finite and
+    /// `>= 0`, `reach`, `max_jump` and `cluster_gap` `> 0`, `clear >= reach`, `start` finite,
+    /// the run's settings ([`RunOptions`]'s). Where the setup lies on a chain is
+    /// [`ScatterSetup::check`]'s.
+    fn validate(&self) -> Result<(), DynamicsError> {
+        // Every field is named here, without `..`: a field added to the setup does not compile
+        // until it is given its check below (or said to need none, as the enums).
+        let Self {
+            charge: _,
+            v0,
+            impurity: _,
+            start,
+            direction: _,
+            reach,
+            clear,
+            edge_margin,
+            persistence,
+            progress,
+            trap_time,
+            trap_crossings,
+            turns: _,
+            turn_band,
+            entry_window,
+            cluster_gap,
+            pair_age,
+            pair_extent,
+            break_time,
+            grace,
+            max_jump,
+            confirm,
+            watch,
+            run,
+        } = *self;
+        // `impurity` is any spring index and `turns` any count: whether the chain has the spring
+        // is `check`'s, and 0 turns means a wall is trapped after `trap_time` without turning.
+        let fields = Fields("ScatterSetup");
+        fields.non_negative("v0", v0)?;
+        fields.finite("start", start)?;
+        for (name, value) in [
+            ("edge_margin", edge_margin),
+            ("persistence", persistence),
+            ("progress", progress),
+            ("trap_time", trap_time),
+            ("trap_crossings", trap_crossings),
+            ("turn_band", turn_band),
+            ("entry_window", entry_window),
+            ("pair_age", pair_age),
+            ("pair_extent", pair_extent),
+            ("break_time", break_time),
+            ("grace", grace),
+            ("confirm", confirm),
+            ("watch", watch),
+        ] {
+            fields.non_negative(name, value)?;
+        }
+        for (name, value) in [("reach", reach), ("max_jump", max_jump), ("cluster_gap", cluster_gap)] {
+            fields.positive(name, value)?;
+        }
+        fields.rule(
+            "clear",
+            clear,
+            clear >= reach && clear.is_finite(),
+            "finite and at least reach (a wall leaves the impurity's range before it is clear of it)",
+        )?;
+        Ok(run.validate()?)
     }
 }
 

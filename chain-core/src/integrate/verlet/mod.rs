@@ -122,7 +122,7 @@ impl<T: Real, S: Storage<T>> Verlet<T, S> {
         track_potential: bool,
     ) -> Result<Self, IntegrateError> {
         state.check(model)?;
-        check_option("dt", dt.widen(), dt > T::ZERO && dt.is_finite(), "positive and finite")?;
+        check_option("Verlet", "dt", dt.widen(), dt > T::ZERO && dt.is_finite(), "positive and finite")?;
         let n = model.dof_count();
         let mut half_kick = S::filled(n, T::ZERO).ok_or(IntegrateError::WrongLength {
             what: "the stepper's storage",
@@ -150,6 +150,7 @@ impl<T: Real, S: Storage<T>> Verlet<T, S> {
                 }
                 if let Some(&bad) = rates.iter().find(|r| !(**r >= T::ZERO && r.is_finite())) {
                     return Err(IntegrateError::InvalidOption {
+                        options: "Verlet::damped",
                         name: "damping",
                         value: bad.widen(),
                         rule: "non-negative and finite",

@@ -8,9 +8,10 @@ use super::Verlet;
 use crate::integrate::bound::omega_bound;
 use crate::integrate::{
     DEFAULT_ENERGY_LIMIT, Flow, IntegrateError, Integrator, Monitor, Report, Schedule, Sponge, State,
-    check_option, check_positive, damping_rates, step_count,
+    check_energy_limit, check_option, check_positive, damping_rates, step_count,
 };
 use crate::model::{Potential, Stiffness};
+use crate::validate::{Fields, Validate};
 
 /// Settings of [`verlet`]. There is no sensible default step: it depends on the stiffness
 /// (the fastest phonon, `omega_max ~ sqrt(k / M)`); use [`VerletOptions::stable_for`] or
@@ -65,7 +66,13 @@ impl VerletOptions {
         x: &[f64],
         safety: f64,
     ) -> Result<Self, IntegrateError> {
-        check_option("safety", safety, safety > 0.0 && safety <= 1.0, "in (0, 1]")?;
+        check_option(
+            "VerletOptions::stable_for",
+            "safety",
+            safety,
+            safety > 0.0 && safety <= 1.0,
+            "in (0, 1]",
+        )?;
         Ok(Self::new(safety * 2.0 / omega_bound(model, x)?.omega))
     }
 }
@@ -88,12 +95,10 @@ pub fn verlet<M: Potential + ?Sized>(
     observer: &mut dyn FnMut(&State) -> Flow,
 ) -> Result<Report, IntegrateError> {
     state.check(model)?;
-    check_positive("dt", options.dt)?;
-    check_option("output_every", output_every as f64, output_every > 0, "at least 1")?;
+    options.validate()?;
+    Fields("verlet").at_least_one("output_every", output_every as u64)?;
     let rates = damping_rates(model.dof_count(), options.damping, options.sponge)?;
-    if !t_end.is_finite() {
-        return Err(IntegrateError::InvalidOption { name: "t_end", value: t_end, rule: "finite" });
-    }
+    Fields("verlet").finite("t_end", t_end)?;
     if t_end < state.time {
         return Err(IntegrateError::EndBeforeStart { start: state.time, end: t_end });
     }
@@ -155,8 +160,8 @@ impl VerletOptions {
     /// [`IntegrateError::StepBudget`] before its first step; callers that check settings before
     /// any run (a phase diagram) ask the same question here.
     pub fn steps_per_output(&self, schedule: &Schedule) -> Result<f64, IntegrateError> {
-        check_positive("dt", self.dt)?;
-        check_positive("output_interval", schedule.interval)?;
+        self.validate()?;
+        check_positive("Schedule", "interval", schedule.interval)?;
         let per_output = libm::ceil(schedule.interval / self.dt - 1e-9).max(1.0);
         let total = per_output * schedule.count as f64;
         if per_output > self.max_steps as f64 || total > self.max_steps as f64 {
@@ -169,6 +174,25 @@ impl VerletOptions {
             });
         }
         Ok(per_output)
+    }
+}
+
+impl Validate for VerletOptions {
+    type Error = IntegrateError;
+
+    /// Every field in its range: `dt > 0` and finite, `damping >= 0` and finite, the sponge's,
+    /// `max_steps >= 1`, `energy_limit > 0` (infinite: no check).
+    fn validate(&self) -> Result<(), IntegrateError> {
+        // No `..`: a field added here does not compile until it is checked.
+        let Self { dt, damping, sponge, max_steps, energy_limit } = *self;
+        let fields = Fields("VerletOptions");
+        fields.positive("dt", dt)?;
+        fields.non_negative("damping", damping)?;
+        if let Some(sponge) = sponge {
+            sponge.validate()?;
+        }
+        fields.at_least_one("max_steps", max_steps)?;
+        check_energy_limit(fields, energy_limit)
     }
 }
 
