@@ -198,7 +198,7 @@ fn the_crossed_region_flips_its_polarization() {
 #[test]
 fn bad_parameters_are_refused_with_their_values() {
     let bad = |c: CoupledChains, name: &str| match c.run() {
-        Err(MotionError::Parameter { name: n, .. }) => assert_eq!(n, name),
+        Err(MotionError::InvalidOption(o)) => assert_eq!((o.options, o.field), ("CoupledChains", name)),
         other => panic!("{name}: {other:?}"),
     };
     let d = small(0.0);

@@ -1,6 +1,7 @@
 //! Every field of every public options struct of chain-network is validated (issue 37):
-//! [`WindingOptions`], [`Strip`] and [`BistableChain`], each destructured without `..` (a new
-//! field does not compile until it is listed here), each field given its invalid values, which
+//! [`WindingOptions`], [`Strip`], [`BistableChain`] and [`CoupledChains`], each destructured
+//! without `..` (a new field does not compile until it is listed here), each field given its
+//! invalid values, which
 //! must fail [`Validate::validate`] with the [`InvalidOption`] naming that struct, that field and
 //! that value, while the valid value they replace passes. Then the entry points refuse them the
 //! same way.
@@ -10,6 +11,7 @@ use chain_network::NetworkError;
 use chain_network::cell::ready;
 use chain_network::motion::MotionError;
 use chain_network::motion::transition::BistableChain;
+use chain_network::motion::wall::CoupledChains;
 use chain_network::strip::{DEFAULT_Q, MAX_STRIP_DOF, Strip, compatibility, strip_modes};
 use chain_network::winding::{WindingOptions, winding};
 
@@ -121,6 +123,41 @@ fn every_field_of_the_network_options_is_validated() {
         ..base
     });
     let _ = fit_from;
+
+    let base = CoupledChains::default();
+    let CoupledChains {
+        chains,
+        cells,
+        spacing,
+        rotor_length,
+        theta_bar,
+        row_spacing,
+        coupling,
+        speed,
+        start,
+        stagger,
+        damping,
+        duration,
+        frames,
+    } = base;
+    let o = "CoupledChains";
+    values(o, "chains", chains as f64, &[0.0, 1.0], |v| CoupledChains { chains: v as usize, ..base });
+    values(o, "cells", cells as f64, &[0.0, 7.0], |v| CoupledChains { cells: v as usize, ..base });
+    values(o, "spacing", spacing, POSITIVE, |v| CoupledChains { spacing: v, ..base });
+    values(o, "rotor_length", rotor_length, POSITIVE, |v| CoupledChains { rotor_length: v, ..base });
+    // In (0, pi/2).
+    let bad_tilt = &[NAN, INF, -0.3, 0.0, std::f64::consts::FRAC_PI_2, 2.0];
+    values(o, "theta_bar", theta_bar, bad_tilt, |v| CoupledChains { theta_bar: v, ..base });
+    values(o, "row_spacing", row_spacing, POSITIVE, |v| CoupledChains { row_spacing: v, ..base });
+    values(o, "coupling", coupling, POSITIVE, |v| CoupledChains { coupling: v, ..base });
+    values(o, "speed", speed, POSITIVE, |v| CoupledChains { speed: v, ..base });
+    values(o, "stagger", stagger, &[NAN, INF, -1.0, -TINY], |v| CoupledChains { stagger: v, ..base });
+    // Every chain's wall (start +- stagger / 2 = 0.5) in [4, 43] of the 48 rotors.
+    let bad_start = &[NAN, INF, -INF, 0.0, 4.4, 42.6, 100.0];
+    values(o, "start", start, bad_start, |v| CoupledChains { start: v, ..base });
+    values(o, "damping", damping, &[NAN, INF, -1.0, -TINY], |v| CoupledChains { damping: v, ..base });
+    values(o, "duration", duration, POSITIVE, |v| CoupledChains { duration: v, ..base });
+    values(o, "frames", frames as f64, &[0.0, 1.0], |v| CoupledChains { frames: v as usize, ..base });
 }
 
 #[test]
@@ -134,4 +171,6 @@ fn the_network_entry_points_refuse_an_invalid_struct() {
     let e = BistableChain { coupling: -TINY, ..BistableChain::default() }.run().unwrap_err();
     assert_names(&e, "BistableChain", "coupling", -TINY);
     assert!(e.to_string().contains("BistableChain.coupling = -5e-324 is invalid"), "{e}");
+    let e = CoupledChains { speed: 1e300, coupling: -TINY, ..CoupledChains::default() }.run().unwrap_err();
+    assert_names(&e, "CoupledChains", "coupling", -TINY);
 }

@@ -245,7 +245,7 @@ impl From<MotionError> for Failure {
     fn from(e: MotionError) -> Self {
         match e {
             MotionError::Network(e) => e.into(),
-            MotionError::Parameter { .. } | MotionError::InvalidOption(_) | MotionError::Cell(_) => {
+            MotionError::InvalidOption(_) | MotionError::Cell(_) => {
                 Failure { status: 2, message: e.to_string() }
             }
             _ => Failure { status: 1, message: e.to_string() },

@@ -129,7 +129,9 @@ pub enum StaticsError {
     /// antikink went, with its energy and `dE/dc` there (the sign says which way it kept going).
     #[error(
         "the antikink started at {start} slid out of [{lo}, {hi}] without reaching a minimum: at \
-         centre {reached} its energy {energy} still falls ({slope:e} per site)"
+         centre {reached} its energy {energy} still falls ({slope} per site)",
+        start = Short(*start), lo = Short(*lo), hi = Short(*hi), reached = Short(*reached),
+        energy = Short(*energy), slope = Short(*slope)
     )]
     DescentLeftRegion {
         /// The centre the descent started from.

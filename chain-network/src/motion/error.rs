@@ -8,17 +8,8 @@ use chain_core::integrate::IntegrateError;
 #[derive(Debug, thiserror::Error)]
 #[non_exhaustive]
 pub enum MotionError {
-    /// A parameter out of its range (the name, the value, the rule).
-    #[error("{name} = {}: {rule}", Short(*value))]
-    Parameter {
-        /// The parameter.
-        name: &'static str,
-        /// Its value.
-        value: f64,
-        /// What it must be.
-        rule: &'static str,
-    },
-    /// A field of an options struct ([`super::transition::BistableChain`]) outside its range
+    /// A field of an options struct ([`super::transition::BistableChain`],
+    /// [`super::wall::CoupledChains`]) outside its range
     /// ([`chain_core::Validate`]).
     #[error(transparent)]
     InvalidOption(#[from] chain_core::validate::InvalidOption),
@@ -36,7 +27,7 @@ pub enum MotionError {
     Launch(#[from] chain_core::dynamics::DynamicsError),
     /// A chain's wall was lost: at `time` the chain had `kinks` kinks, not one (the wall left
     /// the chain, or the launch's phonons broke it up).
-    #[error("chain {chain} has {kinks} kinks at t = {time}, not one: its wall was lost")]
+    #[error("chain {chain} has {kinks} kinks at t = {time}, not one: its wall was lost", time = Short(*time))]
     WallLost {
         /// The chain (row).
         chain: usize,
@@ -48,7 +39,8 @@ pub enum MotionError {
     /// The wall moved from `start` to `end` (rotors), less than the `2 margin` needed for a
     /// region it crossed that is `margin` away from both.
     #[error(
-        "the wall moved from rotor {start} to {end}, not beyond the margins of {margin} rotors around both"
+        "the wall moved from rotor {start} to {end}, not beyond the margins of {margin} rotors around both",
+        start = Short(*start), end = Short(*end), margin = Short(*margin)
     )]
     WallDidNotCross {
         /// Where it started (chains' mean).
@@ -61,7 +53,8 @@ pub enum MotionError {
     /// At `time` the wall stood within `margin` rotors of an end of the `rotors`-rotor chains:
     /// no region beside it is uniform.
     #[error(
-        "at t = {time} the wall at rotor {wall} is within {margin} rotors of an end of the {rotors}-rotor chains"
+        "at t = {time} the wall at rotor {wall} is within {margin} rotors of an end of the {rotors}-rotor chains",
+        time = Short(*time), wall = Short(*wall), margin = Short(*margin)
     )]
     WallNearEnd {
         /// When.

@@ -50,6 +50,7 @@ use crate::winding::{Winding, WindingOptions, winding};
 use chain_core::dynamics::launch::{Direction, launch};
 use chain_core::integrate::{Phase, Verlet};
 use chain_core::statics::walls::{Charge, domain_walls, wall_width};
+use chain_core::validate::{Fields, Validate};
 use chain_core::{Potential, SpringNetwork};
 use std::f64::consts::FRAC_PI_2;
 
@@ -193,47 +194,63 @@ fn spread(walls: &[f64]) -> f64 {
     hi - lo
 }
 
+impl Validate for CoupledChains {
+    type Error = MotionError;
+
+    /// `spacing`, `rotor_length`, `row_spacing`, `coupling`, `speed` and `duration` positive and
+    /// finite, `theta_bar` in `(0, pi/2)`, `damping` and `stagger` finite and `>= 0`, `chains >= 2`,
+    /// `cells >= 8`, `frames >= 2`, and every chain's wall (`start +- stagger / 2`) at least 4
+    /// rotors from an end.
+    fn validate(&self) -> Result<(), MotionError> {
+        // No `..`: a field added here does not compile until it is checked.
+        let Self {
+            chains,
+            cells,
+            spacing,
+            rotor_length,
+            theta_bar,
+            row_spacing,
+            coupling,
+            speed,
+            start,
+            stagger,
+            damping,
+            duration,
+            frames,
+        } = *self;
+        let fields = Fields("CoupledChains");
+        fields.rule("chains", chains as f64, chains >= 2, "at least 2")?;
+        fields.rule("cells", cells as f64, cells >= 8, "at least 8")?;
+        fields.positive("spacing", spacing)?;
+        fields.positive("rotor_length", rotor_length)?;
+        fields.rule(
+            "theta_bar",
+            theta_bar,
+            theta_bar > 0.0 && theta_bar < FRAC_PI_2,
+            "in (0, pi/2): the left side's tilt",
+        )?;
+        fields.positive("row_spacing", row_spacing)?;
+        fields.positive("coupling", coupling)?;
+        fields.positive("speed", speed)?;
+        fields.non_negative("stagger", stagger)?;
+        let n = 2.0 * cells as f64;
+        fields.rule(
+            "start",
+            start,
+            start - stagger / 2.0 >= 4.0 && start + stagger / 2.0 <= n - 5.0,
+            "such that every chain's wall (start +- stagger / 2) is at least 4 rotors from an end",
+        )?;
+        fields.non_negative("damping", damping)?;
+        fields.positive("duration", duration)?;
+        fields.rule("frames", frames as f64, frames >= 2, "at least 2")?;
+        Ok(())
+    }
+}
+
 impl CoupledChains {
     /// Rotors per chain.
     pub fn rotors(&self) -> usize {
         2 * self.cells
-    }
-
-    fn check(&self) -> Result<(), MotionError> {
-        let positive = |name, value: f64| {
-            if value.is_finite() && value > 0.0 {
-                Ok(())
-            } else {
-                Err(MotionError::Parameter { name, value, rule: "must be finite and > 0" })
-            }
-        };
-        positive("spacing", self.spacing)?;
-        positive("rotor_length", self.rotor_length)?;
-        positive("row_spacing", self.row_spacing)?;
-        positive("coupling", self.coupling)?;
-        positive("speed", self.speed)?;
-        positive("duration", self.duration)?;
-        let rule = |ok: bool, name, value: f64, rule| {
-            if ok { Ok(()) } else { Err(MotionError::Parameter { name, value, rule }) }
-        };
-        rule(
-            self.theta_bar > 0.0 && self.theta_bar < FRAC_PI_2,
-            "theta_bar",
-            self.theta_bar,
-            "in (0, pi/2): the left side's tilt",
-        )?;
-        rule(self.chains >= 2, "chains", self.chains as f64, "at least 2")?;
-        rule(self.cells >= 8, "cells", self.cells as f64, "at least 8")?;
-        rule(self.frames >= 2, "frames", self.frames as f64, "at least 2")?;
-        rule(self.damping.is_finite() && self.damping >= 0.0, "damping", self.damping, "finite and >= 0")?;
-        rule(self.stagger.is_finite() && self.stagger >= 0.0, "stagger", self.stagger, "finite and >= 0")?;
-        let n = self.rotors() as f64;
-        rule(
-            self.start - self.stagger / 2.0 >= 4.0 && self.start + self.stagger / 2.0 <= n - 5.0,
-            "start",
-            self.start,
-            "every chain's wall at least 4 rotors from an end",
-        )
     }
 
     /// The 2D cell at tilt `tilt`: the chain's cell (`up` at the origin, `down` at `(a, 0)`,
@@ -287,7 +304,7 @@ impl CoupledChains {
     /// ([`MotionError::WallDidNotCross`]), or a wall too near an end to leave a region beside
     /// it ([`MotionError::WallNearEnd`]).
     pub fn run(&self) -> Result<MovingWall, MotionError> {
-        self.check()?;
+        self.validate()?;
         let (n, rows) = (self.rotors(), self.chains);
         let cell = self.cell(self.theta_bar)?;
         let patch = Patch::new(&cell, [self.cells, rows], Boundary::Free)?;
