@@ -68,6 +68,21 @@ pub(crate) fn eigenpairs(
     target: Target,
     k: usize,
 ) -> Result<Vec<Eigenpair>, LinalgError> {
+    eigenpairs_with(a, norm, target, k, &mut || false)
+}
+
+/// [`eigenpairs`] with a stop question, asked before each block iteration (each `p` solves with
+/// the factors): a yes ends it with [`LinalgError::Stopped`].
+///
+/// # Errors
+/// As [`eigenpairs`], and `Stopped`.
+pub(crate) fn eigenpairs_with(
+    a: &Upper<'_>,
+    norm: f64,
+    target: Target,
+    k: usize,
+    stop: &mut dyn FnMut() -> bool,
+) -> Result<Vec<Eigenpair>, LinalgError> {
     let n = a.n;
     if k == 0 {
         return Ok(Vec::new());
@@ -94,7 +109,14 @@ pub(crate) fn eigenpairs(
     let mut ax = try_vec(n * p)?;
     ax.resize(n * p, 0.0);
     let mut worst = (0, f64::INFINITY);
-    for _ in 0..MAX_ITERATIONS {
+    for iteration in 0..MAX_ITERATIONS {
+        if stop() {
+            return Err(LinalgError::Stopped {
+                what: "subspace iterations",
+                done: iteration,
+                of: MAX_ITERATIONS,
+            });
+        }
         lblt.solve_in_place(&mut x, p)?;
         orthonormalise(&mut x, n, p);
         for j in 0..p {
