@@ -130,7 +130,7 @@ fn projector_distance(a: &[Vec<f64>], b: &[Vec<f64>]) -> f64 {
 }
 
 /// A stop question that answers yes ends the count with `Stopped`: at once, and on its third asking
-/// (the first subspace iteration, after both inertia counts).
+/// (the start of the first subspace iteration's Gram-Schmidt, after both inertia counts).
 #[test]
 fn a_stop_question_stops_the_sparse_count() {
     let kagome = ready::kagome();

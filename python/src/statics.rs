@@ -372,10 +372,19 @@ pub fn maxwell_calladine(
     tolerance: Option<f64>,
 ) -> PyResult<Counting> {
     let theta = chain.theta(theta)?;
+    count(py, &chain.chain, &theta, tolerance)
+}
+
+/// The Maxwell-Calladine count of any spring network (a chain, a network patch) at `x`, Ctrl-C
+/// answered between the iterations of its eigensolvers.
+pub fn count<M: rotor_chain::SpringNetwork + Sync + ?Sized>(
+    py: Python<'_>,
+    model: &M,
+    x: &[f64],
+    tolerance: Option<f64>,
+) -> PyResult<Counting> {
     let mut interrupt = Interrupt::default();
-    let c = py.detach(|| {
-        counting::maxwell_calladine_with(&chain.chain, &theta, tolerance, &mut || interrupt.pending())
-    });
+    let c = py.detach(|| counting::maxwell_calladine_with(model, x, tolerance, &mut || interrupt.pending()));
     interrupt.raise()?;
     let c = c.map_err(|e| errors::statics(py, &e))?;
     Ok(Counting {
@@ -384,8 +393,8 @@ pub fn maxwell_calladine(
         singular_values: array(py, c.singular_values.clone()),
         tolerance: c.tolerance,
         rank: c.rank,
-        zero_modes: rows(py, &c.zero_modes, chain.chain.rotor_count()),
-        self_stresses: rows(py, &c.self_stresses, chain.chain.spring_count()),
+        zero_modes: rows(py, &c.zero_modes, c.rotors),
+        self_stresses: rows(py, &c.self_stresses, c.springs),
         index: c.index(),
     })
 }
