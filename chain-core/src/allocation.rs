@@ -19,7 +19,7 @@ pub struct AllocationError {
 
 /// The bytes of `len` values of `T`, `usize::MAX` on overflow.
 pub fn bytes_of<T>(len: usize) -> usize {
-    len.checked_mul(core::mem::size_of::<T>()).unwrap_or(usize::MAX)
+    len.saturating_mul(core::mem::size_of::<T>())
 }
 
 /// An empty vector with room for exactly `len` values of `T`.
@@ -58,8 +58,9 @@ mod tests {
 
     #[test]
     fn a_size_beyond_isize_max_is_an_error_with_the_bytes() {
-        let err = try_vec::<f64>(usize::MAX / 4, "frames").unwrap_err();
-        assert_eq!(err, AllocationError { bytes: usize::MAX / 4 * 8, what: "frames" });
+        // 2^60 values of 8 bytes: 2^63 bytes, one more than isize::MAX.
+        let err = try_vec::<f64>(1 << 60, "frames").unwrap_err();
+        assert_eq!(err, AllocationError { bytes: 1 << 63, what: "frames" });
         let err = try_vec::<f64>(usize::MAX / 2, "frames").unwrap_err();
         assert_eq!(err.bytes, usize::MAX, "overflowing size");
         assert_eq!(err.to_string(), format!("cannot allocate {} bytes for frames", usize::MAX));

@@ -9,13 +9,11 @@ use rotor_chain::statics::counting;
 use rotor_chain::statics::modes::{self as md, ModeKind, ModeOptions};
 use rotor_chain::statics::walls;
 
-use crate::args::{AtMost, array, choice, rows};
+use crate::args::{AtMost, array, choice, try_rows};
 use crate::chain::Chain;
 use crate::dynamics::Interrupt;
 use crate::errors;
 use crate::pickle::{self, pickle_fields};
-use rotor_chain::ChainGeometry;
-use rotor_chain::SpringNetwork;
 
 fn ends(name: &str) -> PyResult<Ends> {
     choice("ends", name, &[("held", Ends::Held), ("free", Ends::Free)])
@@ -287,7 +285,7 @@ pub fn modes(
     Ok(Modes {
         frequencies: array(py, found.iter().map(|m| m.frequency).collect()),
         omega_squared: array(py, found.iter().map(|m| m.omega_squared).collect()),
-        vectors: rows(py, &shapes, n),
+        vectors: try_rows(py, &shapes, n, "the modes' vectors")?,
         positions: array(py, found.iter().map(|m| m.position).collect()),
         participation: array(py, found.iter().map(|m| m.participation).collect()),
         kinds: found
@@ -393,8 +391,8 @@ pub fn count<M: rotor_chain::SpringNetwork + Sync + ?Sized>(
         singular_values: array(py, c.singular_values.clone()),
         tolerance: c.tolerance,
         rank: c.rank,
-        zero_modes: rows(py, &c.zero_modes, c.rotors),
-        self_stresses: rows(py, &c.self_stresses, c.springs),
+        zero_modes: try_rows(py, &c.zero_modes, c.rotors, "the zero modes")?,
+        self_stresses: try_rows(py, &c.self_stresses, c.springs, "the states of self-stress")?,
         index: c.index(),
     })
 }
