@@ -262,7 +262,8 @@ pub mod __private {
         }
 
         /// The model of a `#[rotor_network]` struct with the kernels `K` its attribute derived:
-        /// the cell, the patch of `cells` and the overrides `(spring, k, l0)`. The attribute
+        /// the cell, the patch of `cells` and the overrides `(spring, k, l0)` and
+        /// `(cell, node, mass)`. The attribute
         /// checked the cell, the size against the dimension, the boundary's minimum, the patch
         /// bound and the overrides at compile time; what it cannot check (periodic images of a
         /// bond that meet once wrapped) panics here, at the first use, with the library's error.
@@ -272,6 +273,7 @@ pub mod __private {
             periodic: bool,
             mass: f64,
             springs: &[(usize, Option<f64>, Option<f64>)],
+            nodes: &[([usize; 2], usize, f64)],
         ) -> NetworkModel {
             let fail = |e: &dyn std::fmt::Display| -> ! { panic!("#[rotor_network]: {e}") };
             let cell: Cell = match source {
@@ -288,6 +290,9 @@ pub mod __private {
                 if let Some(l0) = l0 {
                     builder = builder.rest_length(p, l0);
                 }
+            }
+            for &(c, node, m) in nodes {
+                builder = builder.node_mass(c, node, m);
             }
             builder.build().unwrap_or_else(|e| fail(&e))
         }

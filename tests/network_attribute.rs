@@ -21,7 +21,9 @@ use test_support::random::SplitMix;
     boundary = "free",
     mass = 1.5,
     spring(7, k = 3.0, l0 = 0.55),
-    spring(20, k = 0.5)
+    spring(20, k = 0.5),
+    node((2, 3), "c", mass = 4.0),
+    node((0, 0), 0, mass = 0.25)
 )]
 struct KagomeHarmonic;
 
@@ -119,10 +121,19 @@ fn harmonic_attribute_is_the_runtime_model_bit_for_bit() {
         .spring_constant(7, 3.0)
         .rest_length(7, 0.55)
         .spring_constant(20, 0.5)
+        .node_mass([2, 3], 2, 4.0)
+        .node_mass([0, 0], 0, 0.25)
         .build()
         .unwrap();
     assert_eq!(KagomeHarmonic.reference(), runtime.reference());
     same_layouts(&KagomeHarmonic, &runtime);
+    // The node overrides reached the model: node "c" (the cell's third joint: its dof 4 and 5)
+    // of cell (2, 3), node 0 of cell (0, 0); every other node has `mass`.
+    for (c, j, m) in
+        [([2, 3], 4, 4.0), ([2, 3], 5, 4.0), ([0, 0], 0, 0.25), ([0, 0], 1, 0.25), ([2, 3], 3, 1.5)]
+    {
+        assert_eq!(KagomeHarmonic.inertia(patch.column(c, j)), m, "cell {c:?}, dof {j}");
+    }
     for seed in 0..3 {
         let x = disturbed(&runtime.reference(), 0.05, seed);
         let (a, b) = (outputs(&KagomeHarmonic, &x), outputs(&runtime, &x));

@@ -1,5 +1,6 @@
 //! Compile-time checks of `#[rotor_chain]` and `#[rotor_network]`: every rule has a compile-fail case whose `.stderr`
-//! snapshot shows the message at the offending key, and the pass cases compile and run.
+//! snapshot shows the message at the offending key. The pass cases are an ordinary test (`tests/pass.rs`),
+//! so that trybuild checks with `cargo check` only (no code generation for the dependencies).
 //! Regenerate the snapshots with `TRYBUILD=overwrite cargo test -p ui-tests --test ui`.
 
 // The name is unique in the workspace: `cargo xtask test` runs this test beside the others and
@@ -13,5 +14,4 @@ fn rotor_chain_compile_time_checks() {
     unsafe { std::env::set_var("ROTOR_NETWORK_MANIFEST_DIR", env!("CARGO_MANIFEST_DIR")) };
     let t = trybuild::TestCases::new();
     t.compile_fail("tests/ui/compile_fail/**/*.rs");
-    t.pass("tests/ui/pass/*.rs");
 }

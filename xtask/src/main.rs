@@ -14,8 +14,8 @@
 //!    - this process: `cargo test --workspace -- --exact --skip rotor_chain_compile_time_checks`
 //!      (every unit, integration and doc test except the one trybuild test, nothing left to
 //!      compile), streamed;
-//!    - a second thread: the trybuild test `ui-tests/tests/ui.rs` (compile-fail and pass
-//!      cases, which builds in its own target folder), run as cargo would run it, then the
+//!    - a second thread: the trybuild test `ui-tests/tests/ui.rs` (compile-fail cases, which
+//!      trybuild checks in its own target folder), run as cargo would run it, then the
 //!      Python half below; their output is kept and printed when the lane ends.
 //!
 //! The Python half: a virtual environment at `target/python/venv` (from `python3`, or `$PYTHON`),

@@ -16,7 +16,7 @@ use crate::attr::{
 use crate::ctxt::Ctxt;
 
 /// Every key the attribute accepts, for "did you mean" suggestions.
-pub const KEYS: [&str; 7] = ["cell", "ready", "cells", "boundary", "law", "mass", "spring"];
+pub const KEYS: [&str; 8] = ["cell", "ready", "cells", "boundary", "law", "mass", "spring", "node"];
 
 /// `spring(p, k = .., l0 = ..)`: the constant and rest length of the patch's bond `p`.
 #[derive(Clone)]
@@ -24,6 +24,26 @@ pub struct SpringOverride {
     pub index: Keyed<usize>,
     pub k: Option<Keyed<f64>>,
     pub l0: Option<Keyed<f64>>,
+    /// An argument failed to parse (its error explains the override).
+    pub inner_error: bool,
+}
+
+/// A node of the cell named by its index or its name in the cell file.
+#[derive(Clone)]
+pub enum NodeName {
+    Index(usize),
+    Name(String),
+}
+
+/// `node((i, j), node, mass = ..)`: the mass of one node of the patch, `node` (its index or name
+/// in the cell) in cell `(i, j)` (`i` alone in one dimension).
+#[derive(Clone)]
+pub struct NodeOverride {
+    /// The `node` key, for errors about the override as a whole.
+    pub key: Ident,
+    pub cell: Keyed<Vec<usize>>,
+    pub node: Keyed<NodeName>,
+    pub mass: Option<Keyed<f64>>,
     /// An argument failed to parse (its error explains the override).
     pub inner_error: bool,
 }
@@ -43,6 +63,7 @@ pub struct Spec {
     /// `mass = ..`: every node's mass.
     pub mass: Option<Keyed<f64>>,
     pub springs: Vec<SpringOverride>,
+    pub nodes: Vec<NodeOverride>,
     /// Tokens of the whole attribute, for errors about missing keys.
     pub tokens: TokenStream,
     /// Every key the user wrote or evidently meant: no "missing" error for these.
@@ -130,6 +151,7 @@ pub fn parse(cx: &Ctxt, attr: TokenStream) -> Spec {
         law: None,
         mass: None,
         springs: Vec::new(),
+        nodes: Vec::new(),
         tokens: attr.clone(),
         seen: BTreeSet::new(),
     };
@@ -164,9 +186,13 @@ pub fn parse(cx: &Ctxt, attr: TokenStream) -> Spec {
             [TokenTree::Group(args)] if args.delimiter() == Delimiter::Parenthesis && name == "spring" => {
                 parse_spring(cx, &mut spec, key, args.stream())
             }
+            [TokenTree::Group(args)] if args.delimiter() == Delimiter::Parenthesis && name == "node" => {
+                parse_node(cx, &mut spec, key, args.stream())
+            }
             [] if name == "spring" => {
                 cx.error_spanned_by(&key, "`spring` takes arguments: `spring(index, k = ..)`")
             }
+            [] if name == "node" => cx.error_spanned_by(&key, NODE_FORM),
             _ => cx.error_spanned_by(&key, format!("`{name}` needs a value: `{name} = ..`")),
         }
     }
@@ -204,8 +230,88 @@ fn parse_name_value(cx: &Ctxt, spec: &mut Spec, key: Ident, value: &[TokenTree])
                 set_once(cx, &mut spec.mass, Keyed { key, value: m, tokens }, "");
             }
         }
+        "node" => cx.error_spanned_by(&key, NODE_FORM),
         _ => cx.error_spanned_by(&key, "`spring` takes arguments: `spring(index, k = ..)`"),
     }
+}
+
+/// How `node(..)` is written, for its errors.
+const NODE_FORM: &str =
+    "`node` takes arguments: `node((i, j), \"name\" or index, mass = ..)`, the cell and the node in it";
+
+/// The cell position of `node(..)`: `(i, j)`, `(i)` or `i`.
+fn parse_position(cx: &Ctxt, tokens: &[TokenTree]) -> Option<Vec<usize>> {
+    let tokens = unwrap_invisible(tokens.to_vec());
+    let entries = match tokens.as_slice() {
+        [TokenTree::Group(g)] if g.delimiter() == Delimiter::Parenthesis => split_commas(g.stream()),
+        [TokenTree::Literal(_)] => vec![tokens.clone()],
+        _ => Vec::new(),
+    };
+    if entries.is_empty() || entries.len() > 2 {
+        let stream: TokenStream = tokens.into_iter().collect();
+        cx.error_spanned_by(
+            stream,
+            format!("expected the node's cell, `(i, j)` or `i` in one dimension: {NODE_FORM}"),
+        );
+        return None;
+    }
+    let mut position = Vec::new();
+    for entry in &entries {
+        position.push(parse_usize(cx, entry, "a cell position")?);
+    }
+    Some(position)
+}
+
+/// `node((i, j), node, mass = ..)`.
+fn parse_node(cx: &Ctxt, spec: &mut Spec, key: Ident, args: TokenStream) {
+    let mut items = split_commas(args).into_iter();
+    let (Some(cell_tokens), Some(node_tokens)) = (items.next(), items.next()) else {
+        cx.error_spanned_by(&key, NODE_FORM);
+        return;
+    };
+    let mut inner_error = false;
+    let cell = parse_position(cx, &cell_tokens);
+    let node_tokens = unwrap_invisible(node_tokens);
+    let node = match node_tokens.as_slice() {
+        [TokenTree::Literal(lit)] => match syn::Lit::new(lit.clone()) {
+            syn::Lit::Str(s) => Some(NodeName::Name(s.value())),
+            _ => parse_usize(cx, &node_tokens, "a node index").map(NodeName::Index),
+        },
+        _ => {
+            let stream: TokenStream = node_tokens.iter().cloned().collect();
+            cx.error_spanned_by(
+                stream,
+                format!("expected the node's name (a string) or its index in the cell: {NODE_FORM}"),
+            );
+            None
+        }
+    };
+    let context = " in `node(..)`";
+    let mut mass = None;
+    for item in items {
+        let pkey = match item.as_slice() {
+            [TokenTree::Ident(pkey), TokenTree::Punct(eq), _, ..] if eq.as_char() == '=' => pkey.unraw(),
+            _ => {
+                cx.error_at(first_span(&item, key.span()), format!("expected `mass = value`{context}"));
+                inner_error = true;
+                continue;
+            }
+        };
+        if pkey != "mass" {
+            unknown_key(cx, &pkey, &["mass"], context);
+            inner_error = true;
+            continue;
+        }
+        let tokens: TokenStream = item[2..].iter().cloned().collect();
+        match parse_number(cx, &item[2..]) {
+            Some(v) => set_once(cx, &mut mass, Keyed { key: pkey, value: v, tokens }, context),
+            None => inner_error = true,
+        }
+    }
+    let (Some(cell), Some(node)) = (cell, node) else { return };
+    let cell = Keyed { key: key.clone(), value: cell, tokens: cell_tokens.into_iter().collect() };
+    let node = Keyed { key: key.clone(), value: node, tokens: node_tokens.into_iter().collect() };
+    spec.nodes.push(NodeOverride { key, cell, node, mass, inner_error });
 }
 
 /// `spring(p, k = .., l0 = ..)`.

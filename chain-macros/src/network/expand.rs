@@ -153,6 +153,10 @@ pub fn emit(item: &ItemStruct, model: &Model) -> TokenStream {
         let (k, l0) = (option(k), option(l0));
         quote!((#s, #k, #l0))
     });
+    let nodes = model.nodes.iter().map(|&([i, j], node, mass)| {
+        let mass = Literal::f64_suffixed(mass);
+        quote!(([#i, #j], #node, #mass))
+    });
     let impls = capability_impls(
         ident,
         &|trait_path, name, args| quote!(#trait_path::#name(__rotor_network_model(), #(#args),*)),
@@ -180,6 +184,7 @@ pub fn emit(item: &ItemStruct, model: &Model) -> TokenStream {
                         #periodic,
                         #mass,
                         &[#(#springs),*],
+                        &[#(#nodes),*],
                     )
                 })
             }

@@ -12,7 +12,7 @@ use chain_cell::Cell;
 use chain_cell::ready::{self, Lean};
 use proc_macro2::Span;
 
-use super::attr::Spec;
+use super::attr::{NodeName, NodeOverride, Spec};
 use crate::attr::suggest;
 use crate::ctxt::Ctxt;
 use crate::law::{self, Law};
@@ -50,6 +50,8 @@ pub struct Model {
     pub mass: f64,
     /// `(spring, k, l0)` overrides.
     pub springs: Vec<(usize, Option<f64>, Option<f64>)>,
+    /// `(cell, node index in the cell, mass)` overrides.
+    pub nodes: Vec<([usize; 2], usize, f64)>,
 }
 
 /// The number of bonds of a patch of `cells` of `cell`: every bond in every cell on a periodic
@@ -303,9 +305,90 @@ pub fn validate(cx: &Ctxt, spec: Spec) -> Option<Model> {
         }
         springs.push((p, k.flatten(), l0.flatten()));
     }
+    let nodes: Vec<_> =
+        spec.nodes.iter().map(|n| check_node(cx, n, read.as_ref().map(|(_, c)| c), cells)).collect();
     let (source, _) = read?;
     let (cells, periodic, mass) = (cells?, periodic?, mass?);
-    (law_ok && springs_ok).then_some(Model { source, cells, periodic, law, mass, springs })
+    let nodes: Option<Vec<_>> = nodes.into_iter().collect();
+    (law_ok && springs_ok).then_some(Model { source, cells, periodic, law, mass, springs, nodes: nodes? })
+}
+
+/// One `node(..)` override: its cell inside the patch, its node in the cell (by index or name),
+/// a positive mass. The override as `(cell, node index, mass)` if every check passed.
+fn check_node(
+    cx: &Ctxt,
+    o: &NodeOverride,
+    cell: Option<&Cell>,
+    cells: Option<[usize; 2]>,
+) -> Option<([usize; 2], usize, f64)> {
+    let mass = match &o.mass {
+        Some(m) => positive(cx, &m.tokens, "a node's mass", m.value),
+        None => {
+            if !o.inner_error {
+                cx.error_spanned_by(&o.key, "`node(..)` overrides nothing: give `mass = ..`");
+            }
+            None
+        }
+    };
+    let position = match (o.cell.value.as_slice(), cells) {
+        (&[i, j], Some(cells)) if cells[1] > 1 || j == 0 => Some([i, j]),
+        (&[i], Some(cells)) if cells[1] == 1 => Some([i, 0]),
+        (_, Some(cells)) => {
+            let want = if cells[1] == 1 { "`i` (one-dimensional)" } else { "`(i, j)` (two-dimensional)" };
+            cx.error_spanned_by(&o.cell.tokens, format!("a cell of this patch is written {want}"));
+            None
+        }
+        (_, None) => None,
+    };
+    let position = position.and_then(|[i, j]| {
+        let [n1, n2] = cells?;
+        if i < n1 && j < n2 {
+            Some([i, j])
+        } else {
+            cx.error_spanned_by(
+                &o.cell.tokens,
+                format!(
+                    "cell ({i}, {j}) is outside the patch of {n1} x {n2} cells (0 to {}, 0 to {})",
+                    n1 - 1,
+                    n2 - 1
+                ),
+            );
+            None
+        }
+    });
+    let index = cell.and_then(|cell| {
+        let names: Vec<&str> = cell.nodes().iter().map(|n| n.name.as_str()).collect();
+        match &o.node.value {
+            NodeName::Index(k) if *k < names.len() => Some(*k),
+            NodeName::Index(k) => {
+                cx.error_spanned_by(
+                    &o.node.tokens,
+                    format!(
+                        "node {k} does not exist: the cell's nodes are 0 to {} ({})",
+                        names.len() - 1,
+                        names.join(", ")
+                    ),
+                );
+                None
+            }
+            NodeName::Name(name) => match names.iter().position(|n| n == name) {
+                Some(k) => Some(k),
+                None => {
+                    let hint =
+                        suggest(name, &names).map_or_else(String::new, |s| format!(": did you mean `{s}`?"));
+                    cx.error_spanned_by(
+                        &o.node.tokens,
+                        format!("the cell has no node `{name}` (its nodes: {}){hint}", names.join(", ")),
+                    );
+                    None
+                }
+            },
+        }
+    });
+    if o.inner_error {
+        return None;
+    }
+    Some((position?, index?, mass?))
 }
 
 #[cfg(test)]

@@ -131,6 +131,26 @@ mod generic_struct {
     pub fn main() {}
 }
 
+mod node_overrides {
+    // A node's cell outside the patch, a node the cell does not have (by index and by name), a
+    // mass that is not positive, an override without a mass, an unknown key in it.
+    #[rotor_chain::rotor_network(
+        cell = "tests/ui/cells/square.toml",
+        cells = (4, 3),
+        boundary = "free",
+        node((4, 0), 0, mass = 2.0),
+        node((1, 1), 3, mass = 2.0),
+        node((1, 1), "bb", mass = 2.0),
+        node((1, 1), 0, mass = -1.0),
+        node((1, 1), 0),
+        node((1, 1), 0, mas = 2.0),
+        node(2, 0, mass = 1.0)
+    )]
+    pub struct Network;
+
+    pub fn main() {}
+}
+
 // The stubs keep the struct usable: no "trait not implemented" errors beside the attribute's.
 fn uses(network: &missing_file::Network) -> f64 {
     use rotor_chain::Potential;

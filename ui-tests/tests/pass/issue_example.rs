@@ -8,7 +8,7 @@ pub struct Chain {
     pub k_imp: f64,
 }
 
-fn main() {
+pub fn main() {
     let c = Chain { k_imp: 100.0 };
     c.check().expect("valid parameters");
     let theta = [0.58f64; 60];

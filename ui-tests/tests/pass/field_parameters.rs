@@ -8,7 +8,7 @@ pub struct Chain {
     pub aa: f64,
 }
 
-fn main() {
+pub fn main() {
     let ok = Chain {
         tb: 0.58,
         rr: 0.8,

@@ -5,7 +5,7 @@ use rotor_chain::prelude::*;
               law = k / (8.0 * l0 * l0) * (l * l - l0 * l0).powi(2))]
 pub struct Quartic;
 
-fn main() {
+pub fn main() {
     let c = Quartic;
     let rest = [0.58f64; 6];
     assert!(c.energy(&rest).abs() < 1e-9);

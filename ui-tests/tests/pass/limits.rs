@@ -8,7 +8,7 @@ pub struct Largest;
 #[rotor_chain(n = 49152, r = 0.8, theta_bar = 0.58, k = 1.0e4)]
 pub struct LongestGradient;
 
-fn main() {
+pub fn main() {
     assert_eq!(Largest::N, 100_000_000);
     assert_eq!(SpringNetwork::spring_count(&Largest), 99_999_999);
     Largest.check().unwrap();

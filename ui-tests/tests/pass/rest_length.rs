@@ -4,7 +4,7 @@ use rotor_chain::prelude::*;
 #[rotor_chain(n = 8, a = 1.0, r = 0.8, rest_length = 1.7, k = 1.0e4)]
 pub struct Chain;
 
-fn main() {
+pub fn main() {
     let c = Chain;
     c.check().expect("valid parameters");
     let tb = c.theta_bar();

@@ -4,7 +4,7 @@ use rotor_chain::prelude::*;
 #[rotor_chain(n = 300, r = 0.8, theta_bar = 0.58, k = 1.0e4, spring(150, k = 50.0))]
 pub struct Long;
 
-fn main() {
+pub fn main() {
     let c = Long;
     let theta = [0.58f64; 300];
     assert!(c.energy(&theta).abs() < 1e-9);

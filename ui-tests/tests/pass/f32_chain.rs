@@ -29,7 +29,7 @@ fn go() -> Result<(), rotor_chain::embedded::DynamicsError> {
     Ok(())
 }
 
-fn main() {
+pub fn main() {
     go().unwrap();
     let theta = [0.58f32; 6];
     let chain = Literal;

@@ -13,7 +13,7 @@ pub struct r#Unrolled {
     pub r#type: f64,
 }
 
-fn main() {
+pub fn main() {
     let looped = r#Chain { r#type: 1.0e4, k_imp: 50.0 };
     looped.check().unwrap();
     let reference = RuntimeChain::builder(300, 0.8, 1.0e4, 0.58).spring_constant(10, 50.0).build().unwrap();

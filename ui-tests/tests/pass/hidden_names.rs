@@ -19,7 +19,7 @@ mod inner {
     pub struct FooBar;
 }
 
-fn main() {
+pub fn main() {
     let mut theta = [0.58f64; 200];
     theta[100] = 0.2;
     let e = FooBar.energy(&theta);

@@ -23,7 +23,7 @@ fn total_force(chain: &impl ChainModel, theta: &[f64]) -> f64 {
     g.iter().sum()
 }
 
-fn main() {
+pub fn main() {
     let chain = Labelled { label: "impurity run".into(), runs: 3, k_imp: 2.0e4, notes: vec!["soft"] };
     chain.check().expect("valid");
     let copy = chain.clone();
