@@ -1,7 +1,7 @@
 //! The null spaces of a sparse rectangular matrix `C` (`m x n`, by rows): `dim ker C` and
 //! `dim ker C^T` by inertia counts of the Gram matrices `C^T C - tau I` and `C C^T - tau I`
 //! ([`lblt`](super::lblt), Sylvester's law: the eigenvalues below `tau` are the negative pivots),
-//! and bases of both by shift-invert block subspace iteration ([`eigen`](super::eigen)) on the
+//! and bases of both by shift-invert block subspace iteration ([`eigen`]) on the
 //! same Gram matrices. A network's Maxwell-Calladine count beyond the dense bound
 //! (`statics::counting`) runs here.
 //!
@@ -19,7 +19,7 @@
 //! `dim ker C - dim ker C^T = n - m` checks the two counts against each other.
 //!
 //! **Stopping.** A stop question is asked before each factorization and at every iteration of the
-//! subspace iteration ([`eigen::eigenpairs_with`](super::eigen::eigenpairs_with)).
+//! subspace iteration, per column of its `O(n p^2)` parts (`eigen::eigenpairs_with`).
 
 use alloc::vec::Vec;
 
