@@ -28,6 +28,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         NetworkModel::builder(&patch).build()?
     };
     let built = start.elapsed();
+    // The build's own peak (its transients: the per-spring laws, the runs' bucketing), before any
+    // Verlet state or gradient buffer exists.
+    let peak_built = peak_resident();
     let dof = model.dof_count();
     let mut x = model.reference();
     for (i, x) in x.iter_mut().enumerate() {
@@ -44,8 +47,13 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let heap = model.heap_bytes();
     println!("kagome {n} x {n}: {dof} dof, {} bonds, built in {built:.2?}", model.spring_count());
     println!("model heap {heap} B = {:.1} B per dof", heap as f64 / dof as f64);
-    if let Some(peak) = peak_resident() {
-        println!("peak resident {peak} B = {:.1} B per dof", peak as f64 / dof as f64);
+    if let (Some(built), Some(peak)) = (peak_built, peak_resident()) {
+        let per_dof = |b: usize| b as f64 / dof as f64;
+        println!(
+            "peak resident {peak} B = {:.1} B per dof (after the build: {built} B = {:.1} B per dof)",
+            per_dof(peak),
+            per_dof(built)
+        );
     }
     println!(
         "Verlet step {per_step:.2?} = {:.2} ns per dof; energy {e0:.6e} -> {e1:.6e}",

@@ -10,6 +10,7 @@
 //! network diagram [--x1 -0.2:0.2:41] [--x2 -0.2:0.2:41] [--x3 0.1] [--z 0] [--out DIR] [--shard I/N|slurm | --merge]
 //! network cell NAME [PARAMETERS...]     # a ready cell's TOML on stdout
 //! network motion transition [--sites 200] [--damping 0.5] [--duration 70] [--out DIR]
+//! network motion wall [--chains 6] [--cells 24] [--speed 0.05] [--duration 300] [--out DIR]
 //! ```
 //!
 //! Exit status: 0 done; 2 bad input (a cell file's problem names its key and line; bad sizes and
@@ -20,7 +21,7 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 use chain_paper::network::diagram::{DiagramParams, PolarizationPoint, compute_point, diagram_figure};
-use chain_paper::network::{bands_figure, cell_figure, transition_figure};
+use chain_paper::network::{bands_figure, cell_figure, transition_figure, wall_figure, write_gif};
 use chain_paper::{output, render};
 use chain_sweep::{Axis, Grid, Shard, SweepOptions, find_shards, merge_shards, read_results, run_sweep};
 use clap::{Parser, Subcommand, ValueEnum};
@@ -30,6 +31,7 @@ use rotor_chain::network::counts::{Method, counts};
 use rotor_chain::network::guest::guest_modes;
 use rotor_chain::network::motion::MotionError;
 use rotor_chain::network::motion::transition::BistableChain;
+use rotor_chain::network::motion::wall::CoupledChains;
 use rotor_chain::network::patch::{Boundary, Patch};
 use rotor_chain::network::strip::{DEFAULT_Q, Strip, strip_modes};
 use rotor_chain::network::winding::{WindingOptions, winding};
@@ -186,6 +188,26 @@ enum Motion {
         #[arg(long, default_value_t = BistableChain::default().duration)]
         duration: f64,
         /// Output folder of the figure.
+        #[arg(long, default_value = "network-output")]
+        out: PathBuf,
+    },
+    /// A domain wall between two polarizations moving through coupled Kane-Lubensky chains: the
+    /// counts and windings of each side before and after, four frames, and every frame as a GIF
+    /// (network-wall.gif).
+    Wall {
+        /// Chains (rows).
+        #[arg(long, default_value_t = CoupledChains::default().chains)]
+        chains: usize,
+        /// Cells per chain (two rotors each).
+        #[arg(long, default_value_t = CoupledChains::default().cells)]
+        cells: usize,
+        /// The launch's speed amplitude v0.
+        #[arg(long, default_value_t = CoupledChains::default().speed)]
+        speed: f64,
+        /// Length of the run.
+        #[arg(long, default_value_t = CoupledChains::default().duration)]
+        duration: f64,
+        /// Output folder of the figure and the GIF.
         #[arg(long, default_value = "network-output")]
         out: PathBuf,
     },
@@ -467,6 +489,36 @@ fn run(command: Command) -> Result<(), Failure> {
             );
             prepare(&out)?;
             write_figure(&figure, &out)?;
+        }
+        Command::Motion { demo: Motion::Wall { chains, cells, speed, duration, out } } => {
+            let c = CoupledChains { chains, cells, speed, duration, ..CoupledChains::default() };
+            let (figure, run) = wall_figure(&c)?;
+            let (b, a) = (&run.crossed_before, &run.crossed_after);
+            println!(
+                "wall speed {:.5} rotors per unit time (rms {:.3}); largest spread between chains {:.3} rotors",
+                run.fit.slope,
+                run.fit.rms_residual,
+                run.spread().into_iter().fold(0.0, f64::max)
+            );
+            for (when, r) in [("before", b), ("after", a)] {
+                let u = &r.uniform;
+                println!(
+                    "rotors {}..{} {when}: mean tilt {:+.4} (deviation {:.2e}), N0 = {}, S = {}, floppy mode at {:.2}, winding {}",
+                    r.from,
+                    r.to,
+                    r.mean_tilt,
+                    r.largest_deviation,
+                    u.counts.zero_modes,
+                    u.counts.self_stresses,
+                    u.floppy_mode_centre,
+                    u.winding.winding[0]
+                );
+            }
+            prepare(&out)?;
+            write_figure(&figure, &out)?;
+            let gif = out.join("network-wall.gif");
+            let bytes = write_gif(&c, &run, &gif, 150).map_err(|e| fail(1, e.to_string()))?;
+            println!("{} ({bytes} bytes)", gif.display());
         }
         Command::Cell { name, parameters } => {
             let cell = ready::by_name(&name, &parameters)?;

@@ -120,7 +120,7 @@ impl Group {
 /// the kernel's output count per bond type (joint-joint, joint-rotor, rotor-rotor), `$a` the law's
 /// argument counts (`LawKernels<A1, A2, A3>`).
 macro_rules! each_bond {
-    ($model:expr, $K:ty, [$a1:ident, $a2:ident, $a3:ident], $x:expr, $trig:expr, $f:ident, [$m1:literal, $m2:literal, $m3:literal], |$g:ident, $i:ident, $out:ident| $body:block) => {{
+    ($model:expr, $K:ty, [$a1:tt, $a2:tt, $a3:tt], $x:expr, $trig:expr, $f:ident, [$m1:literal, $m2:literal, $m3:literal], |$g:ident, $i:ident, $out:ident| $body:block) => {{
         use $crate::kernel::{BondFn, BondKernels, LawKernels};
         let model = $model;
         let (x, trig): (&[f64], &[[f64; 2]]) = ($x, $trig);

@@ -5,9 +5,11 @@ use super::NetworkModel;
 use super::bonds::{Group, Kind};
 use super::kernels::Kernels;
 use super::law::{IntoBondLaw, Kernel, kernel_of};
+use super::stencil::Stencil;
 use crate::cell::{BondLaw, NodeKind};
 use crate::error::NetworkError;
 use crate::patch::Patch;
+use std::collections::HashMap;
 use std::sync::OnceLock;
 
 /// A builder for a [`NetworkModel`]; see [`NetworkModel::builder`]. Overrides name a spring by
@@ -141,8 +143,9 @@ impl<'p, 'c> NetworkModelBuilder<'p, 'c> {
             }
         }
 
-        let mut laws: Vec<BondLaw> =
-            patch.bonds().iter().map(|pb| self.law.unwrap_or(cell.bonds()[pb.bond].law)).collect();
+        // Each spring's law, looked up rather than listed: a list would hold 48 B per spring
+        // during the build (a million-cell patch's peak).
+        let mut overrides: HashMap<usize, BondLaw> = HashMap::new();
         for &(p, law) in &self.spring_laws {
             if p >= springs_count {
                 return Err(NetworkError::Argument {
@@ -150,9 +153,15 @@ impl<'p, 'c> NetworkModelBuilder<'p, 'c> {
                     problem: format!("spring {p}: the patch has {springs_count} springs"),
                 });
             }
-            laws[p] = law;
+            overrides.insert(p, law);
         }
-        let (kernel, coefficients) = kernel_of(&laws)?;
+        let law_of = |p: usize| {
+            overrides
+                .get(&p)
+                .copied()
+                .unwrap_or_else(|| self.law.unwrap_or(cell.bonds()[patch.bonds()[p].bond].law))
+        };
+        let (kernel, coefficients) = kernel_of(springs_count, law_of)?;
 
         let dof = patch.dof();
         let mut inertia = vec![0.0; dof];
@@ -237,6 +246,7 @@ impl<'p, 'c> NetworkModelBuilder<'p, 'c> {
                 g.coefficients.push(*c);
             }
         }
+        let stencil = Stencil::new(&groups, cell.dof(), patch.cell_count(), |j| rotor_of[j] != u32::MAX);
         let kernels = self.kernels.unwrap_or_else(|| match kernel {
             Kernel::Harmonic => Kernels::of::<crate::kernel::harmonic::Law>(),
             Kernel::Quartic => Kernels::of::<crate::kernel::quartic::Law>(),
@@ -251,6 +261,7 @@ impl<'p, 'c> NetworkModelBuilder<'p, 'c> {
             rotors,
             springs,
             groups,
+            stencil,
             length_scale: cell.length_scale(),
             stiffness: OnceLock::new(),
             compatibility: OnceLock::new(),

@@ -47,27 +47,29 @@ impl IntoBondLaw for chain_core::Law {
     }
 }
 
-/// The kernel for springs of laws `laws` and, for the polynomial kernel, each spring's
-/// coefficients `c2 .. c6` (empty otherwise). Quartic bonds with other laws are refused: no one
-/// kernel evaluates both.
-pub(super) fn kernel_of(laws: &[BondLaw]) -> Result<(Kernel, Vec<[f64; 5]>), NetworkError> {
-    let quartic = laws.iter().position(|l| *l == BondLaw::Quartic);
-    let other = laws.iter().position(|l| *l != BondLaw::Quartic);
+/// The kernel for `springs` springs whose laws are `law(p)` and, for the polynomial kernel, each
+/// spring's coefficients `c2 .. c6` (empty otherwise). Quartic bonds with other laws are refused:
+/// no one kernel evaluates both.
+pub(super) fn kernel_of(
+    springs: usize,
+    law: impl Fn(usize) -> BondLaw,
+) -> Result<(Kernel, Vec<[f64; 5]>), NetworkError> {
+    let quartic = (0..springs).find(|&p| law(p) == BondLaw::Quartic);
+    let other = (0..springs).find(|&p| law(p) != BondLaw::Quartic);
     match (quartic, other) {
         (Some(q), Some(o)) => Err(NetworkError::Argument {
             what: "law",
             problem: format!(
                 "spring {q} is quartic and spring {o} {}: a model evaluates quartic bonds alone",
-                laws[o].name()
+                law(o).name()
             ),
         }),
         (Some(_), None) => Ok((Kernel::Quartic, Vec::new())),
-        _ if laws.iter().all(|l| *l == BondLaw::Harmonic) => Ok((Kernel::Harmonic, Vec::new())),
+        _ if (0..springs).all(|p| law(p) == BondLaw::Harmonic) => Ok((Kernel::Harmonic, Vec::new())),
         _ => {
-            let coefficients = laws
-                .iter()
-                .map(|law| match law {
-                    BondLaw::Polynomial(p) => p.coefficients,
+            let coefficients = (0..springs)
+                .map(|p| match law(p) {
+                    BondLaw::Polynomial(c) => c.coefficients,
                     _ => Polynomial::harmonic().coefficients,
                 })
                 .collect();

@@ -19,8 +19,9 @@
 //! from its joint end) into structs of arrays, and each group is evaluated with the generated
 //! kernels of [`crate::kernel`] (`bonds.rs`); every rotor's `sin_cos` is taken once per call.
 //! The energy and gradient (every step of a run or a relaxation) evaluate several bonds at once
-//! in vector lanes at the level chain-core's `simd` detects (`lanes.rs`). The passes are generic
-//! over the law's kernels and chosen when the model is built (`kernels.rs`).
+//! in vector lanes at the level chain-core's `simd` detects (`lanes.rs`), over runs of bonds whose
+//! endpoints are contiguous in a structure-of-arrays copy of the coordinates (`stencil.rs`). The
+//! passes are generic over the law's kernels and chosen when the model is built (`kernels.rs`).
 //! Spring `p` of the model is bond `p` of the patch (`Patch::bonds`).
 
 mod bonds;
@@ -29,6 +30,7 @@ mod chain;
 mod kernels;
 mod lanes;
 mod law;
+mod stencil;
 mod traits;
 
 pub use build::NetworkModelBuilder;
@@ -57,6 +59,8 @@ pub struct NetworkModel {
     /// `(k, l0)` of each spring, in the patch's bond order.
     springs: Vec<[f64; 2]>,
     groups: [Group; 3],
+    /// The bonds as runs over cells, for the hot path (`stencil.rs`).
+    stencil: stencil::Stencil,
     length_scale: f64,
     stiffness: OnceLock<bonds::Upper>,
     compatibility: OnceLock<bonds::Rows>,
@@ -109,7 +113,8 @@ impl NetworkModel {
             + size_of_val(&self.rotor_of[..])
             + size_of_val(&self.rotors[..])
             + size_of_val(&self.springs[..]);
-        let groups: usize = self.groups.iter().map(|g| g.heap_bytes()).sum();
+        let groups: usize =
+            self.groups.iter().map(|g| g.heap_bytes()).sum::<usize>() + self.stencil.heap_bytes();
         let upper = self.stiffness.get().map_or(0, |u| u.heap_bytes());
         let rows = self.compatibility.get().map_or(0, |r| r.heap_bytes());
         vecs + groups + upper + rows

@@ -3,16 +3,19 @@
 //! phase of `det Q(k)` over the zone, a strip's spectrum with its edge zero modes, a zero mode's
 //! arrows, the polarization phase diagram ([`diagram`]), and issue 36's demonstrations
 //! ([`demonstration`]: the paper's chain declared as a network; [`transition_figure`]: a
-//! transition wave in a bistable chain). Every figure is a [`Figure`](crate::Figure) of
+//! transition wave in a bistable chain; [`wall_figure`]: a moving domain wall between two
+//! polarizations in coupled chains, and its frames as a GIF). Every figure is a [`Figure`](crate::Figure) of
 //! the paper's model, rendered to PNG and SVG by [`crate::render::render`].
 
 pub mod demonstration;
 pub mod diagram;
 mod figures;
 mod transition;
+mod wall;
 
 pub use figures::{bands_figure, cell_figure};
 pub use transition::transition_figure;
+pub use wall::{wall_figure, wall_frame, write_gif};
 
 use std::fmt::Write as _;
 
@@ -34,6 +37,9 @@ pub struct NetworkDrawing {
     pub cell: Vec<(f64, f64)>,
     /// Arrows: start and displacement, the largest of length 1.
     pub arrows: Vec<((f64, f64), (f64, f64))>,
+    /// Per arm, a signed tilt in `[-1, 1]` that colours it (blue positive, red negative, grey
+    /// at zero: the two polarizations of [`wall_figure`]); empty: every arm black.
+    pub arm_tilts: Vec<f64>,
 }
 
 impl NetworkDrawing {

@@ -132,20 +132,13 @@ pub fn render(figure: &Figure, dir: &Path) -> Result<Vec<PathBuf>, RenderError> 
     let figure = &text::displayed(figure);
     let stem = file_stem(figure.label);
     let (png, svg) = (dir.join(format!("{stem}.png")), dir.join(format!("{stem}.svg")));
-    let layout = layout(&figure.panels);
-    let width = layout.size.0;
-    let caption = text::wrap(&figure.caption, CAPTION_FONT, width - 40);
-    let height = layout.size.1 + caption_height(caption.len());
     let failed = |path: &Path| {
         let path = path.to_owned();
         // plotters' errors are not `Send`: their text is kept.
         move |e: Box<dyn Error>| RenderError::Draw { path, source: e.to_string().into() }
     };
-
-    let mut pixels = vec![0u8; 3 * width as usize * height as usize];
-    let root = text::Bitmap::new(&mut pixels, (width, height)).into_drawing_area();
-    draw_figure(&root, figure, &caption, &layout).and_then(|()| Ok(root.present()?)).map_err(failed(&png))?;
-    drop(root);
+    let (width, height, pixels) = raster(figure, &png)?;
+    let (layout, caption) = frame(figure);
     let mut encoded = Vec::new();
     image::codecs::png::PngEncoder::new(&mut encoded)
         .write_image(&pixels, width, height, image::ColorType::Rgb8)
@@ -158,6 +151,33 @@ pub fn render(figure: &Figure, dir: &Path) -> Result<Vec<PathBuf>, RenderError> 
     drop(root);
     write_atomic(&svg, svg_text.as_bytes())?;
     Ok(vec![png, svg])
+}
+
+/// The figure's layout and its caption's lines.
+fn frame(figure: &Figure) -> (Layout, Vec<String>) {
+    let layout = layout(&figure.panels);
+    let caption = text::wrap(&figure.caption, CAPTION_FONT, layout.size.0 - 40);
+    (layout, caption)
+}
+
+/// `figure` rendered to RGB pixels in memory (the PNG's): `(width, height, pixels)`; `path`
+/// names the file in an error. For frames of an animation ([`crate::network::write_gif`]).
+pub fn pixels(figure: &Figure, path: &Path) -> Result<(u32, u32, Vec<u8>), RenderError> {
+    register_fonts()?;
+    raster(&text::displayed(figure), path)
+}
+
+fn raster(figure: &Figure, path: &Path) -> Result<(u32, u32, Vec<u8>), RenderError> {
+    let (layout, caption) = frame(figure);
+    let width = layout.size.0;
+    let height = layout.size.1 + caption_height(caption.len());
+    let mut pixels = vec![0u8; 3 * width as usize * height as usize];
+    let root = text::Bitmap::new(&mut pixels, (width, height)).into_drawing_area();
+    draw_figure(&root, figure, &caption, &layout)
+        .and_then(|()| Ok(root.present()?))
+        .map_err(|e| RenderError::Draw { path: path.to_owned(), source: e.to_string().into() })?;
+    drop(root);
+    Ok((width, height, pixels))
 }
 
 /// Register DejaVu Sans as plotters' `sans-serif`, once per process.

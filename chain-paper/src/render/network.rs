@@ -1,5 +1,5 @@
 //! Drawings of a network's patch ([`NetworkDrawing`]) at equal scale in x and y: the unit cell
-//! dashed, bonds grey, rotor arms black from pivot crosses, nodes (joints, rotor tips) blue, and
+//! dashed, bonds grey, rotor arms black (or coloured by a signed tilt) from pivot crosses, nodes (joints, rotor tips) blue, and
 //! a mode's displacements as green arrows.
 
 use plotters::coord::Shift;
@@ -63,16 +63,27 @@ where
     for &(a, b) in &d.bonds {
         body.draw(&PathElement::new(vec![px(a), px(b)], RGBColor(110, 110, 110).stroke_width(line + 1)))?;
     }
-    for (&(pivot, tip), _) in d.arms.iter().zip(0..) {
-        body.draw(&PathElement::new(vec![px(pivot), px(tip)], BLACK.stroke_width(line + 1)))?;
+    // Arms coloured by a tilt are the picture: drawn thicker, their pivots small dots, the tips
+    // left bare, so dense lattices stay readable.
+    let coloured = !d.arm_tilts.is_empty();
+    for (i, &(pivot, tip)) in d.arms.iter().enumerate() {
+        let colour = d.arm_tilts.get(i).map_or(BLACK, |&t| tilt_colour(t));
+        let width = if coloured { 2 * line + 1 } else { line + 1 };
+        body.draw(&PathElement::new(vec![px(pivot), px(tip)], colour.stroke_width(width)))?;
         let (cx, cy) = px(pivot);
+        if coloured {
+            body.draw(&Circle::new((cx, cy), 2, BLACK.filled()))?;
+            continue;
+        }
         let s = 4;
         body.draw(&PathElement::new(vec![(cx - s, cy - s), (cx + s, cy + s)], BLACK.stroke_width(2)))?;
         body.draw(&PathElement::new(vec![(cx - s, cy + s), (cx + s, cy - s)], BLACK.stroke_width(2)))?;
     }
     let dot = (0.025 * scale * extent / 10.0).clamp(2.0, 7.0) as u32;
-    for &p in &d.nodes {
-        body.draw(&Circle::new(px(p), dot, Quantity::Rotor.colour().filled()))?;
+    if !coloured {
+        for &p in &d.nodes {
+            body.draw(&Circle::new(px(p), dot, Quantity::Rotor.colour().filled()))?;
+        }
     }
     for &(from, (dx, dy)) in &d.arrows {
         if dx.hypot(dy) * arrow_length * scale >= 3.0 {
@@ -80,6 +91,15 @@ where
         }
     }
     Ok(())
+}
+
+/// Blue for a tilt of +1, red for -1, through grey at 0 (clamped to `[-1, 1]`).
+fn tilt_colour(t: f64) -> RGBColor {
+    let t = if t.is_finite() { t.clamp(-1.0, 1.0) } else { 0.0 };
+    let (grey, end) =
+        ((150.0, 150.0, 150.0), if t >= 0.0 { (20.0, 60.0, 200.0) } else { (210.0, 30.0, 30.0) });
+    let mix = |g: f64, e: f64| (g + t.abs() * (e - g)).round() as u8;
+    RGBColor(mix(grey.0, end.0), mix(grey.1, end.1), mix(grey.2, end.2))
 }
 
 /// A grey dashed line from `a` to `b` (pixels): dashes of 6, gaps of 5.
