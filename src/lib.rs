@@ -174,7 +174,7 @@ pub use chain_core::{
     model, statics, validate,
 };
 #[cfg(feature = "alloc")]
-pub use chain_core::{ChainBuilder, Law, RuntimeChain, runtime};
+pub use chain_core::{ChainBuilder, Law, RuntimeChain, allocation, runtime};
 /// Implementation modules (run-time vector dispatch, the per-spring kernels, the float trait's
 /// module, the elementary functions), public for the generated code and the benchmarks only.
 #[doc(hidden)]

@@ -16,6 +16,8 @@
 #[cfg(feature = "alloc")]
 extern crate alloc;
 
+#[cfg(feature = "alloc")]
+pub mod allocation;
 pub mod banded;
 #[cfg(feature = "std")]
 pub mod batch;

@@ -262,6 +262,25 @@ pub fn rows(py: Python<'_>, rows: &[Vec<f64>], cols: usize) -> Py<PyArray2<f64>>
     matrix(py, rows.len(), cols, rows.iter().flatten().copied().collect())
 }
 
+/// [`rows`] for a result sized by the input (modes, frames): its copy allocated fallibly, a
+/// `MemoryError` with the bytes asked for instead of an abort.
+pub fn try_rows(
+    py: Python<'_>,
+    rows: &[Vec<f64>],
+    cols: usize,
+    what: &'static str,
+) -> PyResult<Py<PyArray2<f64>>> {
+    let mut flat =
+        rotor_chain::allocation::try_vec(rows.len().saturating_mul(cols), what).map_err(memory_error)?;
+    flat.extend(rows.iter().flatten().copied());
+    Ok(matrix(py, rows.len(), cols, flat))
+}
+
+/// Python's `MemoryError` for an allocation that failed: `cannot allocate N bytes for <what>`.
+pub fn memory_error(e: rotor_chain::allocation::AllocationError) -> PyErr {
+    pyo3::exceptions::PyMemoryError::new_err(e.to_string())
+}
+
 /// One of `choices` (case-sensitive), or a `ValueError` naming them.
 pub fn choice<T: Copy>(what: &str, value: &str, choices: &[(&str, T)]) -> PyResult<T> {
     choices.iter().find(|(name, _)| *name == value).map(|(_, t)| *t).ok_or_else(|| {

@@ -8,7 +8,7 @@ use rotor_chain::dynamics::launch::{self as ln, Direction};
 use rotor_chain::dynamics::run::{self as rn, ABSORBING_ENDS, Method, RunOptions};
 use rotor_chain::dynamics::scatter::{self as sc, ScatterSetup};
 
-use crate::args::{array, charge, choice, matrix, rows};
+use crate::args::{array, charge, choice, matrix, try_rows};
 use crate::chain::Chain;
 use crate::errors::{self, value_error};
 use crate::pickle::{self, pickle_fields};
@@ -186,7 +186,7 @@ pickle_fields!(Run {
     integrator
 });
 
-fn run_of(py: Python<'_>, run: rn::Run) -> Run {
+fn run_of(py: Python<'_>, run: rn::Run) -> PyResult<Run> {
     let snapshots = &run.tracker.snapshots;
     // A count past i64::MAX is no chain's (MAX_ROTORS is far below it); saturate rather than wrap.
     let counts: Vec<i64> = snapshots
@@ -201,8 +201,11 @@ fn run_of(py: Python<'_>, run: rn::Run) -> Run {
         .map(|s| s.walls.iter().map(|w| (w.position, w.charge.name().to_owned())).collect())
         .collect();
     let n = run.final_state.theta.len();
-    let space_time = (!run.space_time.times.is_empty()).then(|| rows(py, &run.space_time.theta, n));
-    Run {
+    let space_time = match run.space_time.times.is_empty() {
+        true => None,
+        false => Some(try_rows(py, &run.space_time.theta, n, "the space-time image")?),
+    };
+    Ok(Run {
         times: array(py, run.kinetic.iter().map(|k| k.0).collect()),
         kinetic: array(py, run.kinetic.iter().map(|k| k.1).collect()),
         walls,
@@ -219,7 +222,7 @@ fn run_of(py: Python<'_>, run: rn::Run) -> Run {
         steps: run.report.steps,
         rejected: run.report.rejected,
         integrator: run.integrator.to_owned(),
-    }
+    })
 }
 
 pub fn propagate(
@@ -235,7 +238,7 @@ pub fn propagate(
         .detach(|| rn::propagate(&chain.chain, state, &options, &mut |_| interrupt.pending()))
         .map_err(|e| errors::dynamics(py, &e))?;
     interrupt.raise()?;
-    Ok(run_of(py, run))
+    run_of(py, run)
 }
 
 /// Python's signals (Ctrl-C) seen from a run without the GIL: at an output, at most every
@@ -338,6 +341,6 @@ pub fn scatter(chain: &Chain, py: Python<'_>, a: ScatterArgs<'_>) -> PyResult<Sc
         confirmed: s.confirmed,
         later: s.later.map(|(e, _)| e.name().to_owned()),
         later_at: s.later.map(|(_, t)| t),
-        run: Py::new(py, run_of(py, s.run))?,
+        run: Py::new(py, run_of(py, s.run)?)?,
     })
 }

@@ -187,6 +187,9 @@ fn linalg<'py>(d: Details<'py>, e: &LinalgError) -> Details<'py> {
 }
 
 pub fn statics(py: Python<'_>, e: &StaticsError) -> PyErr {
+    if let &StaticsError::Linalg(LinalgError::OutOfMemory { bytes, what }) = e {
+        return crate::args::memory_error(rotor_chain::allocation::AllocationError { bytes, what });
+    }
     let d = Details::new(py, "");
     let d = match e {
         StaticsError::Branch(b) => Details { variant: "Branch", ..d }.source(branch(py, b)),
@@ -337,6 +340,14 @@ pub fn dynamics(py: Python<'_>, e: &DynamicsError) -> PyErr {
     // An integration error is raised as IntegrateError, a subclass of DynamicsError.
     if let DynamicsError::Integrate(i) = e {
         return integrate(py, i);
+    }
+    if let &DynamicsError::OutOfMemory(a) = e {
+        return crate::args::memory_error(a);
+    }
+    if let DynamicsError::Statics(s) = e
+        && let StaticsError::Linalg(LinalgError::OutOfMemory { .. }) = s
+    {
+        return statics(py, s);
     }
     let d = Details::new(py, "");
     let d = match e {

@@ -223,6 +223,21 @@ impl NetworkModel {
         })
     }
 
+    /// The Maxwell-Calladine count at ``x`` (a ``Counting``; ``rotors`` are the coordinates):
+    /// zero modes and states of self-stress with their orthonormal bases. Up to 512 coordinates
+    /// and bonds by a dense SVD, beyond by inertia counts of the sparse Gram matrices and
+    /// subspace iteration (docs/guarantees.md); Ctrl-C stops it and raises ``KeyboardInterrupt``.
+    #[pyo3(signature = (x, tolerance = None))]
+    fn maxwell_calladine(
+        &self,
+        py: Python<'_>,
+        x: &Bound<'_, PyAny>,
+        tolerance: Option<f64>,
+    ) -> PyResult<crate::statics::Counting> {
+        let x = self.coordinates(x, "x")?;
+        crate::statics::count(py, &self.model, &x, tolerance)
+    }
+
     /// Velocity Verlet from ``(x, v)`` at time 0 to ``t_max``, an output every ``output_every``
     /// steps; ``dt`` defaults to a tenth of the stability bound at ``x``, ``damping`` is the
     /// viscous rate. Ctrl-C stops the run at its next output and raises ``KeyboardInterrupt``.

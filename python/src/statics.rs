@@ -9,13 +9,11 @@ use rotor_chain::statics::counting;
 use rotor_chain::statics::modes::{self as md, ModeKind, ModeOptions};
 use rotor_chain::statics::walls;
 
-use crate::args::{AtMost, array, choice, rows};
+use crate::args::{AtMost, array, choice, try_rows};
 use crate::chain::Chain;
 use crate::dynamics::Interrupt;
 use crate::errors;
 use crate::pickle::{self, pickle_fields};
-use rotor_chain::ChainGeometry;
-use rotor_chain::SpringNetwork;
 
 fn ends(name: &str) -> PyResult<Ends> {
     choice("ends", name, &[("held", Ends::Held), ("free", Ends::Free)])
@@ -287,7 +285,7 @@ pub fn modes(
     Ok(Modes {
         frequencies: array(py, found.iter().map(|m| m.frequency).collect()),
         omega_squared: array(py, found.iter().map(|m| m.omega_squared).collect()),
-        vectors: rows(py, &shapes, n),
+        vectors: try_rows(py, &shapes, n, "the modes' vectors")?,
         positions: array(py, found.iter().map(|m| m.position).collect()),
         participation: array(py, found.iter().map(|m| m.participation).collect()),
         kinds: found
@@ -372,10 +370,19 @@ pub fn maxwell_calladine(
     tolerance: Option<f64>,
 ) -> PyResult<Counting> {
     let theta = chain.theta(theta)?;
+    count(py, &chain.chain, &theta, tolerance)
+}
+
+/// The Maxwell-Calladine count of any spring network (a chain, a network patch) at `x`, Ctrl-C
+/// answered between the iterations of its eigensolvers.
+pub fn count<M: rotor_chain::SpringNetwork + Sync + ?Sized>(
+    py: Python<'_>,
+    model: &M,
+    x: &[f64],
+    tolerance: Option<f64>,
+) -> PyResult<Counting> {
     let mut interrupt = Interrupt::default();
-    let c = py.detach(|| {
-        counting::maxwell_calladine_with(&chain.chain, &theta, tolerance, &mut || interrupt.pending())
-    });
+    let c = py.detach(|| counting::maxwell_calladine_with(model, x, tolerance, &mut || interrupt.pending()));
     interrupt.raise()?;
     let c = c.map_err(|e| errors::statics(py, &e))?;
     Ok(Counting {
@@ -384,8 +391,8 @@ pub fn maxwell_calladine(
         singular_values: array(py, c.singular_values.clone()),
         tolerance: c.tolerance,
         rank: c.rank,
-        zero_modes: rows(py, &c.zero_modes, chain.chain.rotor_count()),
-        self_stresses: rows(py, &c.self_stresses, chain.chain.spring_count()),
+        zero_modes: try_rows(py, &c.zero_modes, c.rotors, "the zero modes")?,
+        self_stresses: try_rows(py, &c.self_stresses, c.springs, "the states of self-stress")?,
         index: c.index(),
     })
 }

@@ -35,6 +35,10 @@ pub enum DynamicsError {
     #[error("integration: {0}")]
     /// The integrator failed.
     Integrate(#[from] IntegrateError),
+    /// A result sized by the input (a space-time image) could not be allocated.
+    #[cfg(feature = "alloc")]
+    #[error("{0}")]
+    OutOfMemory(#[from] crate::allocation::AllocationError),
     /// Building the static defect or its modes failed.
     #[error("statics: {0}")]
     Statics(#[from] StaticsError),

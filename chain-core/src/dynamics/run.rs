@@ -267,12 +267,21 @@ pub fn propagate_with<M: ChainModel + ?Sized, I: Integrator + ?Sized>(
     let mut tracker = Tracker::new(&state.theta);
     let mut kinetic = Vec::with_capacity(schedule.count.min(1 << 16) + 1);
     let mut space_time = SpaceTime::default();
+    let mut failed = None;
     let report = integrator.integrate(model, &mut state, &schedule, &mut |s| {
         kinetic.push((s.time, kinetic_energy(model, &s.omega)));
         if options.space_time {
-            space_time.push(s.time, &s.theta);
+            // The image is the run's one output sized by outputs x rotors: its allocation failing
+            // ends the run with the bytes, never an abort.
+            if let Err(e) = space_time.try_push(s.time, &s.theta, schedule.count + 1) {
+                failed = Some(e);
+                return Flow::Stop;
+            }
         }
         if stop(tracker.record(s.time, &s.theta)) { Flow::Stop } else { Flow::Continue }
     })?;
+    if let Some(e) = failed {
+        return Err(e.into());
+    }
     Ok(Run { tracker, kinetic, space_time, report, final_state: state, integrator: integrator.name() })
 }

@@ -122,11 +122,49 @@ impl SpaceTime {
         self.times.push(time);
         self.theta.push(theta.to_vec());
     }
+
+    /// [`SpaceTime::push`] with fallible allocations, room reserved for `outputs` frames in all.
+    ///
+    /// # Errors
+    /// [`AllocationError`](crate::allocation::AllocationError) with the bytes of the whole image
+    /// (`outputs` frames of `theta.len()` angles) when a frame cannot be allocated.
+    pub fn try_push(
+        &mut self,
+        time: f64,
+        theta: &[f64],
+        outputs: usize,
+    ) -> Result<(), crate::allocation::AllocationError> {
+        use crate::allocation::{AllocationError, bytes_of, try_grow, try_vec};
+        let image =
+            AllocationError { bytes: bytes_of::<f64>(outputs.saturating_mul(theta.len())), what: WHAT };
+        let more = outputs.saturating_sub(self.times.len()).max(1);
+        try_grow(&mut self.times, more, WHAT).map_err(|_| image)?;
+        try_grow(&mut self.theta, more, WHAT).map_err(|_| image)?;
+        let mut frame = try_vec(theta.len(), WHAT).map_err(|_| image)?;
+        frame.extend_from_slice(theta);
+        self.times.push(time);
+        self.theta.push(frame);
+        Ok(())
+    }
 }
+
+/// What a space-time image's allocations are for (in errors).
+const WHAT: &str = "the space-time image";
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_space_time_image_beyond_the_address_space_is_an_error_with_its_bytes() {
+        // 2^58 outputs of 4 angles: 2^63 bytes, more than any allocation may be (isize::MAX).
+        let outputs = 1usize << 58;
+        let err = SpaceTime::default().try_push(0.0, &[0.1; 4], outputs).unwrap_err();
+        assert_eq!((err.bytes, err.what), (outputs * 4 * 8, "the space-time image"));
+        let mut image = SpaceTime::default();
+        image.try_push(0.5, &[0.1, 0.2], 3).unwrap();
+        assert_eq!((image.times, image.theta), (alloc::vec![0.5], alloc::vec![alloc::vec![0.1, 0.2]]));
+    }
 
     #[test]
     fn a_kink_leaving_through_the_left_end_stays_as_a_boundary_wall() {

@@ -130,11 +130,13 @@ pub enum LinalgError {
         /// [`sparse::lblt::MAX_FACTOR_VALUES`](super::sparse::lblt::MAX_FACTOR_VALUES).
         max: usize,
     },
-    /// An allocation of the sparse path failed.
-    #[error("out of memory: {bytes} bytes could not be allocated")]
+    /// An allocation sized by the input failed (or its size overflowed).
+    #[error("cannot allocate {bytes} bytes for {what}")]
     OutOfMemory {
-        /// The bytes asked for.
+        /// The bytes asked for (`usize::MAX` when the size itself overflows).
         bytes: usize,
+        /// What they were for.
+        what: &'static str,
     },
     /// A sparse factorization of `A - shift I` whose backward error is too large to trust its
     /// inertia or its solves (pivot growth the intranode pivoting could not avoid).
@@ -160,4 +162,11 @@ pub enum LinalgError {
         /// Eigenvalues there among those found.
         found: usize,
     },
+}
+
+#[cfg(feature = "alloc")]
+impl From<crate::allocation::AllocationError> for LinalgError {
+    fn from(e: crate::allocation::AllocationError) -> Self {
+        LinalgError::OutOfMemory { bytes: e.bytes, what: e.what }
+    }
 }

@@ -27,7 +27,6 @@
 //! Cost: bisection O(n (hi - lo)), then O(n) per solve, 1 to 3 solves per vector, plus
 //! O(n c) per vector for a cluster of `c`: O(n k) for `k` eigenpairs in small clusters.
 
-use alloc::vec;
 use alloc::vec::Vec;
 
 use super::bands::{self, Scaled};
@@ -154,7 +153,18 @@ fn inverse_iteration(
     let cluster_gap = 1e-3 * norm;
     let tolerance = 64.0 * f64::EPSILON * norm * math::sqrt(n as f64);
     let mut random = Random::new();
-    let mut vectors: Vec<Vec<f64>> = Vec::with_capacity(values.len());
+    // The eigenvectors are the result sized by the caller's count: all allocated fallibly before
+    // the first iteration (a request that cannot be met fails at once), the error naming the
+    // bytes of all of them.
+    let all = crate::allocation::AllocationError {
+        bytes: crate::allocation::bytes_of::<f64>(values.len().saturating_mul(n)),
+        what: "the eigenvectors",
+    };
+    let mut vectors: Vec<Vec<f64>> = crate::allocation::try_vec(values.len(), all.what).map_err(|_| all)?;
+    let mut unused: Vec<Vec<f64>> = crate::allocation::try_vec(values.len(), all.what).map_err(|_| all)?;
+    for _ in 0..values.len() {
+        unused.push(crate::allocation::try_filled(n, 0.0, all.what).map_err(|_| all)?);
+    }
     let mut cluster_start = 0;
     let mut shift = f64::NEG_INFINITY;
     for (j, &lambda) in values.iter().enumerate() {
@@ -169,7 +179,7 @@ fn inverse_iteration(
         let mut lu = TridiagonalLu::factor(&t.diag, &t.off, shift);
         lu.perturb_small_pivots(f64::EPSILON * norm);
         let cluster = &vectors[cluster_start..j];
-        let mut v = vec![0.0; n];
+        let mut v = unused.pop().ok_or(all)?;
         random.start(&mut v, cluster);
         // Like dstein, iterate once more after the residual first meets the tolerance: the
         // extra solve costs O(n) and takes the residual down to its floor.

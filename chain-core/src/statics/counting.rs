@@ -13,7 +13,10 @@
 //! its singular values and null spaces come from its Golub-Kahan tridiagonal (bisection on Sturm
 //! counts to relative accuracy, inverse iteration; `linalg/golub_kahan.rs`), O(n) per count and
 //! O(n^2) in all, stoppable ([`maxwell_calladine_with`]). Any other layout (a network's sparse
-//! `C`) goes through a dense SVD, up to [`MAX_DENSE_SVD_SIDE`]. There the vectors of both null
+//! `C`) goes through a dense SVD up to [`MAX_DENSE_SVD_SIDE`], and beyond it through the sparse
+//! path ([`maxwell_calladine_sparse`]: inertia counts of `C^T C - tau I` and `C C^T - tau I` by a
+//! sparse `LBL^T`, the null vectors by shift-invert subspace iteration, stoppable; its threshold
+//! `tau` is set by the rounding of the Gram matrix, `linalg::sparse::null_space`). In the dense SVD the vectors of both null
 //! spaces are singular vectors of `C` with a row of zeros appended (square, so that its
 //! decomposition holds all right vectors; nalgebra's decomposition with vectors is less
 //! accurate in its singular values, 1e-5 to 3e-3 seen, so the values come from a decomposition
@@ -35,6 +38,7 @@ use super::error::StaticsError;
 use super::validate;
 use crate::linalg;
 use crate::linalg::golub_kahan::{GolubKahan, NullSpaces, REFINED};
+use crate::linalg::sparse::null_space;
 use crate::model::layout::bidiagonal_parts;
 use crate::model::{ChainModel, CompatibilityLayout, SpringNetwork};
 
@@ -45,9 +49,11 @@ pub struct Counting {
     pub rotors: usize,
     /// Springs (constraints).
     pub springs: usize,
-    /// Singular values of `C`, descending.
+    /// Singular values of `C`, descending: all of them, except on the sparse path
+    /// ([`maxwell_calladine_sparse`]), which gives only the zero modes': the square roots of the
+    /// lowest `N_zero` eigenvalues of `C^T C` (negative ones as 0), each below the tolerance.
     pub singular_values: Vec<f64>,
-    /// Singular values at or below this count as zero.
+    /// Singular values at or below this count as zero (on the sparse path, below).
     pub tolerance: f64,
     /// Rank of the compatibility matrix.
     pub rank: usize,
@@ -162,8 +168,8 @@ impl Rows {
 /// # Errors
 /// `theta` not one finite value per degree of freedom, a compatibility matrix that is not finite
 /// or not well formed, a `tolerance` that is not finite and `>= 0`, a null space or a matrix too
-/// large (a sparse layout's dense SVD beyond [`MAX_DENSE_SVD_SIDE`]), or a failed decomposition
-/// (each iteration bounded).
+/// large, or a failed decomposition (each iteration bounded); beyond [`MAX_DENSE_SVD_SIDE`] those
+/// of [`maxwell_calladine_sparse`].
 pub fn maxwell_calladine<M: SpringNetwork + ?Sized>(
     model: &M,
     theta: &[f64],
@@ -173,7 +179,8 @@ pub fn maxwell_calladine<M: SpringNetwork + ?Sized>(
 }
 
 /// The side of the largest compatibility matrix (its rows or columns, whichever are more) that a
-/// network's counting decomposes densely: 512. The SVD with vectors of the padded square matrix
+/// network's counting decomposes densely: 512; larger ones take the sparse path
+/// ([`maxwell_calladine_sparse`]). The SVD with vectors of the padded square matrix
 /// cannot be stopped and grows as the cube of the side: 1.5 s at 512, 12 s at 1024 (nalgebra,
 /// release build, AMD EPYC Zen 4, one core; `examples/counting_time.rs dense N`). A chain (the
 /// bidiagonal layout) has no such bound: its counting takes O(n) per Sturm count.
@@ -182,8 +189,10 @@ pub const MAX_DENSE_SVD_SIDE: usize = 512;
 /// [`maxwell_calladine`] with a stop question: a chain's counting (the bidiagonal layout) asks it
 /// before each singular value's bisection and each null vector's inverse iteration (each O(n))
 /// and ends with [`LinalgError::Stopped`](crate::linalg::LinalgError::Stopped) on a yes (Python's
-/// Ctrl-C stops `Chain.maxwell_calladine` this way); a network's dense SVD, bounded by
-/// [`MAX_DENSE_SVD_SIDE`], asks it once before it starts.
+/// Ctrl-C stops `Chain.maxwell_calladine` this way); a network's dense SVD, up to
+/// [`MAX_DENSE_SVD_SIDE`], asks it once before it starts; beyond it, the sparse path
+/// ([`maxwell_calladine_sparse`]) asks it before each factorization and at each subspace
+/// iteration.
 ///
 /// A chain's singular values come from its Golub-Kahan tridiagonal (`linalg/golub_kahan.rs`),
 /// each to a few ulps of itself, O(n) per Sturm count and O(n^2) for all of them; its null
@@ -212,7 +221,9 @@ pub fn maxwell_calladine_with<M: SpringNetwork + ?Sized>(
     let rows = Rows::of(model, theta)?;
     // The square matrix of the vectors' decomposition holds max(n, m)^2 numbers.
     let side = n.max(m);
-    validate::at_most("rotors or springs of the dense SVD (MAX_DENSE_SVD_SIDE)", side, MAX_DENSE_SVD_SIDE)?;
+    if side > MAX_DENSE_SVD_SIDE {
+        return sparse_counting(&rows, tolerance, stop);
+    }
     if stop() {
         return Err(crate::linalg::LinalgError::Stopped { what: "SVDs", done: 0, of: 2 }.into());
     }
@@ -259,6 +270,62 @@ pub fn maxwell_calladine_with<M: SpringNetwork + ?Sized>(
     let stress_span = least(&left_vectors, side - rank, |u| rows.transpose_residual(u));
     let self_stresses = without_last_axes(stress_span, side - m).into_iter().map(oriented).collect();
     Ok(Counting { rotors: n, springs: m, singular_values, tolerance, rank, zero_modes, self_stresses })
+}
+
+/// [`maxwell_calladine_with`] through the sparse path, whatever the size (above
+/// [`MAX_DENSE_SVD_SIDE`] the counting takes it anyway): `N_zero = dim ker C` is the number of
+/// eigenvalues of `C^T C` below a threshold `tau`, read from the inertia of the sparse `LBL^T`
+/// of `C^T C - tau I` (Sylvester's law), `N_selfstress` the same of `C C^T`, checked against
+/// each other by the index theorem; the bases are the lowest eigenvectors of the two Gram
+/// matrices by shift-invert block subspace iteration (`linalg/sparse/`). `tau` is
+/// `128 max(n, m) eps ||C^T C||_inf`, twice the worst perturbation of a zero eigenvalue by the
+/// Gram matrix's rounding and the factorization's accepted backward error
+/// (`linalg::sparse::null_space`); a `tolerance` on the singular values raises it to
+/// `tolerance^2`, never lowers it. Singular values below about `sqrt(tau)` therefore count as
+/// zero: coarser than the dense rule, and the reason the dense SVD is kept where it can run.
+///
+/// The stop question is asked before each of the two factorizations and at every iteration of
+/// the subspace iteration.
+///
+/// # Errors
+/// As [`maxwell_calladine_with`]; a failed allocation (`LinalgError::OutOfMemory` with its
+/// bytes), and `LinalgError::Missed` when the two counts break the index theorem or the
+/// eigenvalues found disagree with the inertia count.
+pub fn maxwell_calladine_sparse<M: SpringNetwork + ?Sized>(
+    model: &M,
+    theta: &[f64],
+    tolerance: Option<f64>,
+    stop: &mut dyn FnMut() -> bool,
+) -> Result<Counting, StaticsError> {
+    if let Some(t) = tolerance {
+        validate::non_negative("tolerance", t)?;
+    }
+    sparse_counting(&Rows::of(model, theta)?, tolerance, stop)
+}
+
+/// The sparse path of [`maxwell_calladine_sparse`] on `C` by rows.
+fn sparse_counting(
+    rows: &Rows,
+    tolerance: Option<f64>,
+    stop: &mut dyn FnMut() -> bool,
+) -> Result<Counting, StaticsError> {
+    let c = null_space::Rows { columns: rows.columns, starts: &rows.starts, entries: &rows.entries };
+    let found = null_space::null_spaces(c, tolerance.map_or(0.0, |t| t * t), stop)?;
+    let (n, m) = (rows.columns, rows.rows());
+    let mut singular_values: Vec<f64> =
+        found.right_pairs.iter().map(|p| crate::math::sqrt(p.value.max(0.0))).collect();
+    singular_values.reverse();
+    let zero_modes = found.right_pairs.into_iter().take(found.right).map(|p| oriented(p.vector)).collect();
+    let self_stresses = found.left_pairs.into_iter().map(|p| oriented(p.vector)).collect();
+    Ok(Counting {
+        rotors: n,
+        springs: m,
+        singular_values,
+        tolerance: crate::math::sqrt(found.threshold),
+        rank: n - found.right,
+        zero_modes,
+        self_stresses,
+    })
 }
 
 /// The counting of a chain's `(n - 1) x n` bidiagonal `C` (`left` its diagonal, `right` its

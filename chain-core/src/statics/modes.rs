@@ -25,6 +25,7 @@ use nalgebra::DMatrix;
 use super::error::StaticsError;
 use super::validate;
 use super::walls::domain_walls;
+use crate::allocation::{self, AllocationError};
 use crate::linalg::{self, LinalgError, SymmetricMatrix};
 use crate::math;
 use crate::model::{ChainModel, Stiffness};
@@ -230,25 +231,39 @@ pub fn normal_modes_with<M: Stiffness + ?Sized>(
         None => scaled.lowest_eigenpairs(count)?,
     };
     let mut values: Vec<f64> = pairs.iter().map(|p| p.value).collect();
-    let mut vectors: Vec<Vec<f64>> = pairs
-        .into_iter()
-        .map(|p| {
-            let mut full = vec![0.0; n];
+    // The vectors and shapes are the result sized by the caller's count: allocated fallibly (a
+    // pair's vector already has its `n` entries when no end is held, and is reused).
+    let all = AllocationError {
+        bytes: allocation::bytes_of::<f64>(count.saturating_mul(n)),
+        what: "the modes' vectors",
+    };
+    let mut vectors: Vec<Vec<f64>> =
+        allocation::try_vec(pairs.len(), all.what).map_err(|_| LinalgError::from(all))?;
+    for p in pairs {
+        if p.vector.len() == n {
+            vectors.push(p.vector);
+        } else {
+            let mut full = allocation::try_filled(n, 0.0, all.what).map_err(|_| LinalgError::from(all))?;
             full[range.clone()].copy_from_slice(&p.vector);
-            full
-        })
-        .collect();
+            vectors.push(full);
+        }
+    }
     let scaled_norm = scaled.inf_norm().max(f64::MIN_POSITIVE);
     localise_clusters(&mut values, &mut vectors, options.cluster * scaled_norm);
     Ok(values
         .iter()
         .zip(vectors)
-        .map(|(&value, u)| {
-            // u is orthonormal in the scaled problem; v = I^{-1/2} u has sum I v^2 = 1.
-            let weights: Vec<f64> = u.iter().map(|x| x * x).collect();
-            let position = weights.iter().enumerate().map(|(i, w)| i as f64 * w).sum::<f64>();
-            let participation = 1.0 / weights.iter().map(|w| w * w).sum::<f64>();
-            let shape: Vec<f64> = u.iter().zip(&root).map(|(x, r)| x / r).collect();
+        .map(|(&value, mut shape)| {
+            // u is orthonormal in the scaled problem; v = I^{-1/2} u has sum I v^2 = 1. The
+            // weights u_i^2 are summed as they are read (no second vector of n).
+            let (mut position, mut squares) = (0.0, 0.0);
+            for (i, x) in shape.iter().enumerate() {
+                let w = x * x;
+                position += i as f64 * w;
+                squares += w * w;
+            }
+            let participation = 1.0 / squares;
+            shape.iter_mut().zip(&root).for_each(|(x, r)| *x /= r);
             Mode {
                 omega_squared: value,
                 frequency: signed_frequency(value),

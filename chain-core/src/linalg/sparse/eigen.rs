@@ -68,6 +68,22 @@ pub(crate) fn eigenpairs(
     target: Target,
     k: usize,
 ) -> Result<Vec<Eigenpair>, LinalgError> {
+    eigenpairs_with(a, norm, target, k, &mut || false)
+}
+
+/// [`eigenpairs`] with a stop question, asked before each block iteration and within its
+/// `O(n p^2)` parts (Gram-Schmidt, Rayleigh-Ritz and the rotations, once per column), so that an
+/// answer comes after `O(n p)` work: a yes ends it with [`LinalgError::Stopped`].
+///
+/// # Errors
+/// As [`eigenpairs`], and `Stopped`.
+pub(crate) fn eigenpairs_with(
+    a: &Upper<'_>,
+    norm: f64,
+    target: Target,
+    k: usize,
+    stop: &mut dyn FnMut() -> bool,
+) -> Result<Vec<Eigenpair>, LinalgError> {
     let n = a.n;
     if k == 0 {
         return Ok(Vec::new());
@@ -90,19 +106,28 @@ pub(crate) fn eigenpairs(
         idx
     };
     let mut x = start_block(n, p)?;
-    orthonormalise(&mut x, n, p);
+    let mut asked = Asked { stop, yes: false };
+    orthonormalise(&mut x, n, p, &mut asked);
     let mut ax = try_vec(n * p)?;
     ax.resize(n * p, 0.0);
     let mut worst = (0, f64::INFINITY);
-    for _ in 0..MAX_ITERATIONS {
+    for iteration in 0..MAX_ITERATIONS {
+        let stopped =
+            LinalgError::Stopped { what: "subspace iterations", done: iteration, of: MAX_ITERATIONS };
+        if asked.now() {
+            return Err(stopped);
+        }
         lblt.solve_in_place(&mut x, p)?;
-        orthonormalise(&mut x, n, p);
+        orthonormalise(&mut x, n, p, &mut asked);
         for j in 0..p {
             a.mul_vec_shifted(0.0, &x[j * n..(j + 1) * n], &mut ax[j * n..(j + 1) * n]);
         }
-        let (values, w) = rayleigh_ritz(&x, &ax, n, p);
-        rotate(&mut x, &w, n, p);
-        rotate(&mut ax, &w, n, p);
+        let (values, w) = rayleigh_ritz(&x, &ax, n, p, &mut asked);
+        rotate(&mut x, &w, n, p, &mut asked);
+        rotate(&mut ax, &w, n, p, &mut asked);
+        if asked.yes {
+            return Err(stopped);
+        }
         let wanted: Vec<usize> = order(&values).into_iter().take(k).collect();
         worst = (0, 0.0);
         for &j in &wanted {
@@ -196,11 +221,28 @@ fn start_block(n: usize, p: usize) -> Result<Vec<f64>, LinalgError> {
     Ok(x)
 }
 
+/// The stop question, remembered once it answered yes (the `O(n p^2)` parts ask it per column
+/// and give up: their results are then discarded).
+struct Asked<'a> {
+    stop: &'a mut dyn FnMut() -> bool,
+    yes: bool,
+}
+
+impl Asked<'_> {
+    fn now(&mut self) -> bool {
+        self.yes = self.yes || (self.stop)();
+        self.yes
+    }
+}
+
 /// Modified Gram-Schmidt, twice ("twice is enough", Giraud et al. 2005), on the `p` columns of `x`;
 /// a column that vanishes against the others is replaced by a coordinate vector made orthogonal
 /// to them.
-fn orthonormalise(x: &mut [f64], n: usize, p: usize) {
+fn orthonormalise(x: &mut [f64], n: usize, p: usize, asked: &mut Asked<'_>) {
     for j in 0..p {
+        if asked.now() {
+            return;
+        }
         project_out_previous(x, n, j);
         project_out_previous(x, n, j);
         if !normalise(&mut x[j * n..(j + 1) * n]) {
@@ -235,9 +277,18 @@ fn normalise(v: &mut [f64]) -> bool {
 }
 
 /// The eigenvalues (ascending) and eigenvectors of `X^T A X` (`p x p`).
-fn rayleigh_ritz(x: &[f64], ax: &[f64], n: usize, p: usize) -> (Vec<f64>, DMatrix<f64>) {
+fn rayleigh_ritz(
+    x: &[f64],
+    ax: &[f64],
+    n: usize,
+    p: usize,
+    asked: &mut Asked<'_>,
+) -> (Vec<f64>, DMatrix<f64>) {
     let mut h = DMatrix::zeros(p, p);
     for i in 0..p {
+        if asked.now() {
+            return (vec![0.0; p], DMatrix::identity(p, p));
+        }
         for j in 0..=i {
             let v: f64 = x[i * n..(i + 1) * n].iter().zip(&ax[j * n..(j + 1) * n]).map(|(a, b)| a * b).sum();
             let w: f64 = x[j * n..(j + 1) * n].iter().zip(&ax[i * n..(i + 1) * n]).map(|(a, b)| a * b).sum();
@@ -250,9 +301,12 @@ fn rayleigh_ritz(x: &[f64], ax: &[f64], n: usize, p: usize) -> (Vec<f64>, DMatri
 }
 
 /// `X <- X W` for the `n x p` block `x` and the `p x p` matrix `w`.
-fn rotate(x: &mut [f64], w: &DMatrix<f64>, n: usize, p: usize) {
+fn rotate(x: &mut [f64], w: &DMatrix<f64>, n: usize, p: usize, asked: &mut Asked<'_>) {
     let mut out = vec![0.0; n * p];
     for j in 0..p {
+        if asked.now() {
+            return;
+        }
         let col = &mut out[j * n..(j + 1) * n];
         for l in 0..p {
             let c = w[(l, j)];

@@ -100,16 +100,17 @@ fn shifted(a: &Upper<'_>, sigma: f64) -> Result<Shifted, LinalgError> {
     Ok(Shifted { col_ptr, row_idx, values })
 }
 
-/// A vector of `len` capacity, or [`LinalgError::OutOfMemory`].
+/// A vector of `len` capacity, or [`LinalgError::OutOfMemory`] (the crate's one fallible
+/// allocation, [`crate::allocation::try_vec`]).
 pub(crate) fn try_vec<T>(len: usize) -> Result<Vec<T>, LinalgError> {
-    let mut v = Vec::new();
-    v.try_reserve_exact(len)
-        .map_err(|_| LinalgError::OutOfMemory { bytes: len.saturating_mul(core::mem::size_of::<T>()) })?;
-    Ok(v)
+    Ok(crate::allocation::try_vec(len, "the sparse factorization's arrays")?)
 }
 
 fn buffer(req: StackReq) -> Result<MemBuffer, LinalgError> {
-    MemBuffer::try_new(req).map_err(|_| LinalgError::OutOfMemory { bytes: req.size_bytes() })
+    MemBuffer::try_new(req).map_err(|_| LinalgError::OutOfMemory {
+        bytes: req.size_bytes(),
+        what: "the sparse factorization's workspace",
+    })
 }
 
 impl Lblt {
@@ -129,7 +130,10 @@ impl Lblt {
             ..Default::default()
         };
         let symbolic = factorize_symbolic_cholesky(structure, Side::Lower, SymmetricOrdering::Amd, params)
-            .map_err(|_| LinalgError::OutOfMemory { bytes: s.values.len().saturating_mul(16) })?;
+            .map_err(|_| LinalgError::OutOfMemory {
+                bytes: s.values.len().saturating_mul(16),
+                what: "the symbolic factorization",
+            })?;
         let len = symbolic.len_val();
         if len > MAX_FACTOR_VALUES {
             return Err(LinalgError::TooLarge { n, max: MAX_FACTOR_VALUES });
