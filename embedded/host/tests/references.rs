@@ -209,7 +209,7 @@ fn a_non_finite_state_or_step_is_an_error_with_the_numbers() {
     kink_into(&Chain16, 4.25, &mut theta).unwrap();
     let mut omega = kink_launch_velocities(&Chain16, &theta, 2.0).unwrap();
     let error = Verlet::new(&Chain16, Phase { time: 0.0, theta, omega }, 0.0).unwrap_err();
-    assert_eq!(error.to_string(), "dt = 0 is invalid: it must be positive and finite");
+    assert_eq!(error.to_string(), "Verlet.dt = 0 is invalid: it must be positive and finite");
     omega[3] = f64::NAN;
     let error = Verlet::new(&Chain16, Phase { time: 0.0, theta, omega }, 1e-3).unwrap_err();
     assert_eq!(error.to_string(), "omega[3] is not finite (NaN) at t = 0");
