@@ -257,13 +257,9 @@ pub fn matrix<T: numpy::Element + Clone + Default>(
     a.into_pyarray(py).unbind()
 }
 
-/// Rows of equal length as a 2-D array (`rows x cols`; `0 x cols` when empty).
-pub fn rows(py: Python<'_>, rows: &[Vec<f64>], cols: usize) -> Py<PyArray2<f64>> {
-    matrix(py, rows.len(), cols, rows.iter().flatten().copied().collect())
-}
-
-/// [`rows`] for a result sized by the input (modes, frames): its copy allocated fallibly, a
-/// `MemoryError` with the bytes asked for instead of an abort.
+/// Rows of equal length as a 2-D array (`rows x cols`; `0 x cols` when empty), for a result
+/// sized by the input (modes, frames): its copy allocated fallibly, a `MemoryError` with the
+/// bytes asked for instead of an abort.
 pub fn try_rows(
     py: Python<'_>,
     rows: &[Vec<f64>],

@@ -8,13 +8,14 @@ use pyo3::types::{PyDict, PyTuple};
 use rotor_chain::statics::continuum::ContinuumChain;
 use rotor_chain::{Law, RuntimeChain};
 
-use crate::args::{self, AtMost, Real, RotorCount, array, choice, matrix, vector};
+use crate::args::{self, AtMost, Real, RotorCount, array, choice, matrix, memory_error, vector};
 use crate::errors::{self, value_error};
 use crate::pickle::{self, Pickle};
 use rotor_chain::ChainGeometry;
 use rotor_chain::Potential;
 use rotor_chain::SpringNetwork;
 use rotor_chain::Stiffness;
+use rotor_chain::allocation::try_filled;
 
 /// How the chain was asked for: kept for `repr`, pickling and the continuum theory.
 #[derive(Clone, Debug)]
@@ -281,8 +282,9 @@ impl Chain {
         let theta = self.theta(theta)?;
         let n = theta.len();
         dense_size(py, "hessian: rotors x rotors", n, n)?;
-        let dense = py.detach(|| {
-            let mut dense = vec![0.0; n * n];
+        // n^2 values (up to 2^26): allocated fallibly, a MemoryError rather than an abort.
+        let mut dense = try_filled(n * n, 0.0, "hessian: rotors x rotors").map_err(memory_error)?;
+        py.detach(|| {
             let mut values = vec![0.0; 2 * n - 1];
             self.chain.tangent_stiffness_into(&theta, &mut values);
             let (diag, off) = values.split_at(n);
@@ -293,7 +295,6 @@ impl Chain {
                 dense[p * n + p + 1] = off[p];
                 dense[(p + 1) * n + p] = off[p];
             }
-            dense
         });
         Ok(matrix(py, n, n, dense))
     }
@@ -333,7 +334,7 @@ impl Chain {
         });
         if dense {
             dense_size(py, "compatibility: springs x rotors", m, n)?;
-            let mut c = vec![0.0; m * n];
+            let mut c = try_filled(m * n, 0.0, "compatibility: springs x rotors").map_err(memory_error)?;
             for p in 0..m {
                 c[p * n + p] = left[p];
                 c[p * n + p + 1] = right[p];

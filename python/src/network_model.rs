@@ -14,10 +14,11 @@ use rotor_chain::network::patch::Patch;
 use rotor_chain::statics::equilibrium::{NewtonOptions, RelaxOptions, newton, polish, relax};
 use rotor_chain::statics::modes::{ModeOptions, normal_modes};
 
-use crate::args::{self, array, choice, rows};
+use crate::args::{self, array, choice, matrix, memory_error};
 use crate::dynamics::Interrupt;
 use crate::errors::{self, value_error};
 use crate::network::{Network, boundary_of, cells_of};
+use rotor_chain::allocation::{try_grow, try_vec};
 
 /// A finite patch of a network with masses, a spring law and overrides (impurities).
 #[pyclass(module = "rotor_chain._native", frozen)]
@@ -214,11 +215,16 @@ impl NetworkModel {
         let modes =
             py.detach(|| normal_modes(&self.model, &x, &options)).map_err(|e| errors::statics(py, &e))?;
         let n = self.model.dof_count();
-        let shapes: Vec<Vec<f64>> = modes.iter().map(|m| m.shape.clone()).collect();
+        // The vectors' copy for numpy is sized by `count` x dof: allocated fallibly.
+        let mut vectors =
+            try_vec(modes.len().saturating_mul(n), "the network modes' vectors").map_err(memory_error)?;
+        for m in &modes {
+            vectors.extend_from_slice(&m.shape);
+        }
         Ok(NetworkModes {
             frequencies: array(py, modes.iter().map(|m| m.frequency).collect()),
             omega_squared: array(py, modes.iter().map(|m| m.omega_squared).collect()),
-            vectors: rows(py, &shapes, n),
+            vectors: matrix(py, modes.len(), n, vectors),
             participation: array(py, modes.iter().map(|m| m.participation).collect()),
         })
     }
@@ -263,11 +269,30 @@ impl NetworkModel {
         options.damping = damping;
         options.energy_limit = energy_limit;
         let mut state = State { time: 0.0, theta: x, omega: v };
-        let (mut times, mut energies) = (Vec::new(), Vec::new());
+        // The outputs' count is sized by the caller (t_max, dt, output_every): their arrays are
+        // reserved fallibly up front (a MemoryError with the bytes, not an abort), and grown
+        // fallibly should the run give more outputs than t_max / dt / output_every + 2.
+        const WHAT: &str = "the run's output times and energies";
+        let outputs = (t_max / options.dt / output_every.max(1) as f64).ceil();
+        let outputs =
+            if outputs.is_finite() && outputs >= 0.0 { outputs.min(usize::MAX as f64) as usize } else { 0 };
+        let outputs = outputs.saturating_add(2);
+        let mut times = try_vec(outputs, WHAT).map_err(memory_error)?;
+        let mut energies = try_vec(outputs, WHAT).map_err(memory_error)?;
+        let mut out_of_memory = None;
         let mut interrupt = Interrupt::default();
         let report = py
             .detach(|| {
                 verlet(&self.model, &mut state, t_max, &options, output_every, &mut |s: &State| {
+                    if times.len() == times.capacity() {
+                        let more = times.len().max(16);
+                        let grown = try_grow(&mut times, more, WHAT)
+                            .and_then(|()| try_grow(&mut energies, more, WHAT));
+                        if let Err(e) = grown {
+                            out_of_memory = Some(e);
+                            return Flow::Stop;
+                        }
+                    }
                     times.push(s.time);
                     energies.push(
                         self.model.energy(&s.theta)
@@ -277,6 +302,9 @@ impl NetworkModel {
                 })
             })
             .map_err(|e| errors::integrate(py, &e))?;
+        if let Some(e) = out_of_memory {
+            return Err(memory_error(e));
+        }
         interrupt.raise()?;
         Ok(NetworkRun {
             times: array(py, times),

@@ -1,8 +1,10 @@
 """Results sized by the input that cannot be allocated are a ``MemoryError`` with the bytes asked
 for, and the interpreter goes on (issue 37; an abort would be exit status 134): the eigenvectors of
-``Chain.modes(count=...)`` and the space-time image of a long ``propagate``, under an address-space
+``Chain.modes(count=...)``, the space-time image of a long ``propagate`` and the outputs of a long
+``NetworkModel.propagate``, under an address-space
 limit in a subprocess (as ``test_statics.py`` does for the copy of an argument)."""
 
+import math
 import subprocess
 import sys
 import textwrap
@@ -44,5 +46,35 @@ def test_modes_and_frames_that_cannot_be_allocated_are_memory_errors_not_an_abor
     assert done.stdout.splitlines() == [
         f"MemoryError: cannot allocate {vectors} bytes for the eigenvectors",
         f"MemoryError: cannot allocate {frames} bytes for the space-time image",
+        "still running",
+    ], done.stdout + done.stderr
+
+
+def test_a_network_run_whose_outputs_cannot_be_allocated_is_a_memory_error():
+    # NetworkModel.propagate keeps a time and an energy per output, t_max / dt / output_every + 2
+    # of them (reserved before the first step): 10^8 outputs, 800 MB each, do not fit.
+    t_max, dt = 1.0e5, 1.0e-3
+    script = textwrap.dedent(
+        f"""
+        import resource
+        import numpy as np
+        import rotor_chain as rc
+        model = rc.NetworkModel(rc.Network.ready("square"), (4, 4), boundary="periodic")
+        x = np.asarray(model.reference())
+        with open("/proc/self/status") as f:
+            vm = next(int(l.split()[1]) * 1024 for l in f if l.startswith("VmSize:"))
+        resource.setrlimit(resource.RLIMIT_AS, (vm + 2**26, resource.RLIM_INFINITY))
+        try:
+            model.propagate(x, np.zeros_like(x), t_max={t_max}, dt={dt}, output_every=1)
+        except MemoryError as e:
+            print("MemoryError:", e)
+        print("still running")
+        """
+    )
+    done = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, timeout=300)
+    assert done.returncode == 0, done.stderr
+    outputs = math.ceil(t_max / dt / 1) + 2
+    assert done.stdout.splitlines() == [
+        f"MemoryError: cannot allocate {outputs * 8} bytes for the run's output times and energies",
         "still running",
     ], done.stdout + done.stderr

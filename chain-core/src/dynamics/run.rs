@@ -269,6 +269,24 @@ pub fn propagate_with<M: ChainModel + ?Sized, I: Integrator + ?Sized>(
     let mut space_time = SpaceTime::default();
     let mut failed = None;
     let report = integrator.integrate(model, &mut state, &schedule, &mut |s| {
+        // The per-output records (kinetic energies, wall snapshots) are sized by the schedule's
+        // output count, the caller's: grown fallibly (doubling), the bytes in the error.
+        if kinetic.len() == kinetic.capacity() {
+            let more = kinetic.len().max(16);
+            if let Err(e) = crate::allocation::try_grow(&mut kinetic, more, "a run's kinetic energies") {
+                failed = Some(e);
+                return Flow::Stop;
+            }
+        }
+        if tracker.snapshots.len() == tracker.snapshots.capacity() {
+            let more = tracker.snapshots.len().max(16);
+            if let Err(e) =
+                crate::allocation::try_grow(&mut tracker.snapshots, more, "a run's wall snapshots")
+            {
+                failed = Some(e);
+                return Flow::Stop;
+            }
+        }
         kinetic.push((s.time, kinetic_energy(model, &s.omega)));
         if options.space_time {
             // The image is the run's one output sized by outputs x rotors: its allocation failing
