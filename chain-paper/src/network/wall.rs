@@ -128,17 +128,17 @@ pub fn wall_figure(c: &CoupledChains) -> Result<(Figure, MovingWall), MotionErro
 }
 
 /// Every sample of `run` as a frame of an animated GIF at `path` (written atomically), one
-/// frame every `delay_ms`, looping; the frames cropped to the lattice's rows. Returns the file's
-/// size in bytes.
+/// frame every `delay_ms`, looping; the frames cropped to what is drawn in any of them (the title
+/// and the lattice), white gaps inside shortened to `2 GAP` rows. Returns the file's size in bytes.
 pub fn write_gif(
     c: &CoupledChains,
     run: &MovingWall,
     path: &Path,
     delay_ms: u32,
 ) -> Result<usize, RenderError> {
-    let mut frames = Vec::with_capacity(run.times.len());
-    let mut crop: Option<(u32, u32)> = None;
     let mut rasters = Vec::with_capacity(run.times.len());
+    // Rows drawn (not white) in any frame; every frame has the same size.
+    let mut drawn: Vec<bool> = Vec::new();
     for k in 0..run.times.len() {
         let figure = Figure {
             label: "fig:network-wall",
@@ -147,21 +147,17 @@ pub fn write_gif(
             rows: Vec::new(),
         };
         let (width, height, rgb) = pixels(&figure, path)?;
-        // The rows that are not white, over every frame: one crop for all.
-        let row_used = |y: u32| {
-            let row = &rgb[3 * (y * width) as usize..3 * ((y + 1) * width) as usize];
-            row.iter().any(|&v| v < 250)
-        };
-        let first = (0..height).find(|&y| row_used(y)).unwrap_or(0);
-        let last = (0..height).rev().find(|&y| row_used(y)).unwrap_or(height - 1);
-        crop = Some(crop.map_or((first, last), |(f, l)| (f.min(first), l.max(last))));
-        rasters.push((width, height, rgb));
+        drawn.resize(height as usize, false);
+        for (y, row) in rgb.chunks_exact(3 * width as usize).enumerate() {
+            drawn[y] |= row.iter().any(|&v| v < 250);
+        }
+        rasters.push((width, rgb));
     }
-    for (width, height, rgb) in rasters {
-        let (first, last) = crop.unwrap_or((0, height - 1));
-        let (top, bottom) = (first.saturating_sub(8), (last + 8).min(height - 1));
-        let image = RgbaImage::from_fn(width, bottom - top + 1, |x, y| {
-            let i = 3 * ((y + top) * width + x) as usize;
+    let rows = kept_rows(&drawn);
+    let mut frames = Vec::with_capacity(rasters.len());
+    for (width, rgb) in rasters {
+        let image = RgbaImage::from_fn(width, rows.len() as u32, |x, y| {
+            let i = 3 * (rows[y as usize] * width as usize + x as usize);
             image::Rgba([rgb[i], rgb[i + 1], rgb[i + 2], 255])
         });
         frames.push(Frame::from_parts(image, 0, 0, Delay::from_numer_denom_ms(delay_ms, 1)));
@@ -175,4 +171,51 @@ pub fn write_gif(
     }
     write_atomic(path, &bytes)?;
     Ok(bytes.len())
+}
+
+/// White rows kept beside a drawn one: the margin around the drawing and half of a gap kept.
+const GAP: usize = 10;
+
+/// The rows of a frame to keep: those within `GAP` rows of a drawn row (all rows if none is).
+fn kept_rows(drawn: &[bool]) -> Vec<usize> {
+    let n = drawn.len();
+    // Distance to the nearest drawn row above and below, in two passes.
+    let mut near = vec![usize::MAX; n];
+    let mut last = None;
+    for y in 0..n {
+        if drawn[y] {
+            last = Some(y);
+        }
+        near[y] = last.map_or(usize::MAX, |l| y - l);
+    }
+    let mut next = None;
+    for y in (0..n).rev() {
+        if drawn[y] {
+            next = Some(y);
+        }
+        near[y] = near[y].min(next.map_or(usize::MAX, |t| t - y));
+    }
+    let kept: Vec<usize> = (0..n).filter(|&y| near[y] <= GAP).collect();
+    if kept.is_empty() { (0..n).collect() } else { kept }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{GAP, kept_rows};
+
+    /// A drawn row, a gap of 40 white rows, three drawn rows, with 5 white rows at either edge:
+    /// the edges are kept (within `GAP`), the gap keeps `GAP` rows beside each side.
+    #[test]
+    fn long_white_gaps_are_shortened_and_margins_kept() {
+        let mut drawn = vec![false; 5];
+        drawn.push(true);
+        drawn.extend([false; 40]);
+        drawn.extend([true; 3]);
+        drawn.extend([false; 5]);
+        let kept = kept_rows(&drawn);
+        let expected: Vec<usize> = (0..=5 + GAP).chain(46 - GAP..drawn.len()).collect();
+        assert_eq!(kept, expected);
+        assert_eq!(kept.len(), 5 + 1 + 2 * GAP + 3 + 5);
+        assert_eq!(kept_rows(&[false; 4]), vec![0, 1, 2, 3]);
+    }
 }
