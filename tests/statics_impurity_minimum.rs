@@ -15,35 +15,14 @@
 
 mod common;
 
-use common::Reference;
-use rotor_chain::RuntimeChain;
+use common::{K, R, Reference, chains, count_below, lowest, solve};
 use rotor_chain::statics::StaticsError;
 use rotor_chain::statics::antikink::{AntikinkOptions, Ends, antikink_at, antikink_relaxed, peierls_nabarro};
 use rotor_chain::statics::kink::reflected_kink;
 use rotor_chain::statics::path::{Descent, at_centre, descend};
 
-const K: f64 = 1.0e4;
-const R: f64 = 0.8;
-
 /// Impurity springs: (spring, stiffness factor, rest-length factor).
 type Overrides = &'static [(usize, f64, f64)];
-
-/// A chain and its reference twin with `overrides` (spring, stiffness factor, rest-length factor).
-fn chains(n: usize, theta_bar: f64, overrides: &[(usize, f64, f64)]) -> (RuntimeChain, Reference) {
-    let mut reference = Reference::uniform(n, theta_bar);
-    let mut builder = RuntimeChain::builder(n, R, K, theta_bar);
-    for &(p, k, l) in overrides {
-        reference.k[p] *= k;
-        reference.l0[p] *= l;
-        if k != 1.0 {
-            builder = builder.spring_constant(p, reference.k[p]);
-        }
-        if l != 1.0 {
-            builder = builder.spring_rest_length(p, reference.l0[p]);
-        }
-    }
-    (builder.build().unwrap(), reference)
-}
 
 /// The reference energy with rotor `i` moved by `hi` and rotor `j` by `hj`.
 fn energy_moved(reference: &Reference, theta: &[f64], (i, hi): (usize, f64), (j, hj): (usize, f64)) -> f64 {
@@ -80,45 +59,6 @@ fn fd_hessian(reference: &Reference, theta: &[f64]) -> (Vec<f64>, Vec<f64>) {
         })
         .collect();
     (d, o)
-}
-
-/// The pivots of `LDL^T` of the tridiagonal `(d, o) - x I`: their negative count is the number of
-/// eigenvalues below `x` (Sturm).
-fn pivots(d: &[f64], o: &[f64], x: f64) -> Vec<f64> {
-    let mut p = vec![d[0] - x];
-    for i in 1..d.len() {
-        let last = p[i - 1];
-        p.push(d[i] - x - o[i - 1] * o[i - 1] / last);
-    }
-    p
-}
-
-/// The lowest eigenvalue of `(d, o)` by 200 bisections of the Sturm count.
-fn lowest(d: &[f64], o: &[f64]) -> f64 {
-    let r = d.iter().map(|x| x.abs()).sum::<f64>() + 2.0 * o.iter().map(|x| x.abs()).sum::<f64>();
-    let (mut a, mut b) = (-r, r);
-    for _ in 0..200 {
-        let m = 0.5 * (a + b);
-        if pivots(d, o, m).iter().any(|&p| p < 0.0) { b = m } else { a = m }
-    }
-    0.5 * (a + b)
-}
-
-/// Solves the tridiagonal `(d, o) x = b` (Thomas algorithm; used on positive definite blocks).
-fn solve(d: &[f64], o: &[f64], b: &[f64]) -> Vec<f64> {
-    let m = d.len();
-    let (mut c, mut y) = (vec![0.0; m], vec![0.0; m]);
-    for i in 0..m {
-        let den = d[i] - if i > 0 { o[i - 1] * c[i - 1] } else { 0.0 };
-        if i + 1 < m {
-            c[i] = o[i] / den;
-        }
-        y[i] = (b[i] - if i > 0 { o[i - 1] * y[i - 1] } else { 0.0 }) / den;
-    }
-    for i in (0..m.saturating_sub(1)).rev() {
-        y[i] -= c[i] * y[i + 1];
-    }
-    y
 }
 
 /// The reference's lowest energy with rotor `j` held at `t` (and the ends held), by Newton's
@@ -162,7 +102,7 @@ fn check_minimum(reference: &Reference, theta: &[f64], what: &str) -> (f64, f64,
     assert!(force < 1e-6 * K * R * R, "{what}: finite-difference force {force:e}");
     // Hessian: positive definite (every pivot positive), index 0.
     let (d, o) = fd_hessian(reference, theta);
-    let negative = pivots(&d, &o, 0.0).iter().filter(|&&p| p < 0.0).count();
+    let negative = count_below(&d, &o, 0.0);
     assert_eq!(negative, 0, "{what}: finite-difference Hessian index");
     let curvature = lowest(&d, &o);
     assert!(curvature > 0.0, "{what}: lowest curvature {curvature:e}");

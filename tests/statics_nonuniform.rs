@@ -9,34 +9,13 @@
 
 mod common;
 
-use common::Reference;
-use rotor_chain::RuntimeChain;
+use common::{R, Reference, chains, count_below, lowest, norm, solve};
 use rotor_chain::statics::StaticsError;
 use rotor_chain::statics::antikink::{
     Antikink, AntikinkOptions, antikink_at, antikink_relaxed, peierls_nabarro,
 };
 use rotor_chain::statics::landscape::default_centre;
 use rotor_chain::statics::modes::{ModeOptions, modes};
-
-const K: f64 = 1.0e4;
-const R: f64 = 0.8;
-
-/// A chain and its reference twin with `overrides` (spring, stiffness factor, rest-length factor).
-fn chains(n: usize, theta_bar: f64, overrides: &[(usize, f64, f64)]) -> (RuntimeChain, Reference) {
-    let mut reference = Reference::uniform(n, theta_bar);
-    let mut builder = RuntimeChain::builder(n, R, K, theta_bar);
-    for &(p, k, l) in overrides {
-        reference.k[p] *= k;
-        reference.l0[p] *= l;
-        if k != 1.0 {
-            builder = builder.spring_constant(p, reference.k[p]);
-        }
-        if l != 1.0 {
-            builder = builder.spring_rest_length(p, reference.l0[p]);
-        }
-    }
-    (builder.build().unwrap(), reference)
-}
 
 /// The reference's tridiagonal Hessian on the moving rotors `1..n-1` (ends held).
 fn hessian(reference: &Reference, theta: &[f64]) -> (Vec<f64>, Vec<f64>) {
@@ -47,51 +26,6 @@ fn hessian(reference: &Reference, theta: &[f64]) -> (Vec<f64>, Vec<f64>) {
 }
 
 /// Eigenvalues of the tridiagonal `(d, o)` below `x` (Sturm count of `LDL^T`).
-fn count_below(d: &[f64], o: &[f64], x: f64) -> usize {
-    let mut pivot = d[0] - x;
-    let mut count = usize::from(pivot < 0.0);
-    for i in 1..d.len() {
-        pivot = d[i] - x - o[i - 1] * o[i - 1] / pivot;
-        count += usize::from(pivot < 0.0);
-    }
-    count
-}
-
-fn norm(d: &[f64], o: &[f64]) -> f64 {
-    (0..d.len())
-        .map(|i| d[i].abs() + if i > 0 { o[i - 1].abs() } else { 0.0 } + o.get(i).map_or(0.0, |x| x.abs()))
-        .fold(0.0, f64::max)
-}
-
-/// The lowest eigenvalue of `(d, o)` by 200 bisections of the Sturm count.
-fn lowest(d: &[f64], o: &[f64]) -> f64 {
-    let r = norm(d, o);
-    let (mut a, mut b) = (-r, r);
-    for _ in 0..200 {
-        let m = 0.5 * (a + b);
-        if count_below(d, o, m) >= 1 { b = m } else { a = m }
-    }
-    0.5 * (a + b)
-}
-
-/// Solves the tridiagonal `(d, o) x = b` (Thomas algorithm; the matrices here are far from
-/// singular in the directions it is used on).
-fn solve(d: &[f64], o: &[f64], b: &[f64]) -> Vec<f64> {
-    let m = d.len();
-    let (mut c, mut y) = (vec![0.0; m], vec![0.0; m]);
-    for i in 0..m {
-        let den = d[i] - if i > 0 { o[i - 1] * c[i - 1] } else { 0.0 };
-        if i + 1 < m {
-            c[i] = o[i] / den;
-        }
-        y[i] = (b[i] - if i > 0 { o[i - 1] * y[i - 1] } else { 0.0 }) / den;
-    }
-    for i in (0..m - 1).rev() {
-        y[i] -= c[i] * y[i + 1];
-    }
-    y
-}
-
 /// The reference's verdict on `a`: an equilibrium of the moving rotors (`max |dV/dtheta| <=
 /// 1e-9 ||K||`) and the Morse index of its Hessian (eigenvalues below `-1e-9 ||K||`).
 fn reference_index(reference: &Reference, a: &Antikink) -> usize {

@@ -93,3 +93,73 @@ pub fn wavy(n: usize, theta_bar: f64, seed: u64) -> Vec<f64> {
     let mut random = test_support::random::SplitMix(seed);
     (0..n).map(|i| theta_bar * (0.3 * i as f64).cos() + random.range(-0.1, 0.1)).collect()
 }
+
+/// A chain of `n` rotors (`R`, `K` of the paper's figures) and its [`Reference`] twin, with
+/// `overrides` as (spring, stiffness factor, rest-length factor).
+pub fn chains(
+    n: usize,
+    theta_bar: f64,
+    overrides: &[(usize, f64, f64)],
+) -> (rotor_chain::RuntimeChain, Reference) {
+    let mut reference = Reference::uniform(n, theta_bar);
+    let mut builder = rotor_chain::RuntimeChain::builder(n, R, K, theta_bar);
+    for &(p, k, l) in overrides {
+        reference.k[p] *= k;
+        reference.l0[p] *= l;
+        if k != 1.0 {
+            builder = builder.spring_constant(p, reference.k[p]);
+        }
+        if l != 1.0 {
+            builder = builder.spring_rest_length(p, reference.l0[p]);
+        }
+    }
+    (builder.build().unwrap(), reference)
+}
+
+/// The eigenvalues of the symmetric tridiagonal `(d, o)` below `x`: the negative pivots of the
+/// `LDL^T` of `(d, o) - x I` (Sturm), written here independently of the library's.
+pub fn count_below(d: &[f64], o: &[f64], x: f64) -> usize {
+    let mut pivot = d[0] - x;
+    let mut count = usize::from(pivot < 0.0);
+    for i in 1..d.len() {
+        pivot = d[i] - x - o[i - 1] * o[i - 1] / pivot;
+        count += usize::from(pivot < 0.0);
+    }
+    count
+}
+
+/// The infinity norm of the tridiagonal `(d, o)`.
+pub fn norm(d: &[f64], o: &[f64]) -> f64 {
+    (0..d.len())
+        .map(|i| d[i].abs() + if i > 0 { o[i - 1].abs() } else { 0.0 } + o.get(i).map_or(0.0, |x| x.abs()))
+        .fold(0.0, f64::max)
+}
+
+/// The lowest eigenvalue of `(d, o)` by 200 bisections of the Sturm count.
+pub fn lowest(d: &[f64], o: &[f64]) -> f64 {
+    let r = norm(d, o);
+    let (mut a, mut b) = (-r, r);
+    for _ in 0..200 {
+        let m = 0.5 * (a + b);
+        if count_below(d, o, m) >= 1 { b = m } else { a = m }
+    }
+    0.5 * (a + b)
+}
+
+/// Solves the tridiagonal `(d, o) x = b` (Thomas algorithm, no pivoting: for the positive
+/// definite or far-from-singular blocks the tests use it on).
+pub fn solve(d: &[f64], o: &[f64], b: &[f64]) -> Vec<f64> {
+    let m = d.len();
+    let (mut c, mut y) = (vec![0.0; m], vec![0.0; m]);
+    for i in 0..m {
+        let den = d[i] - if i > 0 { o[i - 1] * c[i - 1] } else { 0.0 };
+        if i + 1 < m {
+            c[i] = o[i] / den;
+        }
+        y[i] = (b[i] - if i > 0 { o[i - 1] * y[i - 1] } else { 0.0 }) / den;
+    }
+    for i in (0..m.saturating_sub(1)).rev() {
+        y[i] -= c[i] * y[i + 1];
+    }
+    y
+}
