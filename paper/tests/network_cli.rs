@@ -92,3 +92,68 @@ fn a_reader_that_goes_away_ends_network_quietly() {
     assert_eq!(out.status.signal(), Some(libc::SIGPIPE), "{:?}", out.status);
     assert!(out.stderr.is_empty(), "{}", String::from_utf8_lossy(&out.stderr));
 }
+
+/// Starts `network args`, sends `signal` after `after`, and returns the exit status and stderr; a
+/// process still running a minute after the signal fails the test (killed first).
+#[cfg(unix)]
+fn interrupted(args: &[&str], signal: libc::c_int, after: std::time::Duration) -> (Option<i32>, String) {
+    use std::io::Read;
+    use std::process::Stdio;
+    use std::time::{Duration, Instant};
+    let mut child = Command::new(env!("CARGO_BIN_EXE_network"))
+        .args(args)
+        .stdin(Stdio::null())
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("the network binary runs");
+    std::thread::sleep(after);
+    assert!(
+        child.try_wait().unwrap().is_none(),
+        "{args:?} ended before the signal: pick a longer computation"
+    );
+    // SAFETY: `kill` with the pid of our own child and a valid signal number.
+    assert_eq!(unsafe { libc::kill(child.id() as libc::pid_t, signal) }, 0);
+    let deadline = Instant::now() + Duration::from_secs(60);
+    let status = loop {
+        if let Some(status) = child.try_wait().unwrap() {
+            break status;
+        }
+        if Instant::now() > deadline {
+            child.kill().unwrap();
+            panic!("{args:?} still running a minute after signal {signal}");
+        }
+        std::thread::sleep(Duration::from_millis(20));
+    };
+    let mut stderr = String::new();
+    child.stderr.take().unwrap().read_to_string(&mut stderr).unwrap();
+    (status.code(), stderr)
+}
+
+/// SIGTERM and SIGINT stop a long count (a free kagome patch of 120 x 120 cells, 86 400 degrees
+/// of freedom: the sparse path) and a phase diagram, with 128 + the signal; the diagram's
+/// results file keeps only whole records, which a rerun resumes from.
+#[cfg(unix)]
+#[test]
+fn signals_stop_a_long_count_and_a_diagram() {
+    let dir = tempfile::tempdir().unwrap();
+    let kagome = ready(dir.path(), "kagome", &[]);
+    let second = std::time::Duration::from_millis(1500);
+    let (code, stderr) =
+        interrupted(&["counts", &kagome, "--cells", "120x120", "--boundary", "free"], libc::SIGTERM, second);
+    assert_eq!(code, Some(143), "{stderr}");
+    assert!(stderr.contains("network: interrupted by SIGTERM"), "{stderr}");
+
+    let out = dir.path().join("diagram");
+    let args = ["diagram", "--x1=-0.2:0.2:300", "--x2=-0.2:0.2:300", "--out", out.to_str().unwrap()];
+    let (code, stderr) = interrupted(&args, libc::SIGINT, second);
+    assert_eq!(code, Some(130), "{stderr}");
+    assert!(stderr.contains("network: interrupted by SIGINT"), "{stderr}");
+    let text = std::fs::read_to_string(out.join("diagram.csv")).unwrap();
+    assert!(text.ends_with('\n'), "a record cut short: {:?}", &text[text.len().saturating_sub(80)..]);
+    let records = text.lines().filter(|l| !l.starts_with('#') && !l.starts_with("i,")).count();
+    assert!(records > 0 && records < 300 * 300, "{records} records");
+    for line in text.lines().filter(|l| !l.starts_with('#') && !l.starts_with("i,")) {
+        assert_eq!(line.split(',').count(), 11, "{line}");
+    }
+}

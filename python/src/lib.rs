@@ -24,6 +24,11 @@ mod sweep;
 
 #[pymodule]
 fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    // numpy's C API (its capsule and version check) loaded now, while the module is imported:
+    // rust-numpy loads it lazily by running Python code, and a Ctrl-C pending when a method made
+    // the interpreter's first array was raised inside that code, which rust-numpy turned into a
+    // panic ("Failed to access NumPy array API capsule") instead of a KeyboardInterrupt.
+    numpy::PyArray1::<f64>::zeros(m.py(), 0, false);
     m.add_class::<chain::Chain>()?;
     m.add_class::<chain::Continuum>()?;
     m.add_class::<network::Network>()?;
