@@ -130,7 +130,7 @@ fn interrupted(args: &[&str], signal: libc::c_int, after: std::time::Duration) -
     (status.code(), stderr)
 }
 
-/// SIGTERM and SIGINT stop a long count (a free kagome patch of 120 x 120 cells, 86 400 degrees
+/// SIGTERM and SIGINT stop a long count (a free kagome patch of 50 x 50 cells, 15 000 degrees
 /// of freedom: the sparse path) and a phase diagram, with 128 + the signal; the diagram's
 /// results file keeps only whole records, which a rerun resumes from.
 #[cfg(unix)]
@@ -140,7 +140,7 @@ fn signals_stop_a_long_count_and_a_diagram() {
     let kagome = ready(dir.path(), "kagome", &[]);
     let second = std::time::Duration::from_millis(1500);
     let (code, stderr) =
-        interrupted(&["counts", &kagome, "--cells", "120x120", "--boundary", "free"], libc::SIGTERM, second);
+        interrupted(&["counts", &kagome, "--cells", "50x50", "--boundary", "free"], libc::SIGTERM, second);
     assert_eq!(code, Some(143), "{stderr}");
     assert!(stderr.contains("network: interrupted by SIGTERM"), "{stderr}");
 
