@@ -16,7 +16,8 @@
 //! of no steps), 0 kept where it has a meaning (Newton's `max_iterations = 0` measures the
 //! start's residual), and an upper bound with a reason, so that no count set by a user makes a
 //! loop that never ends in practice or a thread count without a bound: an iteration's
-//! convergence ([`NewtonOptions::MAX_ITERATIONS`](crate::statics::equilibrium::NewtonOptions::MAX_ITERATIONS)),
+//! convergence
+//! ([`NewtonOptions::MAX_ITERATIONS`](crate::statics::equilibrium::NewtonOptions::MAX_ITERATIONS)),
 //! the step budget of any integrator ([`MAX_STEP_BUDGET`](crate::integrate::MAX_STEP_BUDGET)),
 //! or a size limit the library already has (`MAX_ROTORS`, `MAX_SPACE_TIME_VALUES`,
 //! `MAX_DENSE_VALUES`, a network patch's bonds). Each bound is stated in the field's doc and in

@@ -3,10 +3,11 @@
 //! must fail [`Validate::validate`] with the `InvalidOption` naming `PhaseDiagram`, the field and
 //! the value, while the valid value they replace passes, and `n` is enumerated at both ends of its
 //! range (test-support's `options` checks, shared with chain-core's and chain-network's tests);
-//! `check` and `compute_point` refuse them the same way. [`SweepOptions`] is non-exhaustive, so its fields are enumerated in its crate
-//! (`sweep::validation`); a [`Grid`]'s fields are private and established by its constructors,
-//! checked again by `validate` where a sweep starts (enumerated in `grid`'s unit tests). A sweep
-//! with an invalid thread count reports `SweepOptions.threads` as every other option.
+//! `check` and `compute_point` refuse them the same way. [`SweepOptions`] is non-exhaustive, so
+//! its fields are enumerated in its crate (`sweep::validation`); a [`Grid`]'s fields are private
+//! and established by its constructors, checked again by `validate` where a sweep starts
+//! (enumerated in `grid`'s unit tests). A sweep with an invalid thread count reports
+//! `SweepOptions.threads` as every other option.
 
 use chain_sweep::grid::{Axis, Grid};
 use chain_sweep::scattering::{Defect, PhaseDiagram, PointError};

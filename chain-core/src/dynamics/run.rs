@@ -51,7 +51,8 @@ pub struct RunOptions {
     /// bound on the values a run keeps bounds the outputs too.
     pub max_outputs: usize,
     /// The most Verlet steps a run may take. Default [`VerletOptions::DEFAULT_MAX_STEPS`];
-    /// between 1 and [`MAX_STEP_BUDGET`](crate::integrate::MAX_STEP_BUDGET) (10^10), every integrator's bound.
+    /// between 1 and [`MAX_STEP_BUDGET`](crate::integrate::MAX_STEP_BUDGET) (10^10), every
+    /// integrator's bound.
     pub max_steps: u64,
     /// The largest relative energy change before the run stops with an error. Default
     /// [`DEFAULT_ENERGY_LIMIT`] (10 %).
@@ -82,8 +83,9 @@ impl Validate for RunOptions {
     /// [`IntegrateError::EndBeforeStart`] at the run), `output_interval > 0` and finite, the
     /// method's tolerances (`rtol >= 0`, `atol > 0`, finite), `dt > 0` and finite, `damping >= 0`
     /// and finite, the sponge's, `max_outputs` between 1 and [`MAX_SPACE_TIME_VALUES`],
-    /// `max_steps` between 1 and [`MAX_STEP_BUDGET`](crate::integrate::MAX_STEP_BUDGET), `energy_limit > 0`
-    /// (infinite: no check). The errors are the integrator's, as the run would report them.
+    /// `max_steps` between 1 and [`MAX_STEP_BUDGET`](crate::integrate::MAX_STEP_BUDGET),
+    /// `energy_limit > 0` (infinite: no check). The errors are the integrator's, as the run would
+    /// report them.
     fn validate(&self) -> Result<(), IntegrateError> {
         // No `..`: a field added here does not compile until it is checked.
         let Self {

@@ -243,6 +243,7 @@ pub const DEFAULT_ENERGY_LIMIT: f64 = 0.1;
 pub const MAX_STEP_BUDGET: u64 = 10_000_000_000;
 
 /// The rule of every integrator's step budget: between 1 and [`MAX_STEP_BUDGET`].
+#[cfg(feature = "alloc")]
 pub(crate) fn check_step_budget(
     fields: Fields,
     field: &'static str,

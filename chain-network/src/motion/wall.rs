@@ -207,9 +207,9 @@ impl Validate for CoupledChains {
 
     /// `spacing`, `rotor_length`, `row_spacing`, `coupling`, `speed` and `duration` positive and
     /// finite, `theta_bar` in `(0, pi/2)`, `damping` and `stagger` finite and `>= 0`, `chains` in
-    /// `2..=MAX_PATCH_BONDS / 8`, `cells` in `8..=MAX_PATCH_BONDS / chains`, `frames` in `2..=` the space-time
-    /// bound over the rotors, a run of at most [`MAX_STEP_BUDGET`] steps, and every chain's wall
-    /// (`start +- stagger / 2`) at least 4 rotors from an end.
+    /// `2..=MAX_PATCH_BONDS / 8`, `cells` in `8..=MAX_PATCH_BONDS / chains`, `frames` in `2..=`
+    /// the space-time bound over the rotors, a run of at most [`MAX_STEP_BUDGET`] steps, and
+    /// every chain's wall (`start +- stagger / 2`) at least 4 rotors from an end.
     fn validate(&self) -> Result<(), MotionError> {
         // No `..`: a field added here does not compile until it is checked.
         let Self {

@@ -341,8 +341,8 @@ impl Validate for ScatterSetup {
 
     /// Every field in its range, whatever the chain: `v0`, the windows and distances finite and
     /// `>= 0`, `reach`, `max_jump` and `cluster_gap` `> 0`, `clear >= reach`, `start` finite,
-    /// the run's settings ([`RunOptions`]'s), `turns` at most `run.max_outputs`. Where the setup lies on a chain is
-    /// [`ScatterSetup::check`]'s.
+    /// the run's settings ([`RunOptions`]'s), `turns` at most `run.max_outputs`. Where the setup
+    /// lies on a chain is [`ScatterSetup::check`]'s.
     fn validate(&self) -> Result<(), DynamicsError> {
         // Every field is named here, without `..`: a field added to the setup does not compile
         // until it is given its check below (or said to need none, as the enums).
