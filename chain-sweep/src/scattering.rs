@@ -974,8 +974,13 @@ mod tests {
                         assert_eq!(m, n);
                         assert!(shortest.is_none(), "n = {n} refused after a shorter chain passed");
                         assert!(d.compute_point(0.5, 2.0).is_err(), "n = {n} refused, yet its point ran");
-                        let spring = matches!(*source, DynamicsError::NoSuchSpring { .. }) && n < 2;
-                        assert!(spring || source.to_string().contains("start"), "n = {n}: {source}");
+                        assert!(source.to_string().contains("start"), "n = {n}: {source}");
+                    }
+                    // Below two rotors there is no chain: `validate`'s rule on `n`, before the
+                    // experiment is looked at.
+                    Err(ConfigError::InvalidOption(o)) if n < 2 => {
+                        assert_eq!((o.options, o.field, o.value), ("PhaseDiagram", "n", n as f64));
+                        assert!(d.compute_point(0.5, 2.0).is_err(), "n = {n} refused, yet its point ran");
                     }
                     Err(other) => panic!("n = {n}: {other}"),
                 }
