@@ -10,6 +10,18 @@
 //! the entry point after `validate`.
 //!
 //! The rules are written once, in [`Fields`]; chain-network and chain-sweep use the same.
+//!
+//! **Counts.** Every count field (iterations, steps, outputs, modes, sites, threads) has a
+//! documented range, checked by [`Fields::count_in`]: a lower bound where 0 means nothing (a run
+//! of no steps), 0 kept where it has a meaning (Newton's `max_iterations = 0` measures the
+//! start's residual), and an upper bound with a reason, so that no count set by a user makes a
+//! loop that never ends in practice or a thread count without a bound: an iteration's
+//! convergence
+//! ([`NewtonOptions::MAX_ITERATIONS`](crate::statics::equilibrium::NewtonOptions::MAX_ITERATIONS)),
+//! the step budget of any integrator ([`MAX_STEP_BUDGET`](crate::integrate::MAX_STEP_BUDGET)),
+//! or a size limit the library already has (`MAX_ROTORS`, `MAX_SPACE_TIME_VALUES`,
+//! `MAX_DENSE_VALUES`, a network patch's bonds). Each bound is stated in the field's doc and in
+//! the rule's text, with its number.
 
 use chain_geometry::Short;
 
@@ -73,5 +85,79 @@ impl Fields {
     /// A count of at least 1.
     pub fn at_least_one(self, field: &'static str, value: u64) -> Result<(), InvalidOption> {
         self.rule(field, value as f64, value >= 1, "at least 1")
+    }
+
+    /// A count in `lo..=hi`; `rule` says it in words with both bounds and why the upper one
+    /// (`"between 1 and MAX_STEP_BUDGET = 10000000000 (...)"`). The count is reported as `f64`
+    /// (exact below `2^53`, far above every bound).
+    pub fn count_in(
+        self,
+        field: &'static str,
+        value: u64,
+        lo: u64,
+        hi: u64,
+        rule: &'static str,
+    ) -> Result<(), InvalidOption> {
+        self.rule(field, value as f64, (lo..=hi).contains(&value), rule)
+    }
+}
+
+/// An error that may be an invalid option, wherever its [`InvalidOption`] sits (a variant of its
+/// own or a nested error's): how a caller (a binding, a test) asks any subsystem's error which
+/// struct, field and value it refused, and by which rule.
+pub trait OptionError {
+    /// The invalid option this error reports, if it is one.
+    fn invalid_option(&self) -> Option<InvalidOption>;
+}
+
+impl OptionError for InvalidOption {
+    fn invalid_option(&self) -> Option<InvalidOption> {
+        Some(*self)
+    }
+}
+
+impl OptionError for crate::integrate::IntegrateError {
+    fn invalid_option(&self) -> Option<InvalidOption> {
+        match *self {
+            Self::InvalidOption { options, name, value, rule } => {
+                Some(InvalidOption { options, field: name, value, rule })
+            }
+            _ => None,
+        }
+    }
+}
+
+impl OptionError for crate::statics::StaticsError {
+    fn invalid_option(&self) -> Option<InvalidOption> {
+        match *self {
+            Self::InvalidOption { options, name, value, rule } => {
+                Some(InvalidOption { options, field: name, value, rule })
+            }
+            _ => None,
+        }
+    }
+}
+
+impl OptionError for crate::dynamics::DynamicsError {
+    fn invalid_option(&self) -> Option<InvalidOption> {
+        match self {
+            &Self::InvalidSetup { options, name, value, rule } => {
+                Some(InvalidOption { options, field: name, value, rule })
+            }
+            Self::Integrate(e) => e.invalid_option(),
+            Self::Statics(e) => e.invalid_option(),
+            _ => None,
+        }
+    }
+}
+
+#[cfg(feature = "alloc")]
+impl OptionError for crate::dynamics::scatter::BudgetError {
+    fn invalid_option(&self) -> Option<InvalidOption> {
+        match self {
+            Self::InvalidOption(o) => Some(*o),
+            Self::Setup(source) => source.invalid_option(),
+            _ => None,
+        }
     }
 }

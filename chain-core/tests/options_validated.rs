@@ -3,27 +3,31 @@
 //! field is given its invalid values (NaN, the infinities, the wrong sign, 0 where 0 is invalid,
 //! a count below its minimum) and must fail [`Validate::validate`] with the error naming that
 //! struct, that field and that value; the valid value it replaces must pass. A field that takes
-//! every value says why. Then every entry point that takes a struct refuses it the same way
+//! every value says why; a count is enumerated at both ends of its documented range (the bound
+//! passes, the bound + 1 and the invalid low values fail, and the rule states the bound). The
+//! checks are test-support's (`options`), shared with chain-network's and chain-sweep's tests.
+//! Then every entry point that takes a struct refuses it the same way
 //! (`ScatterSetup::clear = NaN` used to run and return `Ok(Transmitted)`), and the numbers in
 //! these errors and in other statics, dynamics and integration errors print short (`5e-324`,
 //! `1e300`), never as hundreds of digits.
 
 use chain_core::RuntimeChain;
-use chain_core::dynamics::DynamicsError;
 use chain_core::dynamics::integrate::{
-    AdaptiveOptions, Flow, IntegrateError, Sponge, State, VerletOptions, adaptive, verlet,
+    AdaptiveOptions, Flow, Sponge, State, VerletOptions, adaptive, verlet,
 };
+use chain_core::dynamics::run::MAX_SPACE_TIME_VALUES;
 use chain_core::dynamics::run::{Method, RunOptions, propagate};
-use chain_core::dynamics::scatter::{
-    BudgetError, EnergyBudget, ScatterSetup, scatter, scatter_within_budget,
-};
-use chain_core::statics::StaticsError;
+use chain_core::dynamics::scatter::{EnergyBudget, ScatterSetup, scatter, scatter_within_budget};
+use chain_core::geometry::MAX_ROTORS;
+use chain_core::integrate::MAX_STEP_BUDGET;
+use chain_core::statics::MAX_DENSE_VALUES;
 use chain_core::statics::antikink::{AntikinkOptions, Ends, antikink_at, peierls_nabarro};
 use chain_core::statics::equilibrium::{NewtonOptions, RelaxOptions, newton, relax};
 use chain_core::statics::kink::kink;
 use chain_core::statics::modes::{ModeOptions, modes};
 use chain_core::statics::walls::Charge;
 use chain_core::validate::Validate;
+use test_support::options::{any_value, assert_names, count_range, rule_states, values as floats};
 
 const NAN: f64 = f64::NAN;
 const INF: f64 = f64::INFINITY;
@@ -35,100 +39,6 @@ const NON_NEGATIVE: &[f64] = &[NAN, INF, -INF, -1.0, -TINY];
 const POSITIVE: &[f64] = &[NAN, INF, -INF, -1.0, -TINY, 0.0];
 /// What a field that must be finite refuses.
 const FINITE: &[f64] = &[NAN, INF, -INF];
-
-/// The struct, the field and the value an error names, wherever its `InvalidOption` sits.
-trait Names {
-    fn names(&self) -> Option<(&'static str, &'static str, f64)>;
-}
-
-impl Names for IntegrateError {
-    fn names(&self) -> Option<(&'static str, &'static str, f64)> {
-        match *self {
-            IntegrateError::InvalidOption { options, name, value, .. } => Some((options, name, value)),
-            _ => None,
-        }
-    }
-}
-
-impl Names for DynamicsError {
-    fn names(&self) -> Option<(&'static str, &'static str, f64)> {
-        match self {
-            &DynamicsError::InvalidSetup { options, name, value, .. } => Some((options, name, value)),
-            DynamicsError::Integrate(e) => e.names(),
-            DynamicsError::Statics(e) => e.names(),
-            _ => None,
-        }
-    }
-}
-
-impl Names for StaticsError {
-    fn names(&self) -> Option<(&'static str, &'static str, f64)> {
-        match *self {
-            StaticsError::InvalidOption { options, name, value, .. } => Some((options, name, value)),
-            _ => None,
-        }
-    }
-}
-
-impl Names for BudgetError {
-    fn names(&self) -> Option<(&'static str, &'static str, f64)> {
-        match self {
-            BudgetError::InvalidOption(o) => Some((o.options, o.field, o.value)),
-            BudgetError::Setup(source) => source.names(),
-            _ => None,
-        }
-    }
-}
-
-/// `error` names `options`, `field` and exactly `value` (bit for bit; any NaN for a NaN).
-fn assert_names<E: Names + std::fmt::Display>(error: &E, options: &str, field: &str, value: f64) {
-    let (o, f, v) = error.names().unwrap_or_else(|| panic!("not an invalid option: {error}"));
-    assert_eq!((o, f), (options, field), "{error}");
-    assert!(v.to_bits() == value.to_bits() || (v.is_nan() && value.is_nan()), "{value} -> {error}");
-    assert!(error.to_string().contains(&format!("{options}.{field} = ")), "{error}");
-}
-
-/// `make(valid)` validates, and `make(v)` for each `v` of `bad` fails naming `options.field = v`.
-fn floats<S: Validate>(options: &str, field: &str, valid: f64, bad: &[f64], make: impl Fn(f64) -> S)
-where
-    S::Error: Names + std::fmt::Display + std::fmt::Debug,
-{
-    if let Err(e) = make(valid).validate() {
-        panic!("{options}.{field} = {valid} is valid, got {e}");
-    }
-    for &v in bad {
-        match make(v).validate() {
-            Ok(()) => panic!("{options}.{field} = {v} passed"),
-            Err(e) => assert_names(&e, options, field, v),
-        }
-    }
-}
-
-/// As [`floats`], for a count.
-fn counts<S: Validate>(options: &str, field: &str, valid: u64, bad: &[u64], make: impl Fn(u64) -> S)
-where
-    S::Error: Names + std::fmt::Display + std::fmt::Debug,
-{
-    if let Err(e) = make(valid).validate() {
-        panic!("{options}.{field} = {valid} is valid, got {e}");
-    }
-    for &v in bad {
-        match make(v).validate() {
-            Ok(()) => panic!("{options}.{field} = {v} passed"),
-            Err(e) => assert_names(&e, options, field, v as f64),
-        }
-    }
-}
-
-/// A field that takes every value: two of them pass.
-fn any_value<S: Validate>(what: &str, values: [S; 2])
-where
-    S::Error: std::fmt::Debug,
-{
-    for s in values {
-        assert!(s.validate().is_ok(), "{what}: every value is valid");
-    }
-}
 
 #[test]
 fn every_field_of_run_options_is_validated() {
@@ -158,8 +68,17 @@ fn every_field_of_run_options_is_validated() {
     let sponge = |strength| RunOptions { absorbing_ends: Some(Sponge { width: 10, strength }), ..base };
     floats("Sponge", "strength", 30.0, NON_NEGATIVE, sponge);
     any_value("space_time", [RunOptions { space_time: !space_time, ..base }, base]);
-    counts(o, "max_outputs", max_outputs as u64, &[0], |v| RunOptions { max_outputs: v as usize, ..base });
-    counts(o, "max_steps", max_steps, &[0], |v| RunOptions { max_steps: v, ..base });
+    // Between 1 and the space-time image's bound (an output records at least one value).
+    assert!((1..=MAX_SPACE_TIME_VALUES).contains(&max_outputs));
+    let most = MAX_SPACE_TIME_VALUES as u64;
+    let o_max = count_range(o, "max_outputs", 1, most, |v| RunOptions { max_outputs: v as usize, ..base });
+    rule_states(o_max, most);
+    // Between 1 and every integrator's step budget bound.
+    assert!((1..=MAX_STEP_BUDGET).contains(&max_steps));
+    rule_states(
+        count_range(o, "max_steps", 1, MAX_STEP_BUDGET, |v| RunOptions { max_steps: v, ..base }),
+        MAX_STEP_BUDGET,
+    );
     // Infinite switches the energy check off; NaN, 0 and below are refused.
     floats(o, "energy_limit", energy_limit, &[NAN, -INF, -1.0, 0.0], |v| RunOptions {
         energy_limit: v,
@@ -172,8 +91,12 @@ fn every_field_of_run_options_is_validated() {
 fn every_field_of_the_integrators_options_is_validated() {
     let Sponge { width, strength } = Sponge { width: 10, strength: 30.0 };
     floats("Sponge", "strength", strength, NON_NEGATIVE, |v| Sponge { width, strength: v });
-    // Any width: 0 is no sponge, a width beyond half the chain overlaps the two.
-    any_value("width", [Sponge { width: 0, strength }, Sponge { width: usize::MAX, strength }]);
+    // 0 is no sponge, a width beyond half the chain overlaps the two; no chain has more than
+    // MAX_ROTORS rotors.
+    assert!(width <= MAX_ROTORS);
+    let o_width =
+        count_range("Sponge", "width", 0, MAX_ROTORS as u64, |v| Sponge { width: v as usize, strength });
+    rule_states(o_width, MAX_ROTORS as u64);
 
     let base = VerletOptions::new(1e-3);
     let VerletOptions { dt, damping, sponge: _, max_steps, energy_limit } = base;
@@ -184,7 +107,9 @@ fn every_field_of_the_integrators_options_is_validated() {
         sponge: Some(Sponge { width: 3, strength: v }),
         ..base
     });
-    counts(o, "max_steps", max_steps, &[0], |v| VerletOptions { max_steps: v, ..base });
+    assert!((1..=MAX_STEP_BUDGET).contains(&max_steps));
+    let o_steps = count_range(o, "max_steps", 1, MAX_STEP_BUDGET, |v| VerletOptions { max_steps: v, ..base });
+    rule_states(o_steps, MAX_STEP_BUDGET);
     floats(o, "energy_limit", energy_limit, &[NAN, -1.0, 0.0], |v| VerletOptions { energy_limit: v, ..base });
 
     let base = AdaptiveOptions::default();
@@ -209,7 +134,12 @@ fn every_field_of_the_integrators_options_is_validated() {
     // At most max_step: 2 when the longest step is 1.
     let capped = AdaptiveOptions { max_step: 1.0, ..base };
     floats(o, "min_step", min_step, &[NAN, INF, -1.0, 2.0], |v| AdaptiveOptions { min_step: v, ..capped });
-    counts(o, "max_steps", max_steps as u64, &[0], |v| AdaptiveOptions { max_steps: v as usize, ..base });
+    assert!((1..=MAX_STEP_BUDGET).contains(&(max_steps as u64)));
+    let o_steps = count_range(o, "max_steps", 1, MAX_STEP_BUDGET, |v| AdaptiveOptions {
+        max_steps: v as usize,
+        ..base
+    });
+    rule_states(o_steps, MAX_STEP_BUDGET);
     floats(o, "damping", damping, NON_NEGATIVE, |v| AdaptiveOptions { damping: v, ..base });
     floats("Sponge", "strength", 1.0, NON_NEGATIVE, |v| AdaptiveOptions {
         sponge: Some(Sponge { width: 3, strength: v }),
@@ -271,8 +201,12 @@ fn every_field_of_the_scattering_setup_and_budget_is_validated() {
     floats(o, "progress", progress, NON_NEGATIVE, |v| ScatterSetup { progress: v, ..base });
     floats(o, "trap_time", trap_time, NON_NEGATIVE, |v| ScatterSetup { trap_time: v, ..base });
     floats(o, "trap_crossings", trap_crossings, NON_NEGATIVE, |v| ScatterSetup { trap_crossings: v, ..base });
-    // Any count of turns (0: trapped after trap_time without turning).
-    any_value("turns", [ScatterSetup { turns: 0, ..base }, ScatterSetup { turns: turns + 1000, ..base }]);
+    // Between 0 (trapped after trap_time without turning) and the run's max_outputs (a turn is
+    // seen at an output): the default's million, and 10 for a run of at most 10 outputs.
+    assert!(turns as u64 <= run.max_outputs as u64);
+    count_range(o, "turns", 0, run.max_outputs as u64, |v| ScatterSetup { turns: v as usize, ..base });
+    let short_run = RunOptions { max_outputs: 10, ..run };
+    count_range(o, "turns", 0, 10, |v| ScatterSetup { turns: v as usize, run: short_run, ..base });
     floats(o, "turn_band", turn_band, NON_NEGATIVE, |v| ScatterSetup { turn_band: v, ..base });
     floats(o, "entry_window", entry_window, NON_NEGATIVE, |v| ScatterSetup { entry_window: v, ..base });
     floats(o, "cluster_gap", cluster_gap, POSITIVE, |v| ScatterSetup { cluster_gap: v, ..base });
@@ -302,33 +236,35 @@ fn every_field_of_the_statics_options_is_validated() {
     let NewtonOptions { tolerance, max_iterations, shift, null_tolerance, hold_ends, max_held } = base;
     let o = "NewtonOptions";
     floats(o, "tolerance", tolerance, POSITIVE, |v| NewtonOptions { tolerance: v, ..base });
-    // Any count: 0 iterations measures the start's residual; 0 held directions holds none.
-    any_value(
-        "max_iterations",
-        [
-            NewtonOptions { max_iterations: 0, ..base },
-            NewtonOptions { max_iterations: max_iterations * 1000, ..base },
-        ],
-    );
+    // 0 iterations measures the start's residual; a thousand is far beyond quadratic
+    // convergence's handful.
+    let most = NewtonOptions::MAX_ITERATIONS as u64;
+    assert!(max_iterations as u64 <= most && most == 1000);
+    let o_iterations =
+        count_range(o, "max_iterations", 0, most, |v| NewtonOptions { max_iterations: v as usize, ..base });
+    rule_states(o_iterations, most);
     floats(o, "shift", shift, NON_NEGATIVE, |v| NewtonOptions { shift: v, ..base });
     floats(o, "null_tolerance", null_tolerance, NON_NEGATIVE, |v| NewtonOptions {
         null_tolerance: v,
         ..base
     });
     any_value("hold_ends", [NewtonOptions { hold_ends: !hold_ends, ..base }, base]);
-    any_value(
-        "max_held",
-        [NewtonOptions { max_held: 0, ..base }, NewtonOptions { max_held: max_held + 100, ..base }],
+    // 0 holds none; one more direction is held per step at most, so no more than the steps.
+    assert!(max_held as u64 <= most);
+    rule_states(
+        count_range(o, "max_held", 0, most, |v| NewtonOptions { max_held: v as usize, ..base }),
+        most,
     );
 
     let base = RelaxOptions::default();
     let RelaxOptions { tolerance, max_steps, time_step, damping, hold_ends } = base;
     let o = "RelaxOptions";
     floats(o, "tolerance", tolerance, POSITIVE, |v| RelaxOptions { tolerance: v, ..base });
-    any_value(
-        "max_steps",
-        [RelaxOptions { max_steps: 0, ..base }, RelaxOptions { max_steps: max_steps * 10, ..base }],
-    );
+    // 0: the start, if it meets the tolerance; at most every integrator's step budget bound.
+    assert!(max_steps as u64 <= MAX_STEP_BUDGET);
+    let o_steps =
+        count_range(o, "max_steps", 0, MAX_STEP_BUDGET, |v| RelaxOptions { max_steps: v as usize, ..base });
+    rule_states(o_steps, MAX_STEP_BUDGET);
     // Below 2: velocity Verlet's stability limit in units of 1 / omega_max.
     floats(o, "time_step", time_step, &[NAN, INF, -1.0, 0.0, 2.0, 1e300], |v| RelaxOptions {
         time_step: v,
@@ -340,9 +276,12 @@ fn every_field_of_the_statics_options_is_validated() {
     let base = ModeOptions::default();
     let ModeOptions { count, cluster, localised_fraction, localised_widths, reach, hold_ends } = base;
     let o = "ModeOptions";
-    // Any count (Some(0): no mode; None: all).
-    any_value("count", [ModeOptions { count: Some(0), ..base }, ModeOptions { count: None, ..base }]);
+    // Some(0): no mode; None: all; at most MAX_DENSE_VALUES, the bound on the modes' count x n
+    // values (so no chain gives more modes).
     assert_eq!(count, Some(12));
+    let most = MAX_DENSE_VALUES as u64;
+    rule_states(count_range(o, "count", 0, most, |v| ModeOptions { count: Some(v as usize), ..base }), most);
+    assert!(ModeOptions { count: None, ..base }.validate().is_ok());
     floats(o, "cluster", cluster, NON_NEGATIVE, |v| ModeOptions { cluster: v, ..base });
     // A fraction of the rotors: in [0, 1].
     floats(o, "localised_fraction", localised_fraction, &[NAN, INF, -TINY, 1.0 + f64::EPSILON], |v| {
@@ -419,6 +358,18 @@ fn every_entry_point_refuses_an_invalid_struct() {
     assert_names(&relax(&chain, &theta, &options).unwrap_err(), "RelaxOptions", "time_step", 3.0);
     let options = ModeOptions { localised_fraction: 2.0, ..ModeOptions::default() };
     assert_names(&modes(&chain, &theta, &options).unwrap_err(), "ModeOptions", "localised_fraction", 2.0);
+    // Counts past their bounds: refused before any step (a relaxation of usize::MAX steps
+    // towards a tolerance it cannot meet would never end in practice).
+    let options = RelaxOptions { max_steps: usize::MAX, tolerance: TINY, ..RelaxOptions::default() };
+    let e = relax(&chain, &theta, &options).unwrap_err();
+    assert_names(&e, "RelaxOptions", "max_steps", usize::MAX as f64);
+    let options = NewtonOptions { max_iterations: 1001, ..NewtonOptions::default() };
+    assert_names(&newton(&chain, &theta, &options).unwrap_err(), "NewtonOptions", "max_iterations", 1001.0);
+    let options = ModeOptions { count: Some(usize::MAX), ..ModeOptions::default() };
+    assert_names(&modes(&chain, &theta, &options).unwrap_err(), "ModeOptions", "count", usize::MAX as f64);
+    let options = RunOptions { max_steps: MAX_STEP_BUDGET + 1, ..RunOptions::default() };
+    let e = propagate(&chain, State::at_rest(theta.clone()), &options, &mut |_| false).unwrap_err();
+    assert_names(&e, "RunOptions", "max_steps", (MAX_STEP_BUDGET + 1) as f64);
     let options = AntikinkOptions { zero_tolerance: Some(-1.0), ..AntikinkOptions::default() };
     assert_names(
         &antikink_at(&chain, 30.0, &options).unwrap_err(),

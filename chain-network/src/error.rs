@@ -3,6 +3,7 @@
 //! (crate `chain-cell`, re-exported here).
 
 pub use chain_cell::{CellError, Location};
+use chain_core::validate::{InvalidOption, OptionError};
 
 /// An analysis of a valid cell that cannot be carried out.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
@@ -102,7 +103,7 @@ pub enum NetworkError {
     /// A field of an options struct ([`crate::winding::WindingOptions`], [`crate::strip::Strip`])
     /// outside its range ([`chain_core::Validate`]).
     #[error(transparent)]
-    InvalidOption(#[from] chain_core::validate::InvalidOption),
+    InvalidOption(#[from] InvalidOption),
     /// An argument out of its range (lattice direction, wave number, path).
     #[error("{what}: {problem}")]
     Argument {
@@ -111,4 +112,13 @@ pub enum NetworkError {
         /// What is wrong.
         problem: String,
     },
+}
+
+impl OptionError for NetworkError {
+    fn invalid_option(&self) -> Option<InvalidOption> {
+        match self {
+            Self::InvalidOption(o) => Some(*o),
+            _ => None,
+        }
+    }
 }

@@ -124,13 +124,9 @@ impl Validate for Strip {
         // No `..`: a field added here does not compile until it is checked.
         let Self { along, cells, q } = *self;
         let fields = Fields("Strip");
-        fields.rule("along", along as f64, along <= 1, "0 or 1 (a lattice direction)")?;
-        fields.rule(
-            "cells",
-            cells as f64,
-            (1..=MAX_STRIP_DOF).contains(&cells),
-            "between 1 and MAX_STRIP_DOF = 4000 cells",
-        )?;
+        fields.count_in("along", along as u64, 0, 1, "0 or 1 (a lattice direction)")?;
+        let most = MAX_STRIP_DOF as u64;
+        fields.count_in("cells", cells as u64, 1, most, "between 1 and MAX_STRIP_DOF = 4000 cells")?;
         fields.finite("q", q)?;
         Ok(())
     }

@@ -3,68 +3,25 @@
 //! without `..` (a new field does not compile until it is listed here), each field given its
 //! invalid values, which
 //! must fail [`Validate::validate`] with the [`InvalidOption`] naming that struct, that field and
-//! that value, while the valid value they replace passes. Then the entry points refuse them the
-//! same way.
+//! that value, while the valid value they replace passes; a count is enumerated at both ends of
+//! its documented range (test-support's `options` checks, shared with chain-core's and
+//! chain-sweep's tests). Then the entry points refuse them the same way.
 
-use chain_core::validate::{InvalidOption, Validate};
-use chain_network::NetworkError;
+use chain_core::dynamics::run::MAX_SPACE_TIME_VALUES;
+use chain_core::integrate::MAX_STEP_BUDGET;
+use chain_core::validate::Validate;
 use chain_network::cell::ready;
-use chain_network::motion::MotionError;
 use chain_network::motion::transition::BistableChain;
 use chain_network::motion::wall::CoupledChains;
+use chain_network::patch::MAX_PATCH_BONDS;
 use chain_network::strip::{DEFAULT_Q, MAX_STRIP_DOF, Strip, compatibility, strip_modes};
 use chain_network::winding::{WindingOptions, winding};
+use test_support::options::{assert_names, count_range, rule_states, values};
 
 const NAN: f64 = f64::NAN;
 const INF: f64 = f64::INFINITY;
 const TINY: f64 = 5e-324;
 const POSITIVE: &[f64] = &[NAN, INF, -INF, -1.0, -TINY, 0.0];
-
-/// The `InvalidOption` an error carries.
-trait Invalid {
-    fn invalid(&self) -> Option<InvalidOption>;
-}
-
-impl Invalid for NetworkError {
-    fn invalid(&self) -> Option<InvalidOption> {
-        match self {
-            NetworkError::InvalidOption(o) => Some(*o),
-            _ => None,
-        }
-    }
-}
-
-impl Invalid for MotionError {
-    fn invalid(&self) -> Option<InvalidOption> {
-        match self {
-            MotionError::InvalidOption(o) => Some(*o),
-            _ => None,
-        }
-    }
-}
-
-fn assert_names<E: Invalid + std::fmt::Display>(error: &E, options: &str, field: &str, value: f64) {
-    let o = error.invalid().unwrap_or_else(|| panic!("not an invalid option: {error}"));
-    assert_eq!((o.options, o.field), (options, field), "{error}");
-    assert!(o.value.to_bits() == value.to_bits() || (o.value.is_nan() && value.is_nan()), "{value}: {error}");
-    assert!(error.to_string().contains(&format!("{options}.{field} = ")), "{error}");
-}
-
-/// `make(valid)` validates, and `make(v)` for each `v` of `bad` fails naming `options.field = v`.
-fn values<S: Validate>(options: &str, field: &str, valid: f64, bad: &[f64], make: impl Fn(f64) -> S)
-where
-    S::Error: Invalid + std::fmt::Display + std::fmt::Debug,
-{
-    if let Err(e) = make(valid).validate() {
-        panic!("{options}.{field} = {valid} is valid, got {e}");
-    }
-    for &v in bad {
-        match make(v).validate() {
-            Ok(()) => panic!("{options}.{field} = {v} passed"),
-            Err(e) => assert_names(&e, options, field, v),
-        }
-    }
-}
 
 #[test]
 fn every_field_of_the_network_options_is_validated() {
@@ -78,12 +35,11 @@ fn every_field_of_the_network_options_is_validated() {
     let base = Strip { along: 0, cells: 20, q: DEFAULT_Q };
     let Strip { along, cells, q } = base;
     // A lattice direction: 0 or 1 (the cell decides which it has, at the entry point).
-    values("Strip", "along", along as f64, &[2.0, usize::MAX as f64], |v| Strip {
-        along: v as usize,
-        ..base
-    });
-    let too_many = (MAX_STRIP_DOF + 1) as f64;
-    values("Strip", "cells", cells as f64, &[0.0, too_many], |v| Strip { cells: v as usize, ..base });
+    assert!(along <= 1 && (1..=MAX_STRIP_DOF).contains(&cells));
+    count_range("Strip", "along", 0, 1, |v| Strip { along: v as usize, ..base });
+    values("Strip", "along", 0.0, &[usize::MAX as f64], |v| Strip { along: v as usize, ..base });
+    let most = MAX_STRIP_DOF as u64;
+    rule_states(count_range("Strip", "cells", 1, most, |v| Strip { cells: v as usize, ..base }), most);
     values("Strip", "q", q, &[NAN, INF, -INF], |v| Strip { q: v, ..base });
 
     let base = BistableChain::default();
@@ -100,7 +56,16 @@ fn every_field_of_the_network_options_is_validated() {
         fit_from,
     } = base;
     let o = "BistableChain";
-    values(o, "sites", sites as f64, &[0.0, 7.0], |v| BistableChain { sites: v as usize, ..base });
+    // Between 8 and the patch rule's bound; the samples' bound below depends on the sites.
+    let most = MAX_PATCH_BONDS as u64;
+    let o_sites = count_range(o, "sites", 8, most, |v| BistableChain {
+        sites: v as usize,
+        launch_sites: 1,
+        samples: 2,
+        ..base
+    });
+    rule_states(o_sites, most);
+    assert!((8..=MAX_PATCH_BONDS).contains(&sites));
     values(o, "coupling", coupling, POSITIVE, |v| BistableChain { coupling: v, ..base });
     values(o, "on_site", on_site, POSITIVE, |v| BistableChain { on_site: v, ..base });
     // Positive and below well / 2 = 0.1.
@@ -110,12 +75,24 @@ fn every_field_of_the_network_options_is_validated() {
     values(o, "damping", damping, POSITIVE, |v| BistableChain { damping: v, ..base });
     // Positive, and after fit_from (15).
     values(o, "duration", duration, POSITIVE, |v| BistableChain { duration: v, ..base });
+    // At most MAX_STEP_BUDGET steps of 0.2 / omega_max, omega_max = sqrt(4 k_c + beta b max(a, b - a))
+    // (= sqrt(64 + 0.75) at the defaults): the longest duration passes, the next double fails.
+    let omega = (4.0 * coupling + on_site * well * barrier.max(well - barrier)).sqrt();
+    let longest = MAX_STEP_BUDGET as f64 * 0.2 / omega;
+    let longest = if longest * omega / 0.2 > MAX_STEP_BUDGET as f64 { longest.next_down() } else { longest };
+    values(o, "duration", longest, &[longest.next_up().next_up(), 1e300], |v| BistableChain {
+        duration: v,
+        ..base
+    });
     values(o, "fit_from", 15.0, &[NAN, INF, -TINY, 70.0, 71.0], |v| BistableChain {
         fit_from: v,
         duration: 70.0,
         ..base
     });
-    values(o, "samples", samples as f64, &[0.0, 1.0], |v| BistableChain { samples: v as usize, ..base });
+    // Between 2 and the space-time bound over the sites (200 at the defaults).
+    let most = (MAX_SPACE_TIME_VALUES / sites) as u64;
+    assert!((2..=most).contains(&(samples as u64)));
+    count_range(o, "samples", 2, most, |v| BistableChain { samples: v as usize, ..base });
     // At least 1 and below sites / 2 = 100.
     let bad_launch = &[0.0, 100.0, 1e6];
     values(o, "launch_sites", launch_sites as f64, bad_launch, |v| BistableChain {
@@ -141,8 +118,29 @@ fn every_field_of_the_network_options_is_validated() {
         frames,
     } = base;
     let o = "CoupledChains";
-    values(o, "chains", chains as f64, &[0.0, 1.0], |v| CoupledChains { chains: v as usize, ..base });
-    values(o, "cells", cells as f64, &[0.0, 7.0], |v| CoupledChains { cells: v as usize, ..base });
+    // The patch's cells: chains between 2 and MAX_PATCH_BONDS / 8 (at 8 cells), cells between 8
+    // and MAX_PATCH_BONDS / chains (2 frames, which any patch within the bound allows; the wall
+    // at 8, inside 8 cells' 16 rotors).
+    let most = (MAX_PATCH_BONDS / 8) as u64;
+    let o_chains = count_range(o, "chains", 2, most, |v| CoupledChains {
+        chains: v as usize,
+        cells: 8,
+        start: 8.0,
+        frames: 2,
+        ..base
+    });
+    rule_states(o_chains, most);
+    let most = (MAX_PATCH_BONDS / 2) as u64;
+    count_range(o, "cells", 8, most, |v| CoupledChains {
+        cells: v as usize,
+        chains: 2,
+        start: 8.0,
+        frames: 2,
+        ..base
+    });
+    let most = (MAX_PATCH_BONDS / chains) as u64;
+    count_range(o, "cells", 8, most, |v| CoupledChains { cells: v as usize, start: 8.0, frames: 2, ..base });
+    assert!(chains >= 2 && cells >= 8);
     values(o, "spacing", spacing, POSITIVE, |v| CoupledChains { spacing: v, ..base });
     values(o, "rotor_length", rotor_length, POSITIVE, |v| CoupledChains { rotor_length: v, ..base });
     // In (0, pi/2).
@@ -157,7 +155,18 @@ fn every_field_of_the_network_options_is_validated() {
     values(o, "start", start, bad_start, |v| CoupledChains { start: v, ..base });
     values(o, "damping", damping, &[NAN, INF, -1.0, -TINY], |v| CoupledChains { damping: v, ..base });
     values(o, "duration", duration, POSITIVE, |v| CoupledChains { duration: v, ..base });
-    values(o, "frames", frames as f64, &[0.0, 1.0], |v| CoupledChains { frames: v as usize, ..base });
+    // At most MAX_STEP_BUDGET steps of 0.1 / omega_max, omega_max = sqrt(4 (1 + k_c)).
+    let omega = (4.0 * (1.0 + coupling)).sqrt();
+    let longest = MAX_STEP_BUDGET as f64 * 0.1 / omega;
+    let longest = if longest * omega / 0.1 > MAX_STEP_BUDGET as f64 { longest.next_down() } else { longest };
+    values(o, "duration", longest, &[longest.next_up().next_up(), 1e300], |v| CoupledChains {
+        duration: v,
+        ..base
+    });
+    // Between 2 and the space-time bound over the rotors (6 chains of 48 at the defaults).
+    let most = (MAX_SPACE_TIME_VALUES / (2 * cells * chains)) as u64;
+    assert!((2..=most).contains(&(frames as u64)));
+    count_range(o, "frames", 2, most, |v| CoupledChains { frames: v as usize, ..base });
 }
 
 #[test]
@@ -173,4 +182,12 @@ fn the_network_entry_points_refuse_an_invalid_struct() {
     assert!(e.to_string().contains("BistableChain.coupling = -5e-324 is invalid"), "{e}");
     let e = CoupledChains { speed: 1e300, coupling: -TINY, ..CoupledChains::default() }.run().unwrap_err();
     assert_names(&e, "CoupledChains", "coupling", -TINY);
+    // A run too long for any step budget (it looped ~10^300 steps before) and a count past its
+    // bound are refused before anything is built.
+    let e = BistableChain { duration: 1e300, ..BistableChain::default() }.run().unwrap_err();
+    assert_names(&e, "BistableChain", "duration", 1e300);
+    let e = CoupledChains { duration: 1e300, ..CoupledChains::default() }.run().unwrap_err();
+    assert_names(&e, "CoupledChains", "duration", 1e300);
+    let e = CoupledChains { frames: usize::MAX, ..CoupledChains::default() }.run().unwrap_err();
+    assert_names(&e, "CoupledChains", "frames", usize::MAX as f64);
 }

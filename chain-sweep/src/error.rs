@@ -5,6 +5,7 @@ use std::io;
 use std::path::PathBuf;
 
 use rotor_chain::geometry::Short;
+use rotor_chain::validate::{InvalidOption, OptionError};
 
 use crate::grid::GridError;
 
@@ -212,14 +213,12 @@ pub enum SweepError {
         /// What is wrong with the columns.
         reason: String,
     },
-    #[error(
-        "{requested} worker threads asked for; at most {max} ({} per core, {cores} cores), and at least 1",
-        crate::threads::THREADS_PER_CORE
-    )]
-    /// A thread count of 0 or above [`crate::threads::max_threads`].
+    #[error("{option}; at most {max} on this machine ({cores} cores)")]
+    /// A thread count of 0 or above [`crate::threads::max_threads`]: `SweepOptions.threads`
+    /// outside its range ([`crate::threads::worker_threads`]'s rule), with this machine's bound.
     Threads {
-        /// The threads asked for.
-        requested: usize,
+        /// The struct (`SweepOptions`), the field (`threads`), the count asked for and the rule.
+        option: InvalidOption,
         /// The most a sweep starts on this machine.
         max: usize,
         /// The machine's cores.
@@ -255,6 +254,16 @@ pub enum SweepError {
         /// Points this run computed and wrote before it stopped.
         computed: usize,
     },
+}
+
+impl OptionError for SweepError {
+    fn invalid_option(&self) -> Option<InvalidOption> {
+        match self {
+            Self::Threads { option, .. } => Some(*option),
+            Self::Grid(e) => e.invalid_option(),
+            _ => None,
+        }
+    }
 }
 
 impl SweepError {

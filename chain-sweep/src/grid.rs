@@ -4,7 +4,7 @@
 use std::fmt::Write as _;
 use std::str::FromStr;
 
-use rotor_chain::validate::Validate;
+use rotor_chain::validate::{Fields, InvalidOption, OptionError, Validate};
 
 /// The most samples one axis may have. A point is one simulation (milliseconds to seconds), so a
 /// larger count is a typo, and refusing it keeps a typo from allocating gigabytes.
@@ -66,6 +66,18 @@ pub enum GridError {
         /// Its end.
         to: f64,
     },
+    #[error(transparent)]
+    /// A field of a [`Grid`] outside its range ([`Validate`]): an axis's count or a value.
+    InvalidOption(#[from] InvalidOption),
+}
+
+impl OptionError for GridError {
+    fn invalid_option(&self) -> Option<InvalidOption> {
+        match self {
+            Self::InvalidOption(o) => Some(*o),
+            _ => None,
+        }
+    }
 }
 
 /// The sample values of one axis.
@@ -250,19 +262,23 @@ impl Grid {
 impl Validate for Grid {
     type Error = GridError;
 
-    /// Both axes hold between 1 and [`MAX_AXIS_COUNT`] finite values, and the grid at most
-    /// [`MAX_GRID_POINTS`] points: what [`Grid::new`] and the [`Axis`] constructors establish
-    /// (the fields are private), checked again where a sweep starts.
+    /// Both axes hold between 1 and [`MAX_AXIS_COUNT`] finite values, and `ys` at most
+    /// [`MAX_GRID_POINTS`]` / xs.len()` (the grid at most [`MAX_GRID_POINTS`] points): what
+    /// [`Grid::new`] and the [`Axis`] constructors establish (the fields are private), checked
+    /// again where a sweep starts. The error is [`GridError::InvalidOption`], naming `Grid.xs`
+    /// or `Grid.ys` with the count (or the value that is not finite).
     fn validate(&self) -> Result<(), GridError> {
         // No `..`: a field added here does not compile until it is checked.
         let Self { xs, ys } = self;
-        for axis in [xs, ys] {
-            check_count(axis.len())?;
-            axis.iter().try_for_each(|&v| check_finite(v))?;
+        let fields = Fields("Grid");
+        for (name, axis) in [("xs", xs), ("ys", ys)] {
+            let rule = "between 1 and MAX_AXIS_COUNT = 100000 values";
+            fields.count_in(name, axis.len() as u64, 1, MAX_AXIS_COUNT as u64, rule)?;
+            axis.iter().try_for_each(|&v| fields.finite(name, v))?;
         }
-        if xs.len().saturating_mul(ys.len()) > MAX_GRID_POINTS {
-            return Err(GridError::TooLarge { nx: xs.len(), ny: ys.len() });
-        }
+        let most = (MAX_GRID_POINTS / xs.len()) as u64;
+        let rule = "at most MAX_GRID_POINTS / xs.len() = 10000000 / xs.len() values (the grid's points)";
+        fields.count_in("ys", ys.len() as u64, 1, most, rule)?;
         Ok(())
     }
 }
@@ -396,5 +412,37 @@ mod tests {
             Grid::new(Axis::from_values(log.xs.clone()).unwrap(), "0.5:12:6".parse().unwrap()).unwrap();
         assert_eq!(rebuilt.signature(), log.signature());
         assert_eq!(signature_dims(&log.signature()), Some((6, 6)));
+    }
+
+    /// `validate` names `Grid`, the field and the count or value (the fields are private, so only
+    /// this module can make a grid its constructors would refuse).
+    #[test]
+    fn validate_names_the_field_the_count_and_the_rule() {
+        let names = |g: Grid| match g.validate() {
+            Err(GridError::InvalidOption(o)) => (o.options, o.field, o.value, o.rule),
+            other => panic!("expected an invalid option, got {other:?}"),
+        };
+        let ok = |xs: Vec<f64>, ys: Vec<f64>| assert_eq!(Grid { xs, ys }.validate(), Ok(()));
+        let axis = |n: usize| vec![0.5; n];
+        let count_rule = "between 1 and MAX_AXIS_COUNT = 100000 values";
+        assert_eq!(names(Grid { xs: vec![], ys: axis(2) }), ("Grid", "xs", 0.0, count_rule));
+        assert_eq!(names(Grid { xs: axis(2), ys: vec![] }), ("Grid", "ys", 0.0, count_rule));
+        ok(axis(MAX_AXIS_COUNT), axis(1));
+        let over = (MAX_AXIS_COUNT + 1) as f64;
+        assert_eq!(
+            names(Grid { xs: axis(MAX_AXIS_COUNT + 1), ys: axis(1) }),
+            ("Grid", "xs", over, count_rule)
+        );
+        let (_, field, value, _) = names(Grid { xs: vec![0.1, f64::NAN], ys: axis(1) });
+        assert!(field == "xs" && value.is_nan());
+        assert_eq!(names(Grid { xs: axis(1), ys: vec![f64::INFINITY] }).1, "ys");
+        // The grid's points: MAX_GRID_POINTS passes, one row more does not.
+        let nx = MAX_GRID_POINTS / MAX_AXIS_COUNT;
+        ok(axis(nx), axis(MAX_AXIS_COUNT));
+        let (_, field, value, rule) = names(Grid { xs: axis(nx + 1), ys: axis(MAX_AXIS_COUNT) });
+        assert_eq!((field, value), ("ys", MAX_AXIS_COUNT as f64));
+        assert!(rule.contains("MAX_GRID_POINTS") && rule.contains(&MAX_GRID_POINTS.to_string()), "{rule}");
+        let text = Grid { xs: vec![], ys: axis(1) }.validate().unwrap_err().to_string();
+        assert!(text.starts_with("Grid.xs = 0 is invalid: it must be between 1 and"), "{text}");
     }
 }

@@ -29,11 +29,11 @@ pub use rotor_chain::dynamics::scatter::budget::{BudgetError, DEFAULT_ENERGY_TOL
 use rotor_chain::dynamics::scatter::{
     CrossChecked, EnergyBudget, ScatterSetup, cross_checked, paper_time_unit, scatter_within_budget,
 };
-use rotor_chain::geometry::Short;
+use rotor_chain::geometry::{MAX_ROTORS, Short};
 pub use rotor_chain::integrate::Method;
 use rotor_chain::integrate::{IntegrateError, Schedule, VerletOptions};
 use rotor_chain::statics::walls::Charge;
-use rotor_chain::validate::{Fields, InvalidOption, Validate};
+use rotor_chain::validate::{Fields, InvalidOption, OptionError, Validate};
 use rotor_chain::{ParameterError, RuntimeChain};
 
 use crate::record::{ParseError, Record, expect_fields, format_f64, parse_field};
@@ -250,7 +250,8 @@ pub const PHYSICS: &str = "scatter-v4";
 #[derive(Clone, Debug, PartialEq)]
 pub struct PhaseDiagram {
     /// Rotors `n`, rotor length `r` (lattice spacing `a = 1`), stiffness `k`, angle
-    /// `theta_bar`, tip mass `M` (default 1).
+    /// `theta_bar`, tip mass `M` (default 1). `n` between 2 and [`MAX_ROTORS`] (the chain
+    /// builder's rule); whether the experiment fits the chain is [`PhaseDiagram::check`]'s.
     pub n: usize,
     /// Rotor length `r`, in units of `a`.
     pub r: f64,
@@ -304,14 +305,14 @@ impl Validate for PhaseDiagram {
     /// Every field in its range, on its own: `r`, `k`, `theta_bar`, `mass`,
     /// `energy_tolerance` and `t_max` positive and finite, the integrator's tolerances
     /// (`rtol >= 0`, `atol > 0`), `dt > 0`, `impurity_rest_length > 0`, `start` and `damping`
-    /// finite (`damping >= 0`). The chain's own rules (the flipper phase, the impurity's rest
-    /// length against the chain) and the experiment's fit are [`PhaseDiagram::check`]'s, and so
-    /// is `n`: any count passes here, and `check` names the shortest chain that holds the
-    /// experiment ([`ConfigError::Experiment`]).
+    /// finite (`damping >= 0`), `n` between 2 and [`MAX_ROTORS`]. The chain's own rules (the
+    /// flipper phase, the impurity's rest length against the chain) and the experiment's fit are
+    /// [`PhaseDiagram::check`]'s, which names the shortest chain that holds the experiment
+    /// ([`ConfigError::Experiment`]).
     fn validate(&self) -> Result<(), ConfigError> {
         // No `..`: a field added here does not compile until it is checked.
         let Self {
-            n: _,
+            n,
             r,
             k,
             theta_bar,
@@ -332,6 +333,8 @@ impl Validate for PhaseDiagram {
         } = *self;
         // `impurity_spring` is any index: whether the chain has it is the experiment's check.
         let fields = Fields("PhaseDiagram");
+        let rule = "between 2 and MAX_ROTORS = 100000000 (the chain builder's rule)";
+        fields.count_in("n", n as u64, 2, MAX_ROTORS as u64, rule)?;
         for (name, value) in [
             ("r", r),
             ("k", k),
@@ -608,6 +611,25 @@ pub enum PointError {
     /// ([`scatter_within_budget`]).
     #[error(transparent)]
     Scatter(#[from] BudgetError),
+}
+
+impl OptionError for ConfigError {
+    fn invalid_option(&self) -> Option<InvalidOption> {
+        match self {
+            Self::InvalidOption(o) => Some(*o),
+            _ => None,
+        }
+    }
+}
+
+impl OptionError for PointError {
+    fn invalid_option(&self) -> Option<InvalidOption> {
+        match self {
+            Self::Config(e) => e.invalid_option(),
+            Self::Scatter(e) => e.invalid_option(),
+            _ => None,
+        }
+    }
 }
 
 /// Which integrator produced a record.
@@ -952,8 +974,13 @@ mod tests {
                         assert_eq!(m, n);
                         assert!(shortest.is_none(), "n = {n} refused after a shorter chain passed");
                         assert!(d.compute_point(0.5, 2.0).is_err(), "n = {n} refused, yet its point ran");
-                        let spring = matches!(*source, DynamicsError::NoSuchSpring { .. }) && n < 2;
-                        assert!(spring || source.to_string().contains("start"), "n = {n}: {source}");
+                        assert!(source.to_string().contains("start"), "n = {n}: {source}");
+                    }
+                    // Below two rotors there is no chain: `validate`'s rule on `n`, before the
+                    // experiment is looked at.
+                    Err(ConfigError::InvalidOption(o)) if n < 2 => {
+                        assert_eq!((o.options, o.field, o.value), ("PhaseDiagram", "n", n as f64));
+                        assert!(d.compute_point(0.5, 2.0).is_err(), "n = {n} refused, yet its point ran");
                     }
                     Err(other) => panic!("n = {n}: {other}"),
                 }

@@ -46,9 +46,10 @@ pub struct SweepOptions {
     /// in the file's first line; resuming refuses a file written with another label.
     pub run: String,
     /// Worker threads; `None` uses every core (rayon's default, which honours
-    /// `RAYON_NUM_THREADS`). Never more threads start than there are points to compute, and more
-    /// than [`crate::threads::max_threads`] (or 0) is [`SweepError::Threads`]
-    /// ([`crate::threads::worker_threads`]).
+    /// `RAYON_NUM_THREADS`). Between 1 and [`crate::threads::max_threads`] (4 per core: threads
+    /// beyond a few per core only share the cores), else [`SweepError::Threads`] carrying the
+    /// invalid option ([`crate::threads::worker_threads`]); never more threads start than there
+    /// are points to compute.
     pub threads: Option<usize>,
     /// Compute again the points the file records as failed (their lines are removed first).
     /// Off by default: a failure is a result, and most failures repeat.
@@ -89,7 +90,8 @@ impl Validate for SweepOptions {
     type Error = SweepError;
 
     /// `threads` between 1 and [`crate::threads::max_threads`] when given
-    /// ([`SweepError::Threads`], [`worker_threads`]'s rule). The other fields take any value:
+    /// ([`SweepError::Threads`] with its `InvalidOption`, [`worker_threads`]'s rule). The other
+    /// fields take any value:
     /// `name` is only shown, `run` is stored on one line (newlines escaped), any
     /// `sync_interval` is a valid rhythm (0: after every point), a [`Shard`] is checked when it
     /// is made, and the flags are choices.
@@ -604,6 +606,7 @@ mod tests;
 mod validation {
     use super::*;
     use crate::threads::max_threads;
+    use rotor_chain::validate::OptionError;
 
     /// Every field of [`SweepOptions`] (non-exhaustive, so destructured here in its crate, without
     /// `..`: a new field does not compile until it is listed): the thread count is refused at 0
@@ -616,7 +619,8 @@ mod validation {
         assert!(base.validate().is_ok() && threads.is_none());
         for bad in [0, max_threads() + 1, usize::MAX] {
             let e = SweepOptions { threads: Some(bad), ..base.clone() }.validate().unwrap_err();
-            assert!(matches!(e, SweepError::Threads { requested, .. } if requested == bad), "{e}");
+            let o = e.invalid_option().unwrap_or_else(|| panic!("not an invalid option: {e}"));
+            assert_eq!((o.options, o.field, o.value), ("SweepOptions", "threads", bad as f64), "{e}");
         }
         assert!(SweepOptions { threads: Some(max_threads()), ..base.clone() }.validate().is_ok());
         // Any text, rhythm, shard and flag.

@@ -9,6 +9,10 @@
 //! number of points.
 
 use crate::error::SweepError;
+use rotor_chain::validate::Fields;
+
+/// The rule of every thread count, in words (`SweepOptions.threads`'s).
+pub const THREADS_RULE: &str = "between 1 and max_threads() = THREADS_PER_CORE = 4 per core";
 
 /// The most threads per core a sweep starts. Four keeps a core busy while a thread waits on the
 /// results file's lock or a write, and bounds the threads by the machine, not by the input.
@@ -27,12 +31,14 @@ pub fn max_threads() -> usize {
 /// The threads to start for `points` points when `requested` were asked for (`None`: rayon's
 /// default, `RAYON_NUM_THREADS` or every core): never more than the points (and at least one),
 /// never more than [`max_threads`]. A request of 0 or above [`max_threads`] is
-/// [`SweepError::Threads`], before anything starts.
+/// [`SweepError::Threads`] (`SweepOptions.threads` invalid, [`THREADS_RULE`]), before anything
+/// starts.
 pub fn worker_threads(requested: Option<usize>, points: usize) -> Result<usize, SweepError> {
     let max = max_threads();
     let wanted = match requested {
         Some(t) if t == 0 || t > max => {
-            return Err(SweepError::Threads { requested: t, max, cores: cores() });
+            let option = Fields("SweepOptions").rule("threads", t as f64, false, THREADS_RULE).unwrap_err();
+            return Err(SweepError::Threads { option, max, cores: cores() });
         }
         Some(t) => t,
         None => default_threads().min(max),
@@ -65,13 +71,19 @@ mod tests {
         assert_eq!(worker_threads(Some(max), usize::MAX).unwrap(), max);
         for bad in [0, max + 1, 20_000, usize::MAX] {
             match worker_threads(Some(bad), 10) {
-                Err(SweepError::Threads { requested, max: m, cores: c }) => {
-                    assert_eq!((requested, m, c), (bad, max, cores()));
+                Err(SweepError::Threads { option, max: m, cores: c }) => {
+                    assert_eq!(
+                        (option.options, option.field, option.value),
+                        ("SweepOptions", "threads", bad as f64)
+                    );
+                    assert_eq!((option.rule, m, c), (THREADS_RULE, max, cores()));
                 }
                 other => panic!("{bad} threads: expected Threads, got {other:?}"),
             }
         }
         let message = worker_threads(Some(20_000), 10).unwrap_err().to_string();
-        assert!(message.contains(&format!("20000 worker threads asked for; at most {max}")), "{message}");
+        let expected =
+            format!("SweepOptions.threads = 20000 is invalid: it must be {THREADS_RULE}; at most {max}");
+        assert!(message.contains(&expected), "{message}");
     }
 }

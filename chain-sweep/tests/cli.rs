@@ -250,7 +250,10 @@ fn threads_are_bounded_by_the_cores_and_clamped_to_the_points() {
     let start = Instant::now();
     let (code, stderr) = phase_diagram(out, &[("--threads", "20000")]);
     assert_eq!(code, Some(2), "{stderr}");
-    let expected = format!("invalid --threads: 20000 worker threads asked for; at most {max} (4 per core");
+    let expected = format!(
+        "invalid --threads: SweepOptions.threads = 20000 is invalid: it must be {}; at most {max} on this machine",
+        chain_sweep::threads::THREADS_RULE
+    );
     assert!(stderr.contains(&expected), "{stderr}");
     assert!(start.elapsed() < Duration::from_secs(10) && !dir.path().join("r.csv").exists());
     // The most allowed, on one point: one thread, and the clamp is reported.

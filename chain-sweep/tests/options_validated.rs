@@ -1,42 +1,36 @@
 //! Every field of [`PhaseDiagram`] is validated (issue 37): destructured without `..` (a new
 //! field does not compile until it is listed here), each field given its invalid values, which
 //! must fail [`Validate::validate`] with the `InvalidOption` naming `PhaseDiagram`, the field and
-//! the value, while the valid value they replace passes; `check` and `compute_point` refuse them
-//! the same way. [`SweepOptions`] is non-exhaustive, so its fields are enumerated in its crate
-//! (`sweep::validation`); a [`Grid`]'s fields are private and established by its constructors,
-//! checked again by `validate` where a sweep starts.
+//! the value, while the valid value they replace passes, and `n` is enumerated at both ends of its
+//! range (test-support's `options` checks, shared with chain-core's and chain-network's tests);
+//! `check` and `compute_point` refuse them the same way. [`SweepOptions`] is non-exhaustive, so
+//! its fields are enumerated in its crate (`sweep::validation`); a [`Grid`]'s fields are private
+//! and established by its constructors, checked again by `validate` where a sweep starts
+//! (enumerated in `grid`'s unit tests). A sweep with an invalid thread count reports
+//! `SweepOptions.threads` as every other option.
 
 use chain_sweep::grid::{Axis, Grid};
-use chain_sweep::scattering::{ConfigError, Defect, PhaseDiagram, PointError};
+use chain_sweep::scattering::{Defect, PhaseDiagram, PointError};
 use chain_sweep::{SweepError, SweepOptions, run_sweep};
 use rotor_chain::dynamics::launch::Direction;
 use rotor_chain::dynamics::scatter::Outcome;
+use rotor_chain::geometry::MAX_ROTORS;
 use rotor_chain::integrate::Method;
-use rotor_chain::validate::Validate;
+use rotor_chain::validate::{OptionError, Validate};
+use test_support::options::{self, count_range, rule_states};
 
 const NAN: f64 = f64::NAN;
 const INF: f64 = f64::INFINITY;
 const TINY: f64 = 5e-324;
 const POSITIVE: &[f64] = &[NAN, INF, -INF, -1.0, -TINY, 0.0];
 
-fn assert_names(error: &ConfigError, field: &str, value: f64) {
-    let ConfigError::InvalidOption(o) = error else { panic!("not an invalid option: {error}") };
-    assert_eq!((o.options, o.field), ("PhaseDiagram", field), "{error}");
-    assert!(o.value.to_bits() == value.to_bits() || (o.value.is_nan() && value.is_nan()), "{value}: {error}");
-    assert!(error.to_string().contains(&format!("PhaseDiagram.{field} = ")), "{error}");
+/// `make(valid)` validates, and `make(v)` for each `v` of `bad` fails naming `PhaseDiagram.field = v`.
+fn values(field: &str, valid: f64, bad: &[f64], make: impl Fn(f64) -> PhaseDiagram) {
+    options::values("PhaseDiagram", field, valid, bad, make);
 }
 
-/// `make(valid)` validates, and `make(v)` for each `v` of `bad` fails naming `field = v`.
-fn values(field: &str, valid: f64, bad: &[f64], make: impl Fn(f64) -> PhaseDiagram) {
-    if let Err(e) = make(valid).validate() {
-        panic!("PhaseDiagram.{field} = {valid} is valid, got {e}");
-    }
-    for &v in bad {
-        match make(v).validate() {
-            Ok(()) => panic!("PhaseDiagram.{field} = {v} passed"),
-            Err(e) => assert_names(&e, field, v),
-        }
-    }
+fn assert_names<E: OptionError + std::fmt::Display>(error: &E, field: &str, value: f64) {
+    options::assert_names(error, "PhaseDiagram", field, value);
 }
 
 fn paper() -> PhaseDiagram {
@@ -84,10 +78,13 @@ fn every_field_of_the_phase_diagram_is_validated() {
     values("impurity_rest_length", 0.9, POSITIVE, |v| with(&|d| d.impurity_rest_length = Some(v)));
     values("start", 44.5, &[NAN, INF, -INF], |v| with(&|d| d.start = Some(v)));
     values("damping", damping, &[NAN, INF, -INF, -1.0, -TINY], |v| with(&|d| d.damping = v));
-    // Choices, counts and indices: any value passes `validate` (a chain too short for the
-    // experiment, or an impurity it lacks, is `check`'s `Experiment` error, naming the shortest).
+    // Between 2 and MAX_ROTORS, the chain builder's rule (a chain too short for the experiment is
+    // `check`'s `Experiment` error, naming the shortest).
+    assert!((2..=MAX_ROTORS).contains(&n));
+    let most = MAX_ROTORS as u64;
+    rule_states(count_range("PhaseDiagram", "n", 2, most, |v| with(&|d| d.n = v as usize)), most);
+    // Choices and indices: any value passes `validate` (an impurity the chain lacks is `check`'s).
     for d in [
-        with(&|d| d.n = if n > 0 { 0 } else { 60 }),
         with(&|d| d.defect = if defect == Defect::Kink { Defect::Antikink } else { Defect::Kink }),
         with(&|d| d.ends = ends),
         with(&|d| d.recompute = !recompute),
@@ -117,9 +114,10 @@ fn the_sweep_entry_points_refuse_an_invalid_setting() {
     assert!(grid.validate().is_ok());
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("points.csv");
-    let mut options = SweepOptions::new("t", "run");
-    (options.threads, options.progress) = (Some(0), false);
-    let e = run_sweep(&grid, &path, |_, _| paper().compute_point(0.2, 4.8), &options).unwrap_err();
-    assert!(matches!(e, SweepError::Threads { requested: 0, .. }), "{e}");
+    let mut sweep = SweepOptions::new("t", "run");
+    (sweep.threads, sweep.progress) = (Some(0), false);
+    let e = run_sweep(&grid, &path, |_, _| paper().compute_point(0.2, 4.8), &sweep).unwrap_err();
+    assert!(matches!(e, SweepError::Threads { .. }), "{e}");
+    options::assert_names(&e, "SweepOptions", "threads", 0.0);
     assert!(!path.exists());
 }

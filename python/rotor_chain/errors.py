@@ -32,7 +32,8 @@ InvalidOptionError ValueError                  a setting outside its range (``op
                                                ``name``, ``value``, ``rule``): raised as
                                                ``StaticsOptionError``, ``DynamicsOptionError``,
                                                ``IntegrateOptionError``, ``ConfigOptionError``,
-                                               ``PointOptionError`` or ``NetworkOptionError``,
+                                               ``PointOptionError``, ``NetworkOptionError``,
+                                               ``GridOptionError`` or ``SweepOptionError``,
                                                each also its family's class
 =================  ==========================  ===========================================
 
@@ -64,6 +65,8 @@ __all__ = [
     "ConfigOptionError",
     "PointOptionError",
     "NetworkOptionError",
+    "GridOptionError",
+    "SweepOptionError",
 ]
 
 
@@ -165,3 +168,12 @@ class PointOptionError(PointError, InvalidOptionError):
 
 class NetworkOptionError(NetworkError, InvalidOptionError):
     """An invalid setting of a network analysis (``WindingOptions``, ``Strip``)."""
+
+
+class GridOptionError(GridError, InvalidOptionError):
+    """An invalid grid (``Grid.xs`` or ``Grid.ys``: a count or a value outside its range)."""
+
+
+class SweepOptionError(SweepError, InvalidOptionError):
+    """An invalid sweep setting (``SweepOptions.threads``: 0 or above ``max_threads()``, 4 per
+    core); ``max`` and ``cores`` are this machine's bound."""

@@ -473,9 +473,11 @@ pub fn grid(py: Python<'_>, e: &GridError) -> PyErr {
         &GridError::NotPositive { from, to } => {
             Details { variant: "NotPositive", ..d }.f("from_", from).f("to", to)
         }
+        &GridError::InvalidOption(o) => option(d, "InvalidOption", o.options, o.field, o.value, o.rule),
         _ => Details { variant: "Other", ..d },
     };
-    d.raise("GridError", e.to_string())
+    let class = if matches!(e, GridError::InvalidOption(_)) { "GridOptionError" } else { "GridError" };
+    d.raise(class, e.to_string())
 }
 
 /// Errors of results files. The path, when the variant has one, is the `path` attribute.
@@ -547,9 +549,13 @@ pub fn sweep(py: Python<'_>, e: &SweepError) -> PyErr {
         SweepError::ThreadPool { threads, .. } => {
             Details { variant: "ThreadPool", ..d }.f("threads", *threads)
         }
+        &SweepError::Threads { option: o, max, cores } => {
+            option(d, "Threads", o.options, o.field, o.value, o.rule).f("max", max).f("cores", cores)
+        }
         _ => Details { variant: "Other", ..d },
     };
-    d.raise("SweepError", e.to_string())
+    let class = if matches!(e, SweepError::Threads { .. }) { "SweepOptionError" } else { "SweepError" };
+    d.raise(class, e.to_string())
 }
 
 /// A plain `ValueError` (a wrong array length, an unknown name): programming errors of the

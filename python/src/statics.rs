@@ -274,13 +274,15 @@ pub fn modes(
     hold_ends: bool,
 ) -> PyResult<Modes> {
     let theta = chain.theta(theta)?;
-    let options = ModeOptions { count: count.map(|c| c.0), hold_ends, ..ModeOptions::default() };
+    // `count` is "at most": past the chain's modes it means all of them, so it is clamped to `n`
+    // before `ModeOptions.count`'s bound (MAX_DENSE_VALUES) could refuse a large int.
+    let n = chain.n();
+    let options = ModeOptions { count: count.map(|c| c.0.min(n)), hold_ends, ..ModeOptions::default() };
     // Ctrl-C: the eigensolver asks the interrupt between its iterations and stops.
     let mut interrupt = Interrupt::default();
     let found = py.detach(|| md::modes_with(&chain.chain, &theta, &options, &mut || interrupt.pending()));
     interrupt.raise()?;
     let found = found.map_err(|e| errors::statics(py, &e))?;
-    let n = chain.n();
     let shapes: Vec<Vec<f64>> = found.iter().map(|m| m.shape.clone()).collect();
     Ok(Modes {
         frequencies: array(py, found.iter().map(|m| m.frequency).collect()),

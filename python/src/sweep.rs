@@ -17,10 +17,11 @@ use chain_sweep::scattering::{
     method_by_name,
 };
 use chain_sweep::threads::{max_threads, worker_threads};
-use chain_sweep::{Axis, Grid, Point, ResultsFile as File, SweepOptions};
+use chain_sweep::{Axis, Grid, Point, ResultsFile as File, SweepError, SweepOptions};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyString, PyTuple};
 use rayon::prelude::*;
+use rotor_chain::validate::InvalidOption;
 
 use crate::args::{self, Real, RotorCount};
 use crate::errors::{self, value_error};
@@ -140,7 +141,7 @@ impl PhaseDiagram {
     /// (default: every core) with the GIL released, in the order given. A point that fails (or
     /// panics) has its message in ``error``; nothing is raised for it. Never more threads start
     /// than there are points; ``threads`` above ``max_threads()`` (4 per core) or 0 is a
-    /// ``ValueError`` before any point.
+    /// ``SweepOptionError`` (a ``ValueError`` naming ``SweepOptions.threads``) before any point.
     #[pyo3(signature = (points, threads = None))]
     fn compute_points<'py>(
         &self,
@@ -149,7 +150,7 @@ impl PhaseDiagram {
         threads: Option<&Bound<'py, PyAny>>,
     ) -> PyResult<Vec<Bound<'py, PyDict>>> {
         let threads = threads.map(thread_count).transpose()?;
-        let threads = worker_threads(threads, points.len()).map_err(|e| value_error(e.to_string()))?;
+        let threads = worker_threads(threads, points.len()).map_err(|e| errors::sweep(py, &e))?;
         let results =
             py.detach(|| -> Result<Vec<Result<PointRecord, String>>, rayon::ThreadPoolBuildError> {
                 let one = |&(_, _, ki, v0): &GridPoint| compute_one(&self.d, ki, v0);
@@ -195,8 +196,8 @@ impl PhaseDiagram {
 }
 
 /// A thread count as Python gives it: an int (not a bool or a float: `TypeError`); one that no
-/// machine integer holds is above any bound, so it is the same `ValueError` as chain-sweep's
-/// `SweepError::Threads`, with the number as given.
+/// machine integer holds is outside any bound, so it is the same `SweepOptionError` as
+/// chain-sweep's `SweepError::Threads`, with the number as given (as a float).
 fn thread_count(x: &Bound<'_, PyAny>) -> PyResult<usize> {
     if x.is_instance_of::<pyo3::types::PyBool>() {
         return Err(pyo3::exceptions::PyTypeError::new_err(format!(
@@ -205,12 +206,15 @@ fn thread_count(x: &Bound<'_, PyAny>) -> PyResult<usize> {
         )));
     }
     let beyond = || {
-        value_error(format!(
-            "{x} worker threads asked for; at most {} ({} per core, {} cores), and at least 1",
-            max_threads(),
-            chain_sweep::threads::THREADS_PER_CORE,
-            chain_sweep::threads::cores()
-        ))
+        let value = x.extract::<f64>().unwrap_or(f64::INFINITY);
+        let option = InvalidOption {
+            options: "SweepOptions",
+            field: "threads",
+            value,
+            rule: chain_sweep::threads::THREADS_RULE,
+        };
+        let cores = chain_sweep::threads::cores();
+        errors::sweep(x.py(), &SweepError::Threads { option, max: max_threads(), cores })
     };
     match args::int(x)? {
         args::Int::Fits(n) => usize::try_from(n).map_err(|_| beyond()),
@@ -218,13 +222,13 @@ fn thread_count(x: &Bound<'_, PyAny>) -> PyResult<usize> {
     }
 }
 
-/// Checks a thread count as ``compute_points`` would (a ValueError above ``max_threads()`` or
-/// below 1, a TypeError for what is not an int): ``rotor_chain.sweep.phase_diagram`` calls it
-/// before any point.
+/// Checks a thread count as ``compute_points`` would (a ``SweepOptionError``, a ValueError,
+/// above ``max_threads()`` or below 1, a TypeError for what is not an int):
+/// ``rotor_chain.sweep.phase_diagram`` calls it before any point.
 #[pyfunction]
 pub fn check_threads(threads: &Bound<'_, PyAny>) -> PyResult<()> {
-    let threads = thread_count(threads)?;
-    worker_threads(Some(threads), 1).map(|_| ()).map_err(|e| value_error(e.to_string()))
+    let count = thread_count(threads)?;
+    worker_threads(Some(count), 1).map(|_| ()).map_err(|e| errors::sweep(threads.py(), &e))
 }
 
 /// The most worker threads a sweep starts on this machine (4 per core).

@@ -101,11 +101,56 @@ def test_the_network_models_keywords_are_validated():
     refused(call, "verlet", "output_every", 0.0, rc.IntegrateError)
 
 
+def test_the_network_models_counts_are_bounded():
+    """The counts' documented ranges (chain-core's ``Fields::count_in``): a relaxation's steps at
+    most ``MAX_STEP_BUDGET`` = 10**10, Newton's iterations at most 1000, the modes at most
+    ``MAX_DENSE_VALUES`` = 2**26; the bound itself is not refused by the validation."""
+    model = rc.NetworkModel(rc.Network.ready("square"), (3, 3))
+    x = model.reference()
+    refused(lambda: model.relax(x, max_steps=10**10 + 1), "RelaxOptions", "max_steps", 1e10 + 1, rc.StaticsError)
+    refused(lambda: model.newton(x, max_iterations=1001), "NewtonOptions", "max_iterations", 1001.0, rc.StaticsError)
+    refused(lambda: model.modes(x, count=2**26 + 1), "ModeOptions", "count", 2.0**26 + 1, rc.StaticsError)
+    # At the bounds: the reference is already relaxed and balanced, so these return at once.
+    assert model.relax(x, max_steps=10**10)[0].shape == x.shape
+    assert model.newton(x, max_iterations=1000).shape == x.shape
+    assert model.newton(x, max_iterations=0).shape == x.shape
+    with pytest.raises(rc.errors.StaticsOptionError, match=r"NewtonOptions\.max_iterations = 1001 is invalid: it must be between 0"):
+        model.newton(x, max_iterations=1001)
+
+
+def test_a_chains_mode_count_means_at_most():
+    """``Chain.modes(count=...)`` is "at most": a count past the chain's modes gives them all,
+    however large (it is clamped to n before ModeOptions' bound)."""
+    chain = rc.Chain(8, 0.8, 1.0e4, 0.28)
+    theta = chain.kink(4.0)
+    assert len(chain.modes(theta, count=10**30).frequencies) == 8
+
+
+def test_a_thread_count_is_an_invalid_sweep_option():
+    """``SweepOptions.threads`` between 1 and ``max_threads()`` (4 per core): 0 and the bound + 1
+    raise ``SweepOptionError`` (a ``SweepError`` and an ``InvalidOptionError``) with this
+    machine's ``max`` and ``cores``, before any point."""
+    d = _native.PhaseDiagram("antikink")
+    most = _native.max_threads()
+    for threads in (0, most + 1, 10**20):
+        with pytest.raises(rc.InvalidOptionError) as info:
+            d.compute_points([(0, 0, 0.5, 1.0)], threads)
+        e = info.value
+        assert isinstance(e, rc.SweepError) and isinstance(e, ValueError), repr(e)
+        assert isinstance(e, rc.errors.SweepOptionError), repr(e)
+        assert (e.options, e.name, e.value) == ("SweepOptions", "threads", float(threads)), str(e)
+        assert e.details["max"] == most and e.details["cores"] >= 1, e.details
+        assert str(e).startswith("SweepOptions.threads = "), str(e)
+        assert f"; at most {most} on this machine" in str(e), str(e)
+
+
 def test_a_strips_keywords_are_validated():
     net = rc.Network.ready("deformed-kagome", 0.1, 0.1, -0.1, 0.0)
     for value in [NAN, INF, -INF]:
         refused(lambda: net.strip(1, 20, value), "Strip", "q", value, rc.NetworkError)
     refused(lambda: net.strip(1, 0), "Strip", "cells", 0.0, rc.NetworkError)
+    # At most MAX_STRIP_DOF = 4000 cells.
+    refused(lambda: net.strip(1, 4001), "Strip", "cells", 4001.0, rc.NetworkError)
 
 
 PHASE_DIAGRAM = [

@@ -15,7 +15,7 @@ use super::track::{Snapshot, SpaceTime, Tracker};
 pub use crate::integrate::Method;
 use crate::integrate::{
     AdaptiveOptions, DEFAULT_ENERGY_LIMIT, Flow, IntegrateError, Integrator, Report, Schedule, Sponge, State,
-    VerletOptions, kinetic_energy,
+    VerletOptions, check_step_budget, kinetic_energy,
 };
 use crate::model::{ChainModel, Potential, Stiffness};
 use crate::validate::{Fields, Validate};
@@ -46,9 +46,13 @@ pub struct RunOptions {
     /// Keep the angles at every output for a space-time image. Default `false`.
     pub space_time: bool,
     /// The most outputs a run may have (its span divided by the output interval). Default
-    /// 1 000 000 (the paper's runs have 2000).
+    /// 1 000 000 (the paper's runs have 2000). Between 1 and [`MAX_SPACE_TIME_VALUES`] (2^27):
+    /// every output records at least one value (its kinetic energy), so the space-time image's
+    /// bound on the values a run keeps bounds the outputs too.
     pub max_outputs: usize,
-    /// The most Verlet steps a run may take. Default [`VerletOptions::DEFAULT_MAX_STEPS`].
+    /// The most Verlet steps a run may take. Default [`VerletOptions::DEFAULT_MAX_STEPS`];
+    /// between 1 and [`MAX_STEP_BUDGET`](crate::integrate::MAX_STEP_BUDGET) (10^10), every
+    /// integrator's bound.
     pub max_steps: u64,
     /// The largest relative energy change before the run stops with an error. Default
     /// [`DEFAULT_ENERGY_LIMIT`] (10 %).
@@ -78,8 +82,10 @@ impl Validate for RunOptions {
     /// Every field in its range: `t_max` finite (a `t_max` before the state's time is
     /// [`IntegrateError::EndBeforeStart`] at the run), `output_interval > 0` and finite, the
     /// method's tolerances (`rtol >= 0`, `atol > 0`, finite), `dt > 0` and finite, `damping >= 0`
-    /// and finite, the sponge's, `max_outputs >= 1`, `max_steps >= 1`, `energy_limit > 0`
-    /// (infinite: no check). The errors are the integrator's, as the run would report them.
+    /// and finite, the sponge's, `max_outputs` between 1 and [`MAX_SPACE_TIME_VALUES`],
+    /// `max_steps` between 1 and [`MAX_STEP_BUDGET`](crate::integrate::MAX_STEP_BUDGET),
+    /// `energy_limit > 0` (infinite: no check). The errors are the integrator's, as the run would
+    /// report them.
     fn validate(&self) -> Result<(), IntegrateError> {
         // No `..`: a field added here does not compile until it is checked.
         let Self {
@@ -108,8 +114,14 @@ impl Validate for RunOptions {
         if let Some(sponge) = absorbing_ends {
             sponge.validate()?;
         }
-        fields.at_least_one("max_outputs", max_outputs as u64)?;
-        fields.at_least_one("max_steps", max_steps)?;
+        fields.count_in(
+            "max_outputs",
+            max_outputs as u64,
+            1,
+            MAX_SPACE_TIME_VALUES as u64,
+            "between 1 and MAX_SPACE_TIME_VALUES = 134217728 (an output records at least one value)",
+        )?;
+        check_step_budget(fields, "max_steps", max_steps)?;
         fields.rule("energy_limit", energy_limit, energy_limit > 0.0, "positive (infinite: no check)")?;
         Ok(())
     }

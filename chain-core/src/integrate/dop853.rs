@@ -34,7 +34,7 @@ use alloc::vec::Vec;
 use super::tableau::{A, B, BHH, D, E5};
 use super::{
     DEFAULT_ENERGY_LIMIT, Flow, IntegrateError, Integrator, Monitor, Report, Schedule, Sponge, State,
-    check_energy_limit, check_positive, damping_rates, inverse_inertia, not_finite,
+    check_energy_limit, check_positive, check_step_budget, damping_rates, inverse_inertia, not_finite,
 };
 use crate::model::Potential;
 use crate::validate::{Fields, Validate};
@@ -64,7 +64,8 @@ pub struct AdaptiveOptions {
     /// fixed floor would depend on the stiffness.
     pub min_step: f64,
     /// Give up after this many steps, accepted and rejected. Default 100 000 (Hairer's default):
-    /// a paper-length run of 60 rotors at `k = 1e4` takes about 5000.
+    /// a paper-length run of 60 rotors at `k = 1e4` takes about 5000. Between 1 and
+    /// [`MAX_STEP_BUDGET`](super::MAX_STEP_BUDGET) (10^10), every integrator's bound.
     pub max_steps: usize,
     /// Damping rate `gamma >= 0` of every rotor, in `1 / t`. Default 0 (Newtonian dynamics).
     pub damping: f64,
@@ -104,7 +105,8 @@ impl Validate for AdaptiveOptions {
     type Error = IntegrateError;
 
     /// Every field in its range: `rtol >= 0`, `atol > 0`, `initial_step > 0`, `max_step > 0`
-    /// (infinite: no limit), `0 <= min_step <= max_step`, `max_steps >= 1`, `damping >= 0`, the
+    /// (infinite: no limit), `0 <= min_step <= max_step`, `max_steps` between 1 and
+    /// [`MAX_STEP_BUDGET`](super::MAX_STEP_BUDGET), `damping >= 0`, the
     /// sponge's, `omega_max > 0`, `energy_limit > 0` (infinite: no check); every finite one
     /// finite.
     fn validate(&self) -> Result<(), IntegrateError> {
@@ -130,7 +132,7 @@ impl Validate for AdaptiveOptions {
         fields.rule("max_step", max_step, max_step > 0.0, "positive (infinite: no limit)")?;
         let ok = min_step >= 0.0 && min_step.is_finite() && min_step <= max_step;
         fields.rule("min_step", min_step, ok, "non-negative, finite and at most max_step")?;
-        fields.at_least_one("max_steps", max_steps as u64)?;
+        check_step_budget(fields, "max_steps", max_steps as u64)?;
         fields.non_negative("damping", damping)?;
         if let Some(sponge) = sponge {
             sponge.validate()?;

@@ -178,7 +178,8 @@ pub fn total_energy<M: Potential + ?Sized>(model: &M, state: &State) -> f64 {
 /// reflects little of what enters it: a wave meets a rate that grows smoothly from 0.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Sponge {
-    /// Rotors in each end's sponge.
+    /// Rotors in each end's sponge, between 0 (no sponge) and `MAX_ROTORS` = 100000000 (no
+    /// chain has more rotors; wider than half the chain, the two overlap).
     pub width: usize,
     /// The damping rate at the end rotor, in `1 / t`.
     pub strength: f64,
@@ -187,11 +188,19 @@ pub struct Sponge {
 impl Validate for Sponge {
     type Error = IntegrateError;
 
-    /// `width` is any count (0: no sponge; wider than half the chain: the two overlap);
-    /// `strength` finite and `>= 0`.
+    /// `width` between 0 (no sponge) and `MAX_ROTORS` (no chain has more rotors; wider than
+    /// half the chain, the two overlap); `strength` finite and `>= 0`.
     fn validate(&self) -> Result<(), IntegrateError> {
-        let Self { width: _, strength } = *self;
-        Ok(Fields("Sponge").non_negative("strength", strength)?)
+        let Self { width, strength } = *self;
+        let fields = Fields("Sponge");
+        fields.count_in(
+            "width",
+            width as u64,
+            0,
+            chain_geometry::MAX_ROTORS as u64,
+            "between 0 and MAX_ROTORS = 100000000 rotors (no chain has more)",
+        )?;
+        Ok(fields.non_negative("strength", strength)?)
     }
 }
 
@@ -224,6 +233,30 @@ pub fn damping_rates(n: usize, uniform: f64, sponge: Option<Sponge>) -> Result<V
 /// the much smaller tolerances that decide whether a result is accurate enough belong to the
 /// caller (the sweep's energy budget, for example).
 pub const DEFAULT_ENERGY_LIMIT: f64 = 0.1;
+
+/// The largest step budget of any integrator or relaxation (`max_steps` of [`VerletOptions`],
+/// [`AdaptiveOptions`], `RunOptions` and `RelaxOptions`): 10^10 steps, a hundred times the
+/// default budget ([`VerletOptions::DEFAULT_MAX_STEPS`]), about 3 hours of the paper's 60 rotors
+/// at 1 µs per Verlet step and more for DOP853's twelve evaluations per step. A budget above it
+/// bounds nothing a run would finish: a run that long is a step far shorter than intended, or a
+/// tolerance that cannot be met.
+pub const MAX_STEP_BUDGET: u64 = 10_000_000_000;
+
+/// The rule of every integrator's step budget: between 1 and [`MAX_STEP_BUDGET`].
+#[cfg(feature = "alloc")]
+pub(crate) fn check_step_budget(
+    fields: Fields,
+    field: &'static str,
+    steps: u64,
+) -> Result<(), crate::validate::InvalidOption> {
+    fields.count_in(
+        field,
+        steps,
+        1,
+        MAX_STEP_BUDGET,
+        "between 1 and MAX_STEP_BUDGET = 10000000000 steps (a hundred times the default budget)",
+    )
+}
 
 /// When an integrator reports: the initial state and every `interval` after it, `count` times
 /// (the last output at `start + count * interval`).

@@ -44,7 +44,7 @@ use alloc::vec::Vec;
 use super::error::StaticsError;
 use super::validate;
 use crate::integrate::bound::omega_bound;
-use crate::integrate::{State, Verlet};
+use crate::integrate::{MAX_STEP_BUDGET, State, Verlet};
 use crate::linalg::SymmetricMatrix;
 use crate::model::Stiffness;
 use crate::validate::{Fields, Validate};
@@ -56,6 +56,7 @@ pub struct NewtonOptions {
     /// the angles by about `tolerance` radians. Default `1e-11`.
     pub tolerance: f64,
     /// Give up after this many steps. Default 60 (quadratic convergence needs a handful).
+    /// Between 0 (only the start's residual is measured) and [`NewtonOptions::MAX_ITERATIONS`].
     pub max_iterations: usize,
     /// Relative shift `mu / ||K||` of the Newton matrix. Default `1e-13` (see the module doc).
     pub shift: f64,
@@ -67,8 +68,19 @@ pub struct NewtonOptions {
     /// Default `false` (free ends).
     pub hold_ends: bool,
     /// At most this many directions are held when the iteration stagnates (see the module doc).
-    /// Default 3: the two edge modes and a translation.
+    /// Default 3: the two edge modes and a translation. Between 0 (none held) and
+    /// [`NewtonOptions::MAX_ITERATIONS`]: the held set grows by at most one direction per step,
+    /// so no iteration could hold more.
     pub max_held: usize,
+}
+
+impl NewtonOptions {
+    /// The most steps [`newton`] may be given: 1000. Within its basin Newton's method doubles the
+    /// correct digits at every step (quadratic convergence), so ten steps take any residual
+    /// below 1 to rounding; the default 60 leaves room for the damped steps of the line search
+    /// far from the solution. An iteration that has not converged after a few hundred steps is
+    /// not converging, and more steps only make a stagnating run longer.
+    pub const MAX_ITERATIONS: usize = 1000;
 }
 
 impl Default for NewtonOptions {
@@ -90,7 +102,9 @@ pub struct RelaxOptions {
     /// Stop when `max_i |dV/dtheta_i| <= tolerance * ||K||`. Default `1e-4`: close enough for
     /// Newton to take over.
     pub tolerance: f64,
-    /// Give up after this many time steps. Default 20000.
+    /// Give up after this many time steps. Default 20000. Between 0 (the start is returned if it
+    /// already meets the tolerance) and [`MAX_STEP_BUDGET`] (10^10): the steps are the damped
+    /// velocity Verlet's, bounded as every integrator's.
     pub max_steps: usize,
     /// Time step as a fraction of `1 / omega_max`. Default 0.3 (velocity Verlet is stable below 2).
     pub time_step: f64,
@@ -141,14 +155,29 @@ fn max_abs(v: &[f64]) -> f64 {
 impl Validate for NewtonOptions {
     type Error = StaticsError;
 
-    /// `tolerance > 0`, `shift >= 0`, `null_tolerance >= 0`, all finite. The counts take any
-    /// value: `max_iterations = 0` only measures the start's residual, `max_held = 0` holds
-    /// nothing.
+    /// `tolerance > 0`, `shift >= 0`, `null_tolerance >= 0`, all finite; the counts between 0
+    /// and [`NewtonOptions::MAX_ITERATIONS`]: `max_iterations = 0` only measures the start's
+    /// residual, `max_held = 0` holds nothing.
     fn validate(&self) -> Result<(), StaticsError> {
         // No `..`: a field added here does not compile until it is checked.
-        let Self { tolerance, max_iterations: _, shift, null_tolerance, hold_ends: _, max_held: _ } = *self;
+        let Self { tolerance, max_iterations, shift, null_tolerance, hold_ends: _, max_held } = *self;
         let fields = Fields("NewtonOptions");
         fields.positive("tolerance", tolerance)?;
+        let most = Self::MAX_ITERATIONS as u64;
+        fields.count_in(
+            "max_iterations",
+            max_iterations as u64,
+            0,
+            most,
+            "between 0 (the start's residual only) and MAX_ITERATIONS = 1000 (quadratic convergence needs a handful)",
+        )?;
+        fields.count_in(
+            "max_held",
+            max_held as u64,
+            0,
+            most,
+            "between 0 and MAX_ITERATIONS = 1000 (one more direction is held per step at most)",
+        )?;
         fields.non_negative("shift", shift)?;
         fields.non_negative("null_tolerance", null_tolerance)?;
         Ok(())
@@ -159,13 +188,20 @@ impl Validate for RelaxOptions {
     type Error = StaticsError;
 
     /// `tolerance > 0`, `0 < time_step < 2` (velocity Verlet's stability limit, in `1 /
-    /// omega_max`), `damping >= 0`, all finite. `max_steps` takes any value (0: the start is
-    /// returned if it already meets the tolerance).
+    /// omega_max`), `damping >= 0`, all finite; `max_steps` between 0 (the start is returned if
+    /// it already meets the tolerance) and [`MAX_STEP_BUDGET`].
     fn validate(&self) -> Result<(), StaticsError> {
         // No `..`: a field added here does not compile until it is checked.
-        let Self { tolerance, max_steps: _, time_step, damping, hold_ends: _ } = *self;
+        let Self { tolerance, max_steps, time_step, damping, hold_ends: _ } = *self;
         let fields = Fields("RelaxOptions");
         fields.positive("tolerance", tolerance)?;
+        fields.count_in(
+            "max_steps",
+            max_steps as u64,
+            0,
+            MAX_STEP_BUDGET,
+            "between 0 and MAX_STEP_BUDGET = 10000000000 steps (every integrator's bound)",
+        )?;
         fields.rule(
             "time_step",
             time_step,

@@ -77,6 +77,9 @@ pub struct ModeOptions {
     /// How many of the lowest modes to compute. Default `Some(12)`: O(n) each by bisection and
     /// inverse iteration. `None` asks for all `n` modes, which takes the dense QL route
     /// (O(n^2) memory and O(n^3) time for the vectors): fine for hundreds of rotors, not for 1e5.
+    /// `Some` count between 0 (no mode) and [`MAX_DENSE_VALUES`](super::MAX_DENSE_VALUES)
+    /// (2^26): the modes' vectors hold `count x n` values, bounded by that at the call, so no
+    /// chain gives more modes (a count above a chain's degrees of freedom gives them all).
     pub count: Option<usize>,
     /// Eigenvalues closer than `cluster * ||K||` are treated as one degenerate cluster.
     pub cluster: f64,
@@ -111,12 +114,22 @@ impl Validate for ModeOptions {
     type Error = StaticsError;
 
     /// `cluster`, `localised_widths` and `reach` finite and `>= 0`, `localised_fraction` in
-    /// `[0, 1]`. `count` takes any value (`Some(0)` asks for no mode; more than the chain's
-    /// degrees of freedom gives them all, within the size bound of [`modes`]).
+    /// `[0, 1]`, `count` (`None`: all) between 0 and
+    /// [`MAX_DENSE_VALUES`](super::MAX_DENSE_VALUES) (`Some(0)` asks for no mode; more than the
+    /// chain's degrees of freedom gives them all, within the size bound of [`modes`]).
     fn validate(&self) -> Result<(), StaticsError> {
         // No `..`: a field added here does not compile until it is checked.
-        let Self { count: _, cluster, localised_fraction, localised_widths, reach, hold_ends: _ } = *self;
+        let Self { count, cluster, localised_fraction, localised_widths, reach, hold_ends: _ } = *self;
         let fields = Fields("ModeOptions");
+        if let Some(count) = count {
+            fields.count_in(
+                "count",
+                count as u64,
+                0,
+                super::MAX_DENSE_VALUES as u64,
+                "between 0 and MAX_DENSE_VALUES = 67108864 (the modes' vectors hold count x n values)",
+            )?;
+        }
         fields.non_negative("cluster", cluster)?;
         fields.rule(
             "localised_fraction",

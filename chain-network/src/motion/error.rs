@@ -3,6 +3,7 @@
 use crate::error::NetworkError;
 use chain_core::geometry::Short;
 use chain_core::integrate::IntegrateError;
+use chain_core::validate::{InvalidOption, OptionError};
 
 /// A demonstration run that cannot be set up or did not give its measurement.
 #[derive(Debug, thiserror::Error)]
@@ -12,7 +13,7 @@ pub enum MotionError {
     /// [`super::wall::CoupledChains`]) outside its range
     /// ([`chain_core::Validate`]).
     #[error(transparent)]
-    InvalidOption(#[from] chain_core::validate::InvalidOption),
+    InvalidOption(#[from] InvalidOption),
     /// The demonstration's cell is not valid.
     #[error(transparent)]
     Cell(#[from] crate::error::CellError),
@@ -75,4 +76,16 @@ pub enum MotionError {
         /// Samples needed.
         needed: usize,
     },
+}
+
+impl OptionError for MotionError {
+    fn invalid_option(&self) -> Option<InvalidOption> {
+        match self {
+            Self::InvalidOption(o) => Some(*o),
+            Self::Network(e) => e.invalid_option(),
+            Self::Integrate(e) => e.invalid_option(),
+            Self::Launch(e) => e.invalid_option(),
+            _ => None,
+        }
+    }
 }

@@ -37,15 +37,17 @@ use super::MotionError;
 use super::front::{LineFit, fit_line, front_by_area};
 use crate::cell::{BondLaw, Cell, Polynomial};
 use crate::model::NetworkModel;
-use crate::patch::{Boundary, Patch};
-use chain_core::integrate::{Phase, Verlet};
+use crate::patch::{Boundary, MAX_PATCH_BONDS, Patch};
+use chain_core::dynamics::run::MAX_SPACE_TIME_VALUES;
+use chain_core::integrate::{MAX_STEP_BUDGET, Phase, Verlet};
 use chain_core::validate::{Fields, Validate};
 
 /// The chain's parameters. Units: the spacing `a = 1`, the mass `M = 1`; time in
 /// `sqrt(M / k)` of a unit spring.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct BistableChain {
-    /// Sites (masses). Default 200: the front crosses 150 sites in the default run.
+    /// Sites (masses). Default 200: the front crosses 150 sites in the default run. Between 8
+    /// and [`MAX_PATCH_BONDS`] (the patch rule's bound, checked here before any cell is built).
     pub sites: usize,
     /// Coupling spring constant `k_c`. Default 16: sound speed `c_0 = 4` and a front about 4.6
     /// sites wide, so the lattice's discreteness changes the speed by well under a percent.
@@ -61,9 +63,12 @@ pub struct BistableChain {
     pub well: f64,
     /// The damping rate `gamma` (1 / time). Default 0.5: the front settles to `0.58 c_0`.
     pub damping: f64,
-    /// Length of the run. Default 70.
+    /// Length of the run. Default 70. At most [`MAX_STEP_BUDGET`] Verlet steps of `0.2 /
+    /// omega_max` (every integrator's bound).
     pub duration: f64,
     /// Samples of the state during the run (the x-t diagram's rows). Default 141 (every 0.5).
+    /// Between 2 (a speed needs two times) and [`MAX_SPACE_TIME_VALUES`]` / sites`: the x-t
+    /// diagram holds `samples x sites` values, bounded as a run's space-time image.
     pub samples: usize,
     /// Sites of the step's deeper state at the launch. Default 10.
     pub launch_sites: usize,
@@ -118,6 +123,18 @@ impl TransitionWave {
     }
 }
 
+/// Verlet's steps are `omega_max dt = 0.2`.
+const STEP_FRACTION: f64 = 0.2;
+
+impl BistableChain {
+    /// A bound on the fastest mode: `omega^2 <= (4 k_c + max |V''|) / M`, `V''` largest at the
+    /// wells' ends of [0, b] (`beta a b` and `beta b (b - a)`).
+    fn omega_max(&self) -> f64 {
+        let curvature = self.on_site * self.well * self.barrier.max(self.well - self.barrier);
+        (4.0 * self.coupling + curvature).sqrt()
+    }
+}
+
 /// Distance of the ground joint behind its mass: the bistable bond's rest length (any positive
 /// length; the elongation, not the length, enters the law).
 const GROUND_OFFSET: f64 = 0.5;
@@ -127,8 +144,10 @@ impl Validate for BistableChain {
 
     /// `coupling`, `on_site`, `well`, `barrier`, `damping` and `duration` positive and finite,
     /// `barrier < well / 2` (the well at `well` is the deeper one), `0 <= fit_from < duration`,
-    /// `sites >= 8`, `1 <= launch_sites < sites / 2` (the front needs room to run), `samples >= 2`
-    /// (a speed needs two times).
+    /// `8 <= sites <=` [`MAX_PATCH_BONDS`], `1 <= launch_sites < sites / 2` (the front needs room
+    /// to run), `2 <= samples <=` [`MAX_SPACE_TIME_VALUES`]` / sites` (a speed needs two times;
+    /// the x-t diagram's values are bounded as a space-time image), and a run of at most
+    /// [`MAX_STEP_BUDGET`] steps (`duration`).
     fn validate(&self) -> Result<(), MotionError> {
         // No `..`: a field added here does not compile until it is checked.
         let Self {
@@ -156,15 +175,28 @@ impl Validate for BistableChain {
         )?;
         fields.positive("damping", damping)?;
         fields.positive("duration", duration)?;
+        fields.rule(
+            "duration",
+            duration,
+            duration * self.omega_max() / STEP_FRACTION <= MAX_STEP_BUDGET as f64,
+            "at most MAX_STEP_BUDGET = 10000000000 Verlet steps of 0.2 / omega_max",
+        )?;
         fields.rule("fit_from", fit_from, fit_from >= 0.0 && fit_from < duration, "in [0, duration)")?;
-        fields.rule("sites", sites as f64, sites >= 8, "at least 8")?;
+        let rule = "between 8 and MAX_PATCH_BONDS = 33554432 (the patch rule)";
+        fields.count_in("sites", sites as u64, 8, MAX_PATCH_BONDS as u64, rule)?;
         fields.rule(
             "launch_sites",
             launch_sites as f64,
             launch_sites >= 1 && launch_sites < sites / 2,
             "at least 1 and below sites / 2",
         )?;
-        fields.rule("samples", samples as f64, samples >= 2, "at least 2")?;
+        fields.count_in(
+            "samples",
+            samples as u64,
+            2,
+            (MAX_SPACE_TIME_VALUES / sites) as u64,
+            "between 2 and MAX_SPACE_TIME_VALUES / sites = 134217728 / sites (the x-t diagram's values)",
+        )?;
         Ok(())
     }
 }
@@ -228,11 +260,8 @@ impl BistableChain {
         for site in 0..n {
             rates[x_of(site)] = self.damping;
         }
-        // The fastest mode: `omega^2 <= (4 k_c + max |V''| ) / M`, `V''` largest at the wells'
-        // ends of [0, b] (`beta a b` and `beta b (b - a)`); steps of `omega dt = 0.2`.
-        let curvature = self.on_site * self.well * self.barrier.max(self.well - self.barrier);
-        let omega_max = (4.0 * self.coupling + curvature).sqrt();
-        let steps_per_sample = (self.duration / (self.samples - 1) as f64 * omega_max / 0.2).ceil() as u64;
+        let steps_per_sample =
+            (self.duration / (self.samples - 1) as f64 * self.omega_max() / STEP_FRACTION).ceil() as u64;
         let dt = self.duration / ((self.samples - 1) as u64 * steps_per_sample) as f64;
         let start = Phase { time: 0.0, theta, omega: vec![0.0; model.reference().len()] };
         let mut verlet = Verlet::damped(&model, start, dt, &rates)?;

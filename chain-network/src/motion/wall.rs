@@ -45,22 +45,28 @@ use super::front::{LineFit, fit_line};
 use crate::cell::{Cell, ready};
 use crate::counts::{Counts, counts, null_spaces};
 use crate::model::{ChainView, NetworkModel};
-use crate::patch::{Boundary, Patch};
+use crate::patch::{Boundary, MAX_PATCH_BONDS, Patch};
 use crate::winding::{Winding, WindingOptions, winding};
 use chain_core::dynamics::launch::{Direction, launch};
-use chain_core::integrate::{Phase, Verlet};
+use chain_core::dynamics::run::MAX_SPACE_TIME_VALUES;
+use chain_core::integrate::{MAX_STEP_BUDGET, Phase, Verlet};
 use chain_core::statics::walls::{Charge, domain_walls, wall_width};
 use chain_core::validate::{Fields, Validate};
 use chain_core::{Potential, SpringNetwork};
 use std::f64::consts::FRAC_PI_2;
 
+/// Verlet's steps are `omega_max dt = 0.1`.
+const STEP_FRACTION: f64 = 0.1;
+
 /// The lattice and the run. Units: the pivot spacing `a`, the rotor mass `M = 1` (inertia
 /// `M r^2`), the chain's spring constant `k = 1`; time in `sqrt(M / k)`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct CoupledChains {
-    /// Chains (rows), at least 2. Default 6.
+    /// Chains (rows), between 2 and [`MAX_PATCH_BONDS`]` / 8` (the patch rule's bound, at the
+    /// fewest cells per chain). Default 6.
     pub chains: usize,
-    /// Cells per chain, two rotors each, at least 8. Default 24 (48 rotors).
+    /// Cells per chain, two rotors each, between 8 and [`MAX_PATCH_BONDS`]` / chains` (the patch
+    /// holds `cells x chains` cells). Default 24 (48 rotors).
     pub cells: usize,
     /// Pivot spacing `a`. Default 1 (the paper's).
     pub spacing: f64,
@@ -85,9 +91,11 @@ pub struct CoupledChains {
     /// Damping rate `gamma >= 0` of every rotor (1 / t). Default 0: the energy is conserved.
     pub damping: f64,
     /// Length of the run. Default 300: at the defaults the wall moves about 27 rotors, from 12
-    /// to 39 of 48.
+    /// to 39 of 48. At most [`MAX_STEP_BUDGET`] Verlet steps of `0.1 / omega_max`.
     pub duration: f64,
-    /// Samples of the state (frames), at least 2. Default 31 (every 10).
+    /// Samples of the state (frames). Default 31 (every 10). Between 2 and
+    /// [`MAX_SPACE_TIME_VALUES`]` / rotors`: a frame keeps every rotor's angle, bounded as a
+    /// run's space-time image.
     pub frames: usize,
 }
 
@@ -198,9 +206,10 @@ impl Validate for CoupledChains {
     type Error = MotionError;
 
     /// `spacing`, `rotor_length`, `row_spacing`, `coupling`, `speed` and `duration` positive and
-    /// finite, `theta_bar` in `(0, pi/2)`, `damping` and `stagger` finite and `>= 0`, `chains >= 2`,
-    /// `cells >= 8`, `frames >= 2`, and every chain's wall (`start +- stagger / 2`) at least 4
-    /// rotors from an end.
+    /// finite, `theta_bar` in `(0, pi/2)`, `damping` and `stagger` finite and `>= 0`, `chains` in
+    /// `2..=MAX_PATCH_BONDS / 8`, `cells` in `8..=MAX_PATCH_BONDS / chains`, `frames` in `2..=`
+    /// the space-time bound over the rotors, a run of at most [`MAX_STEP_BUDGET`] steps, and
+    /// every chain's wall (`start +- stagger / 2`) at least 4 rotors from an end.
     fn validate(&self) -> Result<(), MotionError> {
         // No `..`: a field added here does not compile until it is checked.
         let Self {
@@ -219,8 +228,12 @@ impl Validate for CoupledChains {
             frames,
         } = *self;
         let fields = Fields("CoupledChains");
-        fields.rule("chains", chains as f64, chains >= 2, "at least 2")?;
-        fields.rule("cells", cells as f64, cells >= 8, "at least 8")?;
+        // The patch holds `cells x chains` cells; the patch rule bounds its bonds exactly when it
+        // is built, these bounds its cells (so that the frames' bound below is at least 2).
+        let rule = "between 2 and MAX_PATCH_BONDS / 8 = 4194304 (a patch of 8 cells per chain)";
+        fields.count_in("chains", chains as u64, 2, (MAX_PATCH_BONDS / 8) as u64, rule)?;
+        let rule = "between 8 and MAX_PATCH_BONDS / chains = 33554432 / chains (the patch's cells)";
+        fields.count_in("cells", cells as u64, 8, (MAX_PATCH_BONDS / chains) as u64, rule)?;
         fields.positive("spacing", spacing)?;
         fields.positive("rotor_length", rotor_length)?;
         fields.rule(
@@ -242,7 +255,20 @@ impl Validate for CoupledChains {
         )?;
         fields.non_negative("damping", damping)?;
         fields.positive("duration", duration)?;
-        fields.rule("frames", frames as f64, frames >= 2, "at least 2")?;
+        fields.rule(
+            "duration",
+            duration,
+            duration * self.omega_max() / STEP_FRACTION <= MAX_STEP_BUDGET as f64,
+            "at most MAX_STEP_BUDGET = 10000000000 Verlet steps of 0.1 / omega_max",
+        )?;
+        let rotors = self.rotors().saturating_mul(chains).max(1);
+        fields.count_in(
+            "frames",
+            frames as u64,
+            2,
+            (MAX_SPACE_TIME_VALUES / rotors) as u64,
+            "between 2 and MAX_SPACE_TIME_VALUES / rotors = 134217728 / (2 cells x chains)",
+        )?;
         Ok(())
     }
 }
@@ -251,6 +277,12 @@ impl CoupledChains {
     /// Rotors per chain.
     pub fn rotors(&self) -> usize {
         2 * self.cells
+    }
+
+    /// Gershgorin: each rotor has two chain and two inter-chain springs, each adding at most
+    /// `k r^2` to its row of the stiffness and as much off it: `omega^2 <= 4 (k + k_c) / M`.
+    fn omega_max(&self) -> f64 {
+        (4.0 * (1.0 + self.coupling)).sqrt()
     }
 
     /// The 2D cell at tilt `tilt`: the chain's cell (`up` at the origin, `down` at `(a, 0)`,
@@ -328,10 +360,8 @@ impl CoupledChains {
                     if i.is_multiple_of(2) { -kink.state.omega[i] } else { kink.state.omega[i] };
             }
         }
-        // Gershgorin: each rotor has two chain and two inter-chain springs, each adding at most
-        // `k r^2` to its row of the stiffness and as much off it: `omega^2 <= 4 (k + k_c) / M`.
-        let omega_max = (4.0 * (1.0 + self.coupling)).sqrt();
-        let steps_per_frame = (self.duration / (self.frames - 1) as f64 * omega_max / 0.1).ceil() as u64;
+        let steps_per_frame =
+            (self.duration / (self.frames - 1) as f64 * self.omega_max() / STEP_FRACTION).ceil() as u64;
         let dt = self.duration / ((self.frames - 1) as u64 * steps_per_frame) as f64;
         let rates = vec![self.damping; model.dof_count()];
         let start = Phase { time: 0.0, theta: phi, omega: rate };

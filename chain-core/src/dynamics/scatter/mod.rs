@@ -189,7 +189,9 @@ pub struct ScatterSetup {
     /// need to cross the impurity's range (`2 reach`) at the speed it came in with. Default 2.
     pub trap_crossings: f64,
     /// ...or after [`ScatterSetup::trap_time`] once it has turned round this often at the
-    /// impurity: it oscillates in the impurity's well. Default 2.
+    /// impurity: it oscillates in the impurity's well. Default 2. Between 0 (trapped after
+    /// `trap_time` without turning) and the run's [`RunOptions::max_outputs`]: a turn is seen at
+    /// an output, so no run could count more.
     pub turns: usize,
     /// A turn counts when the wall has come back this far from its farthest point, in sites.
     /// Default 0.3.
@@ -339,8 +341,8 @@ impl Validate for ScatterSetup {
 
     /// Every field in its range, whatever the chain: `v0`, the windows and distances finite and
     /// `>= 0`, `reach`, `max_jump` and `cluster_gap` `> 0`, `clear >= reach`, `start` finite,
-    /// the run's settings ([`RunOptions`]'s). Where the setup lies on a chain is
-    /// [`ScatterSetup::check`]'s.
+    /// the run's settings ([`RunOptions`]'s), `turns` at most `run.max_outputs`. Where the setup
+    /// lies on a chain is [`ScatterSetup::check`]'s.
     fn validate(&self) -> Result<(), DynamicsError> {
         // Every field is named here, without `..`: a field added to the setup does not compile
         // until it is given its check below (or said to need none, as the enums).
@@ -357,7 +359,7 @@ impl Validate for ScatterSetup {
             progress,
             trap_time,
             trap_crossings,
-            turns: _,
+            turns,
             turn_band,
             entry_window,
             cluster_gap,
@@ -370,8 +372,7 @@ impl Validate for ScatterSetup {
             watch,
             run,
         } = *self;
-        // `impurity` is any spring index and `turns` any count: whether the chain has the spring
-        // is `check`'s, and 0 turns means a wall is trapped after `trap_time` without turning.
+        // `impurity` is any spring index: whether the chain has the spring is `check`'s.
         let fields = Fields("ScatterSetup");
         fields.non_negative("v0", v0)?;
         fields.finite("start", start)?;
@@ -401,7 +402,16 @@ impl Validate for ScatterSetup {
             clear >= reach && clear.is_finite(),
             "finite and at least reach (a wall leaves the impurity's range before it is clear of it)",
         )?;
-        Ok(run.validate()?)
+        run.validate()?;
+        // After the run's own check, whose `max_outputs` bounds it.
+        fields.count_in(
+            "turns",
+            turns as u64,
+            0,
+            run.max_outputs as u64,
+            "between 0 and run.max_outputs (a turn is seen at an output)",
+        )?;
+        Ok(())
     }
 }
 

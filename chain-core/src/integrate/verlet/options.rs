@@ -8,7 +8,7 @@ use super::Verlet;
 use crate::integrate::bound::omega_bound;
 use crate::integrate::{
     DEFAULT_ENERGY_LIMIT, Flow, IntegrateError, Integrator, Monitor, Report, Schedule, Sponge, State,
-    check_energy_limit, check_option, check_positive, damping_rates, step_count,
+    check_energy_limit, check_option, check_positive, check_step_budget, damping_rates, step_count,
 };
 use crate::model::{Potential, Stiffness};
 use crate::validate::{Fields, Validate};
@@ -26,7 +26,8 @@ pub struct VerletOptions {
     /// Absorbing ends: extra damping on the last degrees of freedom at each end. Default `None`.
     pub sponge: Option<Sponge>,
     /// The most steps a run may take; a run that would need more is refused before the first
-    /// step ([`IntegrateError::StepBudget`]). Default [`VerletOptions::DEFAULT_MAX_STEPS`].
+    /// step ([`IntegrateError::StepBudget`]). Default [`VerletOptions::DEFAULT_MAX_STEPS`];
+    /// between 1 and [`MAX_STEP_BUDGET`](crate::integrate::MAX_STEP_BUDGET) (10^10).
     pub max_steps: u64,
     /// The largest relative energy change before the run stops with
     /// [`IntegrateError::EnergyNotConserved`] (checked at every output). Default
@@ -181,7 +182,8 @@ impl Validate for VerletOptions {
     type Error = IntegrateError;
 
     /// Every field in its range: `dt > 0` and finite, `damping >= 0` and finite, the sponge's,
-    /// `max_steps >= 1`, `energy_limit > 0` (infinite: no check).
+    /// `max_steps` between 1 and [`MAX_STEP_BUDGET`](crate::integrate::MAX_STEP_BUDGET),
+    /// `energy_limit > 0` (infinite: no check).
     fn validate(&self) -> Result<(), IntegrateError> {
         // No `..`: a field added here does not compile until it is checked.
         let Self { dt, damping, sponge, max_steps, energy_limit } = *self;
@@ -191,7 +193,7 @@ impl Validate for VerletOptions {
         if let Some(sponge) = sponge {
             sponge.validate()?;
         }
-        fields.at_least_one("max_steps", max_steps)?;
+        check_step_budget(fields, "max_steps", max_steps)?;
         check_energy_limit(fields, energy_limit)
     }
 }
