@@ -15,7 +15,7 @@
 
 mod common;
 
-use common::{K, R, Reference, chains, count_below, lowest, solve};
+use common::{K, R, Reference, chains, count_below, lowest, norm, solve};
 use rotor_chain::statics::StaticsError;
 use rotor_chain::statics::antikink::{AntikinkOptions, Ends, antikink_at, antikink_relaxed, peierls_nabarro};
 use rotor_chain::statics::kink::reflected_kink;
@@ -256,4 +256,62 @@ fn a_wide_antikink_stops_in_the_first_well_that_holds_it() {
     }
     // Higher than the middle's minimum: a local well, held by the pinning against the ends' pull.
     assert!(from_end.energy > minimum.energy);
+}
+
+/// The reference's lowest eigenpair of the tridiagonal `(d, o)`: the eigenvalue by bisection
+/// ([`lowest`]), the vector by inverse iteration at a shift just below it.
+fn lowest_vector(d: &[f64], o: &[f64]) -> (f64, Vec<f64>) {
+    let value = lowest(d, o);
+    let shifted: Vec<f64> = d.iter().map(|x| x - (value - 1e-6 * norm(d, o))).collect();
+    let mut v = vec![1.0; d.len()];
+    for _ in 0..8 {
+        v = solve(&shifted, o, &v);
+        let s = v.iter().map(|x| x * x).sum::<f64>().sqrt();
+        v.iter_mut().for_each(|x| *x /= s);
+    }
+    (value, v)
+}
+
+/// n = 40, theta_bar = 0.4, spring 19 at 0.3k (the soft spring pins the antikink): from 14.5 the
+/// descent along the path stops at a free saddle (index 1 at 16.911, its unstable direction across
+/// the path); the search steps off it and ends at the pinned minimum on the soft spring, and says
+/// so. Before the step-off this was `NoMinimum { found: 16.911, index: 1 }`.
+#[test]
+fn a_descent_that_stops_at_a_saddle_steps_off_it_to_the_pinned_minimum() {
+    let what = "0.3k at spring 19, theta_bar = 0.4, from 14.5";
+    let (model, reference) = chains(40, 0.4, &[(19, 0.3, 1.0)]);
+    let ours =
+        antikink_relaxed(&model, 14.5, &AntikinkOptions::default()).unwrap_or_else(|e| panic!("{what}: {e}"));
+    assert!(ours.is_free_minimum(), "{what}");
+    let (centre, energy, curvature) = check_minimum(&reference, &ours.theta, what);
+    assert!((centre - ours.centre).abs() < 1e-12 && (energy - ours.energy).abs() < 1e-9 * energy, "{what}");
+    // Pinned on the soft spring: centred on it, far below the free antikink (475.48 at this
+    // theta_bar, the closing note's table).
+    assert!((centre - 19.5).abs() < 1e-6 && energy < 300.0, "{what}: {centre} {energy}");
+    println!("{what}: minimum centre {centre:.6}, energy {energy:.9}, lowest curvature {curvature:.6e}");
+    // The saddle it stepped off, by the reference: force-free, Morse index 1 (finite-difference
+    // Hessian), its unstable direction lowering the energy on both sides.
+    assert_eq!(ours.step_offs.len(), 1, "{:?}", ours.step_offs);
+    let s = &ours.step_offs[0];
+    let n = s.theta.len();
+    let force = (1..n - 1).fold(0.0f64, |m, i| m.max(fd_gradient(&reference, &s.theta, i).abs()));
+    assert!(force < 1e-6 * K * R * R, "{what}: force at the saddle {force:e}");
+    let (d, o) = fd_hessian(&reference, &s.theta);
+    assert_eq!(count_below(&d, &o, 0.0), 1, "{what}: the saddle's index");
+    let (value, v) = lowest_vector(&d, &o);
+    assert!((value / s.curvature - 1.0).abs() < 1e-4, "{what}: {value} vs {}", s.curvature);
+    let e0 = reference.energy(&s.theta);
+    for h in [-1e-3, 1e-3] {
+        let mut t = s.theta.clone();
+        t[1..n - 1].iter_mut().zip(&v).for_each(|(x, y)| *x += h * y);
+        assert!(reference.energy(&t) < e0, "{what}: along the unstable direction by {h}");
+    }
+    assert!((wall(&s.theta) - s.saddle).abs() < 1e-12 && (e0 - s.saddle_energy).abs() < 1e-9 * e0, "{what}");
+    assert!((s.saddle - 16.911).abs() < 1e-3 && s.index == 1, "{what}: {s:?}");
+    // Where it went: the minimum returned, lower than the saddle.
+    assert!(s.reached == ours.centre && s.energy == ours.energy && s.energy < s.saddle_energy, "{what}");
+    println!(
+        "{what}: saddle centre {:.6}, energy {:.9}, lowest curvature {value:.6e}, step {:.3e}",
+        s.saddle, e0, s.step
+    );
 }
