@@ -331,11 +331,11 @@ fn gauss(mut a: Vec<Vec<f64>>) -> Vec<f64> {
     for col in 0..m {
         let pivot = (col..m).max_by(|&x, &y| a[x][col].abs().total_cmp(&a[y][col].abs())).unwrap();
         a.swap(col, pivot);
-        for row in col + 1..m {
-            let factor = a[row][col] / a[col][col];
-            for k in col..=m {
-                a[row][k] -= factor * a[col][k];
-            }
+        let (top, below) = a.split_at_mut(col + 1);
+        let pivot_row = &top[col];
+        for row in below {
+            let factor = row[col] / pivot_row[col];
+            row.iter_mut().zip(pivot_row).skip(col).for_each(|(x, p)| *x -= factor * p);
         }
     }
     let mut x = vec![0.0; m];

@@ -547,7 +547,9 @@ pub(crate) fn relaxed_nearest<M: ChainModel + ?Sized>(
 #[derive(Clone, Debug, PartialEq)]
 pub struct PeierlsNabarro {
     /// The antikink solved at the rotor centring (`(n - 1) / 2` rounded down for
-    /// [`peierls_nabarro`]); it may have moved (`moved()`): no equilibrium there.
+    /// [`peierls_nabarro`]); it may have moved (`moved()`): no equilibrium there. Where the
+    /// symmetric guess there splits into a pair (next to a stiff impurity), the free equilibrium
+    /// the adiabatic path descends to from that centring, `requested` the centring.
     pub rotor_centred: Antikink,
     /// The antikink solved at the neighbouring spring centring.
     pub spring_centred: Antikink,
@@ -559,11 +561,12 @@ pub struct PeierlsNabarro {
     /// what double precision resolves and both may look alike; the barrier is then an upper
     /// estimate. On a chain with impurities the two centrings may not be equilibria at all.
     pub resolved: bool,
-    /// Every centring within [`super::landscape::LANDSCAPE_REACH`] sites of the requested place,
-    /// solved at fixed centring, in order of centring: the free equilibria among them
-    /// ([`Antikink::is_free`]) with their Morse index, and the fixed-centring points between
-    /// (the energy along the adiabatic path). Only the two centrings when the chain is uniform
-    /// and they are `resolved`.
+    /// The landscape within [`super::landscape::LANDSCAPE_REACH`] sites of the requested place
+    /// ([`super::landscape::scan`]), in order of centre: on a chain with impurities every
+    /// centring as the point of the adiabatic path there (`held = 1`) and every free equilibrium
+    /// of the path ([`Antikink::is_free`]) with its Morse index, on or between the centrings; on
+    /// a uniform chain every centring solved at fixed centring. Only the two centrings when the
+    /// chain is uniform and they are `resolved`.
     pub landscape: Vec<Antikink>,
     /// The pinning (negative) or repulsion (positive) energy of each impurity spring within the
     /// landscape ([`super::landscape::ImpurityEnergy`]).
@@ -689,9 +692,19 @@ pub fn peierls_nabarro<M: ChainModel + ?Sized>(
 
 /// [`peierls_nabarro`] at the rotor centring `rotor` (an integer) and the spring to its right.
 ///
+/// On a chain with impurities the landscape comes from the adiabatic path
+/// ([`super::landscape::scan`]), and a centring whose symmetric guess splits into a kink-antikink
+/// pair (n = 40, spring 19 at `5k`, `theta_bar = 0.4`: both middle centrings) is reported as
+/// where the path descends from it ([`PeierlsNabarro::rotor_centred`]): there the minima nearest
+/// the impurity are at 13.956134 and 25.043866, the path ends 0.94 sites short of the impurity's
+/// centring (at 18.561142, a pair nucleates one step on), and the repulsion measured there is
+/// 171.90 (docs/statics.md "Chains that are not uniform").
+///
 /// # Errors
 /// `rotor` not an integer in `[1, n - 3]`; the errors of [`antikink_at`] other than
-/// [`StaticsError::NotAnEquilibrium`] (a centring that moved is part of the landscape).
+/// [`StaticsError::NotAnEquilibrium`] (a centring that moved is part of the landscape) and, on a
+/// chain with impurities, other than [`StaticsError::DefectLost`] where the path reaches or passes
+/// near the centring; those of [`super::landscape::scan`].
 pub fn peierls_nabarro_near<M: ChainModel + ?Sized>(
     model: &M,
     rotor: f64,

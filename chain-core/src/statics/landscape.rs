@@ -8,11 +8,14 @@
 //! spring repels it, a softer one pins it. Where that potential's force beats the
 //! Peierls-Nabarro force no centring is an equilibrium: Newton's method from the symmetric guess
 //! slides away (n = 40, `theta_bar = 0.4`, the middle spring at `2k`: every centring from 15 to 24
-//! except the impurity's own, a saddle of index 1). [`scan`] solves every centring within
-//! [`LANDSCAPE_REACH`] sites at fixed centring and keeps them all: the free equilibria with their
-//! index, and the points in between with the translation held (the energy along the adiabatic
-//! path). [`ImpurityEnergy`] is the antikink's energy centred on an impurity spring minus its
-//! energy at the spring centring farthest from the ends and every impurity.
+//! except the impurity's own, a saddle of index 1), and next to a stiffer spring (`5k`) the
+//! symmetric guess splits into a kink-antikink pair. [`scan`] therefore walks the adiabatic path
+//! across [`LANDSCAPE_REACH`] sites either side ([`super::path_scan`]) and reports every centring
+//! as the path point there (the energy with the centre held) and every free equilibrium of the path
+//! with its Morse index, where it lies, on or between the centrings. [`ImpurityEnergy`] is the
+//! antikink's energy centred on an impurity spring (or at the end of the path before it, where
+//! the path does not reach it) minus its energy at the spring centring farthest from the ends and
+//! every impurity.
 //!
 //! [`default_centre`] places an antikink where nothing disturbs it: the rotor farthest from both
 //! ends and from every impurity.
@@ -27,8 +30,8 @@ use crate::model::ChainModel;
 /// How far (in sites, either side) [`scan`] looks from the requested place. Why 8: an antikink
 /// at `theta_bar >= 0.3` is at most 3 sites wide (`a^2 / (2 r sin theta_bar)`), and an impurity's
 /// force decays over that width, so 8 sites reaches past it to the first Peierls-Nabarro minima
-/// (at 5 - 10 sites from a spring at `2k`, n = 40, `theta_bar = 0.4`) at the cost of 33 Newton
-/// solves.
+/// (at 5 - 10 sites from a spring at `2k`, n = 40, `theta_bar = 0.4`) at the cost of about 130
+/// points of the path and a regula falsi per equilibrium.
 pub const LANDSCAPE_REACH: f64 = 8.0;
 
 /// A free equilibrium of the path this close to a centring (sites) is that centring's
@@ -126,13 +129,16 @@ pub fn scan<M: ChainModel + ?Sized>(
     scan_with_path(model, place, impurities, options).map(|(landscape, energies, _)| (landscape, energies))
 }
 
+/// What [`scan_with_path`] returns: the landscape, the impurities' energies and the path walked.
+pub(crate) type Scanned = (Vec<Antikink>, Vec<ImpurityEnergy>, Option<PathScan>);
+
 /// [`scan`] and the path it walked (on a chain with impurities).
 pub(crate) fn scan_with_path<M: ChainModel + ?Sized>(
     model: &M,
     place: f64,
     impurities: &[usize],
     options: &AntikinkOptions,
-) -> Result<(Vec<Antikink>, Vec<ImpurityEnergy>, Option<PathScan>), StaticsError> {
+) -> Result<Scanned, StaticsError> {
     let n = model.rotor_count();
     let last = n as f64 - 2.0;
     let (lo, hi) = ((place - LANDSCAPE_REACH).max(1.0), (place + LANDSCAPE_REACH).min(last));

@@ -89,7 +89,7 @@ pub(crate) fn step_off<M: ChainModel + ?Sized>(
     let scale = k.inf_norm().max(f64::MIN_POSITIVE);
     let lowest = k.lowest_eigenpairs(1)?.remove(0);
     let curvature = lowest.value;
-    if !(curvature < 0.0) {
+    if curvature.is_nan() || curvature >= 0.0 {
         return Err(StaticsError::InvalidValue {
             what: "the lowest curvature of the saddle to step off",
             value: curvature,
