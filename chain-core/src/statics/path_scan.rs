@@ -11,11 +11,12 @@
 //! path point is halved down to [`MIN_STEP`]; below that the path has ended (a pair nucleates, or
 //! a fold) and the walk stops on that side.
 //!
-//! Every sign change of `dE/dc` between neighbouring points brackets a free equilibrium: closed by
-//! regula falsi ([`super::path::refine`], to [`super::path::PATH_RESOLUTION`]) and polished by free
-//! Newton, it is classified by the Sturm count of its tangent stiffness, so a saddle across the
-//! path is a saddle even where the path has a minimum. Why a step of 1/8 site: as for the descent,
-//! at least two path points in every well, so no pair of zeros falls between two samples.
+//! Every sign change of `dE/dc` between neighbouring points brackets a free equilibrium: closed
+//! by regula falsi (Illinois, as in the descent, to [`super::path::PATH_RESOLUTION`]) and
+//! polished by free Newton, it is classified by the Sturm count of its tangent stiffness, so a
+//! saddle across the path is a saddle even where the path has a minimum. Why a step of 1/8 site:
+//! as for the descent, at least two path points in every well, so no pair of zeros falls between
+//! two samples.
 
 use alloc::vec::Vec;
 

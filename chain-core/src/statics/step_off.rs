@@ -4,7 +4,7 @@
 //! sign. That point is a free equilibrium, but it is a minimum only if the path is a valley floor
 //! there: where a direction *across* the path is unstable, the path's stationary point is a saddle
 //! of the free energy (n = 40, `theta_bar = 0.4`, spring 19 at `0.3k`, from 14.5: index 1 at
-//! 16.911, with the soft spring's pinned minimum further on). [`step_off`] leaves such a saddle
+//! 16.911, with the soft spring's pinned minimum further on). The search leaves such a saddle
 //! along the unstable eigenvector `v` of its tangent stiffness (end rotors held), both signs:
 //!
 //! - **The step** `s` along `v` is scaled by the curvature `lambda < 0`: the force there,
