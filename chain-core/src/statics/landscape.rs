@@ -22,7 +22,7 @@
 
 use alloc::vec::Vec;
 
-use super::antikink::{Antikink, AntikinkOptions, on_path, solve_centring};
+use super::antikink::{Antikink, AntikinkOptions, Ends, on_path, solve_centring};
 use super::error::StaticsError;
 use super::path_scan::{PathScan, scan_path};
 use crate::model::ChainModel;
@@ -115,7 +115,7 @@ pub fn default_centre<M: ChainModel + ?Sized>(model: &M) -> f64 {
 /// they were found at as `requested`. A centring where the path has ended (between its stretches,
 /// [`PathScan::segments`]: next to a soft impurity a pair nucleates on the way) is solved from its
 /// symmetric guess, as every centring is without impurities (a uniform chain whose middle pair is
-/// not resolved).
+/// not resolved) and with [`Ends::Free`] (the path needs held ends).
 ///
 /// # Errors
 /// Those of [`super::path_scan::scan_path`], and of Newton's method at a centring or at the
@@ -142,10 +142,51 @@ pub(crate) fn scan_with_path<M: ChainModel + ?Sized>(
     let n = model.rotor_count();
     let last = n as f64 - 2.0;
     let (lo, hi) = ((place - LANDSCAPE_REACH).max(1.0), (place + LANDSCAPE_REACH).min(last));
-    if impurities.is_empty() {
-        return Ok((centrings(model, lo, hi, options)?, Vec::new(), None));
+    // The path holds the end rotors (with free ends their near-null edge modes make it singular).
+    let path = if impurities.is_empty() || options.ends != Ends::Held {
+        None
+    } else {
+        Some(scan_path(model, lo, hi, impurities, options)?)
+    };
+    let landscape = match &path {
+        Some(path) => on_the_path(model, lo, hi, path, options)?,
+        None => centrings(model, lo, hi, options)?,
+    };
+    let mut energies = Vec::new();
+    let near: Vec<usize> = impurities
+        .iter()
+        .copied()
+        .filter(|&p| ((p as f64 + 0.5) - place).abs() <= LANDSCAPE_REACH && p >= 1 && p + 2 < n)
+        .collect();
+    if !near.is_empty() {
+        let reference = farthest_centring(n, impurities, 0.5);
+        let far = solve_centring(model, reference, options)?.energy;
+        for p in near {
+            let centring = p as f64 + 0.5;
+            let nearest = path.as_ref().and_then(|path| path.nearest(centring));
+            let (centre, on) = match landscape.iter().find(|a| a.requested == centring) {
+                Some(a) => (centring, a.energy),
+                None => match (solve_centring(model, centring, options), nearest) {
+                    (Ok(a), _) if !a.moved() => (centring, a.energy),
+                    (Ok(_) | Err(StaticsError::DefectLost { .. }), Some(q)) => (q.centre, q.energy),
+                    (Err(e), _) => return Err(e),
+                    (Ok(a), None) => (a.centre, a.energy),
+                },
+            };
+            energies.push(ImpurityEnergy { spring: p, energy: on - far, reference, centre });
+        }
     }
-    let path = scan_path(model, lo, hi, impurities, options)?;
+    Ok((landscape, energies, path))
+}
+
+/// The landscape on `[lo, hi]` from the walked `path` (see [`scan`]).
+fn on_the_path<M: ChainModel + ?Sized>(
+    model: &M,
+    lo: f64,
+    hi: f64,
+    path: &PathScan,
+    options: &AntikinkOptions,
+) -> Result<Vec<Antikink>, StaticsError> {
     let mut landscape = Vec::new();
     let on_equilibrium = |c: f64| path.equilibria.iter().any(|e| (e.centre - c).abs() <= ON_CENTRING);
     for twice in libm::ceil(2.0 * lo) as i64..=libm::floor(2.0 * hi) as i64 {
@@ -183,30 +224,7 @@ pub(crate) fn scan_with_path<M: ChainModel + ?Sized>(
         landscape.push(e);
     }
     landscape.sort_by(|a, b| a.requested.total_cmp(&b.requested));
-    let mut energies = Vec::new();
-    let near: Vec<usize> = impurities
-        .iter()
-        .copied()
-        .filter(|&p| ((p as f64 + 0.5) - place).abs() <= LANDSCAPE_REACH && p >= 1 && p + 2 < n)
-        .collect();
-    if !near.is_empty() {
-        let reference = farthest_centring(n, impurities, 0.5);
-        let far = solve_centring(model, reference, options)?.energy;
-        for p in near {
-            let centring = p as f64 + 0.5;
-            let (centre, on) = match landscape.iter().find(|a| a.requested == centring) {
-                Some(a) => (centring, a.energy),
-                None => match (solve_centring(model, centring, options), path.nearest(centring)) {
-                    (Ok(a), _) if !a.moved() => (centring, a.energy),
-                    (Ok(_) | Err(StaticsError::DefectLost { .. }), Some(q)) => (q.centre, q.energy),
-                    (Err(e), _) => return Err(e),
-                    (Ok(a), None) => (a.centre, a.energy),
-                },
-            };
-            energies.push(ImpurityEnergy { spring: p, energy: on - far, reference, centre });
-        }
-    }
-    Ok((landscape, energies, Some(path)))
+    Ok(landscape)
 }
 
 /// Every centring in `[lo, hi]` solved at fixed centring from its symmetric guess (a centring
