@@ -12,12 +12,20 @@
 //! - the energy along an independent constrained path (one core rotor's angle held on a grid,
 //!   every other moving rotor relaxed by the test's own Newton iteration on the reference) is
 //!   lowest at the returned configuration, to the grid's resolution.
+//!
+//! The same reference checks the saddle a descent steps off (index 1, its unstable direction
+//! lowering the energy both ways) and `peierls_nabarro`'s landscape next to impurities: every free
+//! equilibrium's index, and next to a stiff spring the reference's own path, the wall held on a
+//! grid by a bordered Newton iteration written here, with its minima and maxima where the
+//! landscape's are.
 
 mod common;
 
-use common::{K, R, Reference, chains, count_below, lowest, solve};
+use common::{K, R, Reference, chains, count_below, lowest, norm, solve};
 use rotor_chain::statics::StaticsError;
-use rotor_chain::statics::antikink::{AntikinkOptions, Ends, antikink_at, antikink_relaxed, peierls_nabarro};
+use rotor_chain::statics::antikink::{
+    AntikinkOptions, Ends, PeierlsNabarro, antikink_at, antikink_relaxed, peierls_nabarro,
+};
 use rotor_chain::statics::kink::reflected_kink;
 use rotor_chain::statics::path::{Descent, at_centre, descend};
 
@@ -256,4 +264,260 @@ fn a_wide_antikink_stops_in_the_first_well_that_holds_it() {
     }
     // Higher than the middle's minimum: a local well, held by the pinning against the ends' pull.
     assert!(from_end.energy > minimum.energy);
+}
+
+/// The reference's lowest eigenpair of the tridiagonal `(d, o)`: the eigenvalue by bisection
+/// ([`lowest`]), the vector by inverse iteration at a shift just below it.
+fn lowest_vector(d: &[f64], o: &[f64]) -> (f64, Vec<f64>) {
+    let value = lowest(d, o);
+    let shifted: Vec<f64> = d.iter().map(|x| x - (value - 1e-6 * norm(d, o))).collect();
+    let mut v = vec![1.0; d.len()];
+    for _ in 0..8 {
+        v = solve(&shifted, o, &v);
+        let s = v.iter().map(|x| x * x).sum::<f64>().sqrt();
+        v.iter_mut().for_each(|x| *x /= s);
+    }
+    (value, v)
+}
+
+/// n = 40, theta_bar = 0.4, spring 19 at 0.3k (the soft spring pins the antikink): from 14.5 the
+/// descent along the path stops at a free saddle (index 1 at 16.911, its unstable direction across
+/// the path); the search steps off it and ends at the pinned minimum on the soft spring, and says
+/// so. Before the step-off this was `NoMinimum { found: 16.911, index: 1 }`.
+#[test]
+fn a_descent_that_stops_at_a_saddle_steps_off_it_to_the_pinned_minimum() {
+    let what = "0.3k at spring 19, theta_bar = 0.4, from 14.5";
+    let (model, reference) = chains(40, 0.4, &[(19, 0.3, 1.0)]);
+    let ours =
+        antikink_relaxed(&model, 14.5, &AntikinkOptions::default()).unwrap_or_else(|e| panic!("{what}: {e}"));
+    assert!(ours.is_free_minimum(), "{what}");
+    let (centre, energy, curvature) = check_minimum(&reference, &ours.theta, what);
+    assert!((centre - ours.centre).abs() < 1e-12 && (energy - ours.energy).abs() < 1e-9 * energy, "{what}");
+    // Pinned on the soft spring: centred on it, far below the free antikink (475.48 at this
+    // theta_bar, the closing note's table).
+    assert!((centre - 19.5).abs() < 1e-6 && energy < 300.0, "{what}: {centre} {energy}");
+    println!("{what}: minimum centre {centre:.6}, energy {energy:.9}, lowest curvature {curvature:.6e}");
+    // The saddle it stepped off, by the reference: force-free, Morse index 1 (finite-difference
+    // Hessian), its unstable direction lowering the energy on both sides.
+    assert_eq!(ours.step_offs.len(), 1, "{:?}", ours.step_offs);
+    let s = &ours.step_offs[0];
+    let n = s.theta.len();
+    let force = (1..n - 1).fold(0.0f64, |m, i| m.max(fd_gradient(&reference, &s.theta, i).abs()));
+    assert!(force < 1e-6 * K * R * R, "{what}: force at the saddle {force:e}");
+    let (d, o) = fd_hessian(&reference, &s.theta);
+    assert_eq!(count_below(&d, &o, 0.0), 1, "{what}: the saddle's index");
+    let (value, v) = lowest_vector(&d, &o);
+    assert!((value / s.curvature - 1.0).abs() < 1e-4, "{what}: {value} vs {}", s.curvature);
+    let e0 = reference.energy(&s.theta);
+    for h in [-1e-3, 1e-3] {
+        let mut t = s.theta.clone();
+        t[1..n - 1].iter_mut().zip(&v).for_each(|(x, y)| *x += h * y);
+        assert!(reference.energy(&t) < e0, "{what}: along the unstable direction by {h}");
+    }
+    assert!((wall(&s.theta) - s.saddle).abs() < 1e-12 && (e0 - s.saddle_energy).abs() < 1e-9 * e0, "{what}");
+    assert!((s.saddle - 16.911).abs() < 1e-3 && s.index == 1, "{what}: {s:?}");
+    // Where it went: the minimum returned, lower than the saddle.
+    assert!(s.reached == ours.centre && s.energy == ours.energy && s.energy < s.saddle_energy, "{what}");
+    println!(
+        "{what}: saddle centre {:.6}, energy {:.9}, lowest curvature {value:.6e}, step {:.3e}",
+        s.saddle, e0, s.step
+    );
+}
+
+/// Solves the dense system `a` (each row: the coefficients, then the right-hand side) by Gaussian
+/// elimination with partial pivoting.
+fn gauss(mut a: Vec<Vec<f64>>) -> Vec<f64> {
+    let m = a.len();
+    for col in 0..m {
+        let pivot = (col..m).max_by(|&x, &y| a[x][col].abs().total_cmp(&a[y][col].abs())).unwrap();
+        a.swap(col, pivot);
+        let (top, below) = a.split_at_mut(col + 1);
+        let pivot_row = &top[col];
+        for row in below {
+            let factor = row[col] / pivot_row[col];
+            row.iter_mut().zip(pivot_row).skip(col).for_each(|(x, p)| *x -= factor * p);
+        }
+    }
+    let mut x = vec![0.0; m];
+    for row in (0..m).rev() {
+        let s: f64 = (row + 1..m).map(|k| a[row][k] * x[k]).sum();
+        x[row] = (a[row][m] - s) / a[row][row];
+    }
+    x
+}
+
+/// The reference's lowest energy with the wall coordinate held at `c = i + f` (ends held):
+/// Newton's method on the Lagrangian `V - mu ((1 - f) theta_i + f theta_{i+1})` with its exact
+/// (num-dual) gradient and Hessian, each step the bordered system `[[H, -a], [a^T, 0]]` solved
+/// densely (the free Hessian is singular where its lowest eigenvalue changes sign along the path;
+/// the bordered matrix is not). Not the library's method (it eliminates an angle).
+fn held_wall(reference: &Reference, start: &[f64], c: f64) -> Vec<f64> {
+    let n = start.len();
+    let (i, f) = (c.floor() as usize, c - c.floor());
+    let m = n - 2;
+    let weight = |r: usize| {
+        if r == i {
+            1.0 - f
+        } else if r == i + 1 {
+            f
+        } else {
+            0.0
+        }
+    };
+    let mut theta = start.to_vec();
+    for _ in 0..20 {
+        let g = reference.gradient(&theta);
+        let mut a = vec![vec![0.0; m + 2]; m + 1];
+        for k in 0..m {
+            let r = k + 1;
+            a[k][k] = reference.hessian_entry(&theta, r, r);
+            if k + 1 < m {
+                let h = reference.hessian_entry(&theta, r, r + 1);
+                (a[k][k + 1], a[k + 1][k]) = (h, h);
+            }
+            (a[k][m], a[m][k], a[k][m + 1]) = (-weight(r), weight(r), -g[r]);
+        }
+        a[m][m + 1] = -((1.0 - f) * theta[i] + f * theta[i + 1]);
+        let x = gauss(a);
+        theta[1..n - 1].iter_mut().zip(&x).for_each(|(t, d)| *t += d);
+        if x[..m].iter().fold(0.0f64, |s, d| s.max(d.abs())) < 1e-13 {
+            break;
+        }
+    }
+    // Converged: the force is along the constraint's normal only.
+    let g = reference.gradient(&theta);
+    let norm2 = (1.0 - f) * (1.0 - f) + f * f;
+    let lambda = ((1.0 - f) * g[i] + f * g[i + 1]) / norm2;
+    let across = (1..n - 1).fold(0.0f64, |s, r| s.max((g[r] - lambda * weight(r)).abs()));
+    assert!(across < 1e-8 * K * R * R, "the test's held wall at {c}: force {across:e}");
+    assert!((wall(&theta) - c).abs() < 1e-9, "the test's held wall at {c}: {}", wall(&theta));
+    theta
+}
+
+/// Every free equilibrium of the landscape is one by the reference (finite-difference gradient
+/// zero, finite-difference Hessian of the same Morse index, 0 or 1).
+fn check_equilibria(reference: &Reference, pn: &PeierlsNabarro, what: &str) {
+    for a in pn.landscape.iter().filter(|a| a.held == 0) {
+        let n = a.theta.len();
+        let force = (1..n - 1).fold(0.0f64, |m, i| m.max(fd_gradient(reference, &a.theta, i).abs()));
+        assert!(force < 1e-6 * K * R * R, "{what}: at {}: force {force:e}", a.centre);
+        let (d, o) = fd_hessian(reference, &a.theta);
+        let index = count_below(&d, &o, 0.0);
+        assert!(index <= 1 && index == a.classification.index, "{what}: at {}: index {index}", a.centre);
+    }
+}
+
+/// `peierls_nabarro` next to a stiff spring (19 at 5k, n = 40, theta_bar = 0.4, 0.5, 0.6), where
+/// the symmetric guesses of the middle centrings split into a kink-antikink pair (before: the
+/// whole analysis failed with `DefectLost`): it reports the landscape of the adiabatic path. The
+/// reference's own path (the wall held on a grid of 1/16 site, `held_wall`) has its minima and
+/// maxima where the landscape's minima and saddles are, to the grid's resolution; the repulsion is
+/// the reference's energy at the last point of the path before the impurity; `minimum()` is no
+/// minimum near the impurity and says where the antikink goes.
+#[test]
+fn peierls_nabarro_next_to_a_stiff_impurity_reports_the_landscape_of_the_path() {
+    let options = AntikinkOptions::default();
+    for theta_bar in [0.4, 0.5, 0.6] {
+        let what = format!("5k at spring 19, theta_bar = {theta_bar}");
+        let (model, reference) = chains(40, theta_bar, &[(19, 5.0, 1.0)]);
+        let pn = peierls_nabarro(&model, &options).unwrap_or_else(|e| panic!("{what}: {e}"));
+        assert!(!pn.resolved, "{what}");
+        check_equilibria(&reference, &pn, &what);
+        // The reference's path left of the impurity, from the centring 12 to 18.5.
+        let start = pn.landscape.iter().find(|a| a.requested == 12.0).expect("the centring 12");
+        let grid: Vec<f64> = (0..=104).map(|k| 12.0 + k as f64 / 16.0).collect();
+        let mut theta = start.theta.clone();
+        let energies: Vec<f64> = grid
+            .iter()
+            .map(|&c| {
+                theta = held_wall(&reference, &theta, c);
+                reference.energy(&theta)
+            })
+            .collect();
+        let extrema: Vec<(f64, usize)> = (1..grid.len() - 1)
+            .filter_map(|k| {
+                let (l, e, r) = (energies[k - 1], energies[k], energies[k + 1]);
+                if e < l && e < r {
+                    Some((grid[k], 0))
+                } else if e > l && e > r {
+                    Some((grid[k], 1))
+                } else {
+                    None
+                }
+            })
+            .collect();
+        let ours: Vec<(f64, usize)> = pn
+            .landscape
+            .iter()
+            .filter(|a| a.held == 0 && a.centre > grid[1] && a.centre < grid[grid.len() - 2])
+            .map(|a| (a.centre, a.classification.index))
+            .collect();
+        assert!(
+            !ours.is_empty() && ours.len() == extrema.len(),
+            "{what}: ours {ours:?}, reference {extrema:?}"
+        );
+        for (&(c, index), &(x, kind)) in ours.iter().zip(&extrema) {
+            assert!(
+                index == kind && (c - x).abs() <= 1.0 / 16.0,
+                "{what}: ours {ours:?}, reference {extrema:?}"
+            );
+        }
+        // From the last minimum to the impurity the energy rises (repulsion); the path ends before
+        // the impurity's centring, and the impurity's energy is the reference's at that end.
+        let last = ours.iter().rev().find(|o| o.1 == 0).unwrap().0;
+        let k0 = grid.iter().position(|&c| c > last).unwrap();
+        assert!(energies[k0..].windows(2).all(|w| w[1] > w[0]), "{what}: {:?}", &energies[k0..]);
+        let e = pn.impurities[0];
+        assert!(e.spring == 19 && e.centre > 18.5 && e.centre < 19.5, "{what}: {e:?}");
+        let end = pn.landscape.iter().find(|a| a.requested == e.centre).expect("the path's end");
+        let far = antikink_at(&model, e.reference, &options).unwrap();
+        let expected = reference.energy(&end.theta) - reference.energy(&far.theta);
+        assert!(
+            expected > 0.0 && (e.energy - expected).abs() < 1e-9 * expected,
+            "{what}: {e:?} vs {expected}"
+        );
+        assert!(reference.energy(&end.theta) > energies[grid.len() - 1], "{what}");
+        // No minimum at the middle: the antikink asked there goes to the first minimum downhill.
+        match pn.minimum() {
+            Err(StaticsError::NoMinimum { found, index: 0, held: 0, .. }) => {
+                assert!((found - last).abs() < 1e-9 && pn.rotor_centred.moved(), "{what}: {found}");
+            }
+            other => panic!("{what}: {:?}", other.map(|a| a.centre)),
+        }
+        println!(
+            "{what}: minima and saddles {ours:?}; the path ends at {:.6}, repulsion {:.6}",
+            e.centre, e.energy
+        );
+    }
+}
+
+/// The landscape's equilibria near soft (0.3k), stiff (2k), rest-length (0.995 l0) impurities
+/// and two impurities are equilibria of the reference with its Morse index, and its minima include
+/// the well between the centrings that `antikink_relaxed` reaches from a start nearby (checked
+/// against the reference above; the symmetric guesses of the landscape before found none there).
+#[test]
+fn the_landscape_near_every_kind_of_impurity_agrees_with_the_reference() {
+    // (overrides, theta_bar, a start of antikink_relaxed whose minimum is in the window)
+    let cases: [(Overrides, f64, f64); 4] = [
+        (&[(19, 0.3, 1.0)], 0.4, 14.5),
+        (&[(19, 2.0, 1.0)], 0.4, 15.0),
+        (&[(19, 1.0, 0.995)], 0.4, 13.0),
+        (&[(16, 2.0, 1.0), (22, 0.3, 1.0)], 0.4, 21.0),
+    ];
+    let options = AntikinkOptions::default();
+    for (overrides, theta_bar, start) in cases {
+        let what = format!("{overrides:?} at theta_bar = {theta_bar}");
+        let (model, reference) = chains(40, theta_bar, overrides);
+        let pn = peierls_nabarro(&model, &options).unwrap_or_else(|e| panic!("{what}: {e}"));
+        check_equilibria(&reference, &pn, &what);
+        let free: Vec<(f64, usize)> =
+            pn.landscape.iter().filter(|a| a.held == 0).map(|a| (a.centre, a.classification.index)).collect();
+        let relaxed = antikink_relaxed(&model, start, &options).unwrap();
+        assert!(
+            pn.minima().any(|m| (m.centre - relaxed.centre).abs() < 1e-9),
+            "{what}: {} not among {free:?}",
+            relaxed.centre
+        );
+        println!("{what}: {free:.6?}; impurities {:?}", pn.impurities);
+    }
 }

@@ -39,7 +39,8 @@ use super::classify::{Classification, EquilibriumKind, classify, rounding_tolera
 use super::equilibrium::{NewtonOptions, RelaxOptions, newton, polish, relax};
 use super::error::StaticsError;
 use super::kink::reflected_kink;
-use super::path::{Descent, descend};
+use super::path::{Descent, PathPoint, descend};
+use super::step_off::{MAX_STEP_OFFS, StepOff, step_off};
 use super::walls::{Charge, domain_walls};
 use crate::linalg::SymmetricMatrix;
 use crate::model::ChainModel;
@@ -145,6 +146,9 @@ pub struct Antikink {
     /// With a held translation the result is the equilibrium at fixed centring, a point of the
     /// adiabatic trajectory, not a free equilibrium.
     pub held: usize,
+    /// The saddles [`antikink_relaxed`] stepped off on its way, in order, each with where the
+    /// descent from it went ([`super::step_off`]); empty for every other analysis.
+    pub step_offs: Vec<StepOff>,
 }
 
 impl Antikink {
@@ -183,6 +187,7 @@ impl Antikink {
             residual,
             edge_force,
             held,
+            step_offs: Vec::new(),
         })
     }
 
@@ -276,6 +281,14 @@ pub(crate) fn solve_centring<M: ChainModel + ?Sized>(
 /// Where the path ends on a slope (one more step would nucleate a kink-antikink pair at a soft
 /// impurity ahead) the relaxation is run again from its last point.
 ///
+/// Where that equilibrium is a free saddle (the path's stationary point with a direction across
+/// the path unstable: n = 40, `theta_bar = 0.4`, spring 19 at `0.3k`, from 14.5, index 1 at
+/// 16.911) the search steps off it along its unstable eigenvector, both ways, by damped
+/// relaxation ([`super::step_off`], which says why), follows each side down as above and keeps
+/// the side that ends at a free minimum (the lower if both do); at most
+/// [`super::step_off::MAX_STEP_OFFS`] times. Each saddle left and where its descent went are in
+/// [`Antikink::step_offs`].
+///
 /// With [`Ends::Free`] there is no descent: the near-null edge modes of the two domains are held
 /// and counted in the index, so the lower of the two centrings next to where the relaxation
 /// stopped is returned as it is.
@@ -285,8 +298,10 @@ pub(crate) fn solve_centring<M: ChainModel + ?Sized>(
 /// (centre 1 or `n - 2`: the start, the region, the centre reached, its energy and slope: where
 /// the antikink went);
 /// [`StaticsError::NoMinimum`] when the equilibrium at the bottom is not a free minimum (never a
-/// saddle called a minimum), with its centre, index and held directions; the errors of the
-/// relaxation, of the path and of Newton's method.
+/// saddle called a minimum: a saddle that neither side of a step-off leaves, or the last after
+/// [`super::step_off::MAX_STEP_OFFS`] step-offs), with its centre, index and held directions; the
+/// errors of the relaxation, of the path and of Newton's method (a step-off whose both sides fail:
+/// the first side's error, as an antikink lost or a descent that left its region).
 /// # Example
 ///
 /// ```
@@ -316,28 +331,20 @@ pub fn antikink_relaxed<M: ChainModel + ?Sized>(
     if start.is_free_minimum() {
         return Ok(start);
     }
-    // What follows starts at an equilibrium or next to one; nothing is held that the
-    // classification resolves (the translation at `theta_bar = 0.2`, n = 60, is `6e-11 ||K||`,
-    // below Newton's default null tolerance but far above rounding).
-    let n = model.rotor_count();
-    let resolved = options.zero_tolerance.unwrap_or_else(|| rounding_tolerance(n.saturating_sub(2)));
-    let free = NewtonOptions { hold_ends: true, null_tolerance: resolved, ..options.newton };
-    let (theta, bottom, steps) = match descend(model, &start.theta, n as f64, options)? {
-        Descent::Bottom(bottom) => (bottom.theta, bottom.centre, 0),
-        // The path ends on a slope (a pair would nucleate at a soft impurity ahead): the paper's
-        // relaxation from its last point slides on down.
-        Descent::End(last) => {
-            let (relaxed, steps) =
-                relax(model, &last.theta, &RelaxOptions { hold_ends: true, ..options.relax })?;
-            (relaxed, f64::NAN, steps)
+    let mut found = descend_polished(model, &start.theta, start.relax_steps, options)?;
+    // A descent that stops at a saddle steps off it along its unstable direction, both ways
+    // (`super::step_off`); each step-off ends lower than the saddle, so the search cannot cycle.
+    let mut step_offs = Vec::new();
+    while found.held == 0 && found.classification.index >= 1 && step_offs.len() < MAX_STEP_OFFS {
+        let (next, record) = leave_saddle(model, &found, options)?;
+        step_offs.push(record);
+        found = next;
+        if found.is_free_minimum() {
+            break;
         }
-    };
-    let solution = polish(model, newton(model, &theta, &free)?, &free)?;
-    let mut found = Antikink::from_solution(model, bottom, solution, start.relax_steps + steps, options)?;
-    if bottom.is_nan() {
-        found.requested = found.centre;
     }
     if found.is_free_minimum() {
+        found.step_offs = step_offs;
         return Ok(found);
     }
     Err(StaticsError::NoMinimum {
@@ -345,6 +352,151 @@ pub fn antikink_relaxed<M: ChainModel + ?Sized>(
         found: found.centre,
         index: found.classification.index,
         held: found.held,
+    })
+}
+
+/// The free Newton options of the descent: with the ends held and nothing held that the
+/// classification resolves (the translation at `theta_bar = 0.2`, n = 60, is `6e-11 ||K||`,
+/// below Newton's default null tolerance but far above rounding).
+fn free_newton<M: ChainModel + ?Sized>(model: &M, options: &AntikinkOptions) -> NewtonOptions {
+    let n = model.rotor_count();
+    let resolved = options.zero_tolerance.unwrap_or_else(|| rounding_tolerance(n.saturating_sub(2)));
+    NewtonOptions { hold_ends: true, null_tolerance: resolved, ..options.newton }
+}
+
+/// The descent of [`antikink_relaxed`] from `theta` (one antikink, at or next to an equilibrium):
+/// the adiabatic path to the bottom of its well (or, where the path ends on a slope, the
+/// relaxation from its last point), polished by free Newton and classified. `relax_steps` are the
+/// time steps already taken.
+fn descend_polished<M: ChainModel + ?Sized>(
+    model: &M,
+    theta: &[f64],
+    relax_steps: usize,
+    options: &AntikinkOptions,
+) -> Result<Antikink, StaticsError> {
+    let n = model.rotor_count();
+    match descend(model, theta, n as f64, options)? {
+        Descent::Bottom(bottom) => {
+            let mut found = polished_on_path(model, bottom, options)?;
+            found.relax_steps = relax_steps;
+            Ok(found)
+        }
+        // The path ends on a slope (a pair would nucleate at a soft impurity ahead): the paper's
+        // relaxation from its last point slides on down.
+        Descent::End(last) => {
+            let (relaxed, steps) =
+                relax(model, &last.theta, &RelaxOptions { hold_ends: true, ..options.relax })?;
+            let free = free_newton(model, options);
+            let solution = polish(model, newton(model, &relaxed, &free)?, &free)?;
+            let mut found = Antikink::from_solution(model, f64::NAN, solution, relax_steps + steps, options)?;
+            found.requested = found.centre;
+            Ok(found)
+        }
+    }
+}
+
+/// The free equilibrium at the bottom (or top) of a well of the adiabatic path, `point` (where
+/// `dE/dc` vanishes, [`super::path::refine`]): polished by free Newton and classified by the Sturm
+/// count of its tangent stiffness, with `point.centre` as the centre it was found at
+/// (`requested`).
+pub(crate) fn polished_on_path<M: ChainModel + ?Sized>(
+    model: &M,
+    point: PathPoint,
+    options: &AntikinkOptions,
+) -> Result<Antikink, StaticsError> {
+    let free = free_newton(model, options);
+    let solution = polish(model, newton(model, &point.theta, &free)?, &free)?;
+    Antikink::from_solution(model, point.centre, solution, 0, options)
+}
+
+/// A point of the adiabatic path as an [`Antikink`] at its centre with the centre held
+/// (`held = 1`, `residual` the force left in the directions that keep the centre, `edge_force`
+/// the whole force, the centre's included), classified by its tangent stiffness as
+/// [`antikink_at`]'s fixed-centring points are.
+pub(crate) fn on_path<M: ChainModel + ?Sized>(
+    model: &M,
+    point: PathPoint,
+    options: &AntikinkOptions,
+) -> Result<Antikink, StaticsError> {
+    let k = SymmetricMatrix::tangent_stiffness(model, &point.theta)?;
+    let scale = k.inf_norm().max(f64::MIN_POSITIVE);
+    let mut g = alloc::vec![0.0; point.theta.len()];
+    model.gradient_into(&point.theta, &mut g);
+    let edge_force =
+        g.iter().fold(0.0f64, |m, x| if x.is_nan() || m.is_nan() { f64::NAN } else { m.max(x.abs()) });
+    let solution = super::equilibrium::Solution {
+        theta: point.theta,
+        iterations: point.iterations,
+        residual: point.residual,
+        edge_force: edge_force / scale,
+        held: 1,
+    };
+    Antikink::from_solution(model, point.centre, solution, 0, options)
+}
+
+/// Steps off the free saddle `saddle` both ways ([`super::step_off`]) and follows each side down:
+/// free Newton from the relaxed configuration, and where that is not a free minimum the descent
+/// of [`descend_polished`]. Keeps the side that ends at a free minimum, the lower if both do
+/// (else the lower end); a side that comes back to the saddle (its centre within `1e-6` sites
+/// and not lower) or fails is dropped.
+///
+/// # Errors
+/// When neither side leaves the saddle: the first side's error, or [`StaticsError::NoMinimum`]
+/// at the saddle.
+fn leave_saddle<M: ChainModel + ?Sized>(
+    model: &M,
+    saddle: &Antikink,
+    options: &AntikinkOptions,
+) -> Result<(Antikink, StepOff), StaticsError> {
+    let free = free_newton(model, options);
+    let mut best: Option<(Antikink, StepOff)> = None;
+    let mut first_error = None;
+    for sign in [1.0, -1.0] {
+        let side = step_off(model, saddle, sign, options).and_then(|(relaxed, steps, curvature, step)| {
+            let steps = saddle.relax_steps + steps;
+            let solution = polish(model, newton(model, &relaxed, &free)?, &free)?;
+            let mut end = Antikink::from_solution(model, f64::NAN, solution, steps, options)?;
+            end.requested = end.centre;
+            if !end.is_free_minimum() {
+                end = descend_polished(model, &end.theta, steps, options)?;
+            }
+            Ok((end, curvature, step))
+        });
+        let (end, curvature, step) = match side {
+            Ok(side) => side,
+            Err(e) => {
+                first_error.get_or_insert(e);
+                continue;
+            }
+        };
+        if (end.centre - saddle.centre).abs() <= 1e-6 && end.energy >= saddle.energy {
+            continue;
+        }
+        let record = StepOff {
+            saddle: saddle.centre,
+            theta: saddle.theta.clone(),
+            saddle_energy: saddle.energy,
+            index: saddle.classification.index,
+            curvature,
+            step,
+            reached: end.centre,
+            energy: end.energy,
+        };
+        let better = match &best {
+            None => true,
+            Some((b, _)) => (end.is_free_minimum(), -end.energy) > (b.is_free_minimum(), -b.energy),
+        };
+        if better {
+            best = Some((end, record));
+        }
+    }
+    best.ok_or_else(|| {
+        first_error.unwrap_or(StaticsError::NoMinimum {
+            near: saddle.centre,
+            found: saddle.centre,
+            index: saddle.classification.index,
+            held: saddle.held,
+        })
     })
 }
 
@@ -395,7 +547,9 @@ pub(crate) fn relaxed_nearest<M: ChainModel + ?Sized>(
 #[derive(Clone, Debug, PartialEq)]
 pub struct PeierlsNabarro {
     /// The antikink solved at the rotor centring (`(n - 1) / 2` rounded down for
-    /// [`peierls_nabarro`]); it may have moved (`moved()`): no equilibrium there.
+    /// [`peierls_nabarro`]); it may have moved (`moved()`): no equilibrium there. Where the
+    /// symmetric guess there splits into a pair (next to a stiff impurity), the free equilibrium
+    /// the adiabatic path descends to from that centring, `requested` the centring.
     pub rotor_centred: Antikink,
     /// The antikink solved at the neighbouring spring centring.
     pub spring_centred: Antikink,
@@ -407,11 +561,12 @@ pub struct PeierlsNabarro {
     /// what double precision resolves and both may look alike; the barrier is then an upper
     /// estimate. On a chain with impurities the two centrings may not be equilibria at all.
     pub resolved: bool,
-    /// Every centring within [`super::landscape::LANDSCAPE_REACH`] sites of the requested place,
-    /// solved at fixed centring, in order of centring: the free equilibria among them
-    /// ([`Antikink::is_free`]) with their Morse index, and the fixed-centring points between
-    /// (the energy along the adiabatic path). Only the two centrings when the chain is uniform
-    /// and they are `resolved`.
+    /// The landscape within [`super::landscape::LANDSCAPE_REACH`] sites of the requested place
+    /// ([`super::landscape::scan`]), in order of centre: on a chain with impurities every
+    /// centring as the point of the adiabatic path there (`held = 1`) and every free equilibrium
+    /// of the path ([`Antikink::is_free`]) with its Morse index, on or between the centrings; on
+    /// a uniform chain every centring solved at fixed centring. Only the two centrings when the
+    /// chain is uniform and they are `resolved`.
     pub landscape: Vec<Antikink>,
     /// The pinning (negative) or repulsion (positive) energy of each impurity spring within the
     /// landscape ([`super::landscape::ImpurityEnergy`]).
@@ -537,9 +692,19 @@ pub fn peierls_nabarro<M: ChainModel + ?Sized>(
 
 /// [`peierls_nabarro`] at the rotor centring `rotor` (an integer) and the spring to its right.
 ///
+/// On a chain with impurities the landscape comes from the adiabatic path
+/// ([`super::landscape::scan`]), and a centring whose symmetric guess splits into a kink-antikink
+/// pair (n = 40, spring 19 at `5k`, `theta_bar = 0.4`: both middle centrings) is reported as
+/// where the path descends from it ([`PeierlsNabarro::rotor_centred`]): there the minima nearest
+/// the impurity are at 13.956134 and 25.043866, the path ends 0.94 sites short of the impurity's
+/// centring (at 18.561142, a pair nucleates one step on), and the repulsion measured there is
+/// 171.90 (docs/statics.md "Chains that are not uniform").
+///
 /// # Errors
 /// `rotor` not an integer in `[1, n - 3]`; the errors of [`antikink_at`] other than
-/// [`StaticsError::NotAnEquilibrium`] (a centring that moved is part of the landscape).
+/// [`StaticsError::NotAnEquilibrium`] (a centring that moved is part of the landscape) and, on a
+/// chain with impurities, other than [`StaticsError::DefectLost`] where the path reaches or passes
+/// near the centring; those of [`super::landscape::scan`].
 pub fn peierls_nabarro_near<M: ChainModel + ?Sized>(
     model: &M,
     rotor: f64,
@@ -554,19 +719,64 @@ pub fn peierls_nabarro_near<M: ChainModel + ?Sized>(
             expected: "an integer rotor index in [1, n - 3]",
         });
     }
-    let rotor_centred = solve_centring(model, rotor, options)?;
-    let spring_centred = solve_centring(model, rotor + 0.5, options)?;
-    let barrier = (rotor_centred.energy - spring_centred.energy).abs();
-    let (a, b) = (rotor_centred.classification.index, spring_centred.classification.index);
-    let stayed = !rotor_centred.moved() && !spring_centred.moved();
-    let resolved = stayed && ((a == 0 && b == 1) || (a == 1 && b == 0));
     let impurity_springs = super::landscape::impurity_springs(model);
-    let (landscape, impurities) = if resolved && impurity_springs.is_empty() {
-        (alloc::vec![rotor_centred.clone(), spring_centred.clone()], Vec::new())
-    } else {
-        super::landscape::scan(model, rotor + 0.25, &impurity_springs, options)?
+    // Next to a stiff impurity the symmetric guess splits into a kink-antikink pair (5k, n = 40,
+    // theta_bar = 0.4 to 0.6): that centring is then filled in from the path below.
+    let centring = |c: f64| match solve_centring(model, c, options) {
+        Err(lost @ StaticsError::DefectLost { .. }) if !impurity_springs.is_empty() => Ok(Err(lost)),
+        other => other.map(Ok),
     };
+    let (rotor_centred, spring_centred) = (centring(rotor)?, centring(rotor + 0.5)?);
+    let resolved = match (&rotor_centred, &spring_centred) {
+        (Ok(r), Ok(s)) => {
+            let (a, b) = (r.classification.index, s.classification.index);
+            !r.moved() && !s.moved() && ((a == 0 && b == 1) || (a == 1 && b == 0))
+        }
+        _ => false,
+    };
+    let (landscape, impurities, path) = match (&rotor_centred, &spring_centred) {
+        (Ok(r), Ok(s)) if resolved && impurity_springs.is_empty() => {
+            (alloc::vec![r.clone(), s.clone()], Vec::new(), None)
+        }
+        _ => super::landscape::scan_with_path(model, rotor + 0.25, &impurity_springs, options)?,
+    };
+    // A lost centring is kept only on a chain with impurities, which is scanned; where the path
+    // did not reach it, the loss is the error.
+    let fill = |found: Result<Antikink, StaticsError>, c: f64| match (found, &path) {
+        (Ok(a), _) => Ok(a),
+        (Err(lost), Some(path)) => went_along_path(model, path, c, options)?.ok_or(lost),
+        (Err(lost), None) => Err(lost),
+    };
+    let (rotor_centred, spring_centred) = (fill(rotor_centred, rotor)?, fill(spring_centred, rotor + 0.5)?);
+    let barrier = (rotor_centred.energy - spring_centred.energy).abs();
     Ok(PeierlsNabarro { rotor_centred, spring_centred, barrier, resolved, landscape, impurities })
+}
+
+/// Where the antikink held at the centring `c` goes along the path `path`: from the path point at
+/// `c` (or, where the path ends before `c`, as next to a stiff impurity, the one nearest it) the
+/// first free equilibrium downhill (the side `dE/dc` falls toward), with `c` as `requested`, so
+/// [`Antikink::moved`] says that no equilibrium is at `c`; that path point itself when it is one
+/// (`dE/dc = 0`) or when no equilibrium lies downhill in the window; `None` without a path.
+fn went_along_path<M: ChainModel + ?Sized>(
+    model: &M,
+    path: &super::path_scan::PathScan,
+    c: f64,
+    options: &AntikinkOptions,
+) -> Result<Option<Antikink>, StaticsError> {
+    let Some(at) = path.at(c).or_else(|| path.nearest(c)) else {
+        return Ok(None);
+    };
+    let c_at = at.centre;
+    let downhill = path.equilibria.iter().filter(|e| (e.centre - c_at) * -at.slope > 0.0);
+    let mut went = if at.slope > 0.0 {
+        downhill.max_by(|a, b| a.centre.total_cmp(&b.centre))
+    } else {
+        downhill.min_by(|a, b| a.centre.total_cmp(&b.centre))
+    }
+    .cloned()
+    .map_or_else(|| on_path(model, at.clone(), options), Ok)?;
+    went.requested = c;
+    Ok(Some(went))
 }
 
 /// The finite-size study of the barrier (Fig. `fig:logvpn-size`): the barrier of the chain that

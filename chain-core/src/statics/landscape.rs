@@ -8,27 +8,36 @@
 //! spring repels it, a softer one pins it. Where that potential's force beats the
 //! Peierls-Nabarro force no centring is an equilibrium: Newton's method from the symmetric guess
 //! slides away (n = 40, `theta_bar = 0.4`, the middle spring at `2k`: every centring from 15 to 24
-//! except the impurity's own, a saddle of index 1). [`scan`] solves every centring within
-//! [`LANDSCAPE_REACH`] sites at fixed centring and keeps them all: the free equilibria with their
-//! index, and the points in between with the translation held (the energy along the adiabatic
-//! path). [`ImpurityEnergy`] is the antikink's energy centred on an impurity spring minus its
-//! energy at the spring centring farthest from the ends and every impurity.
+//! except the impurity's own, a saddle of index 1), and next to a stiffer spring (`5k`) the
+//! symmetric guess splits into a kink-antikink pair. [`scan`] therefore walks the adiabatic path
+//! across [`LANDSCAPE_REACH`] sites either side ([`super::path_scan`]) and reports every centring
+//! as the path point there (the energy with the centre held) and every free equilibrium of the path
+//! with its Morse index, where it lies, on or between the centrings. [`ImpurityEnergy`] is the
+//! antikink's energy centred on an impurity spring (or at the end of the path before it, where
+//! the path does not reach it) minus its energy at the spring centring farthest from the ends and
+//! every impurity.
 //!
 //! [`default_centre`] places an antikink where nothing disturbs it: the rotor farthest from both
 //! ends and from every impurity.
 
 use alloc::vec::Vec;
 
-use super::antikink::{Antikink, AntikinkOptions, solve_centring};
+use super::antikink::{Antikink, AntikinkOptions, Ends, on_path, solve_centring};
 use super::error::StaticsError;
+use super::path_scan::{PathScan, scan_path};
 use crate::model::ChainModel;
 
 /// How far (in sites, either side) [`scan`] looks from the requested place. Why 8: an antikink
 /// at `theta_bar >= 0.3` is at most 3 sites wide (`a^2 / (2 r sin theta_bar)`), and an impurity's
 /// force decays over that width, so 8 sites reaches past it to the first Peierls-Nabarro minima
-/// (at 5 - 10 sites from a spring at `2k`, n = 40, `theta_bar = 0.4`) at the cost of 33 Newton
-/// solves.
+/// (at 5 - 10 sites from a spring at `2k`, n = 40, `theta_bar = 0.4`) at the cost of about 130
+/// points of the path and a regula falsi per equilibrium.
 pub const LANDSCAPE_REACH: f64 = 8.0;
+
+/// A free equilibrium of the path this close to a centring (sites) is that centring's
+/// equilibrium: far above the path's resolution (`1e-9`), far below any shift an impurity causes
+/// that the landscape reports (`> 1e-3` in every case measured).
+pub const ON_CENTRING: f64 = 1e-6;
 
 /// One impurity spring's pinning or repulsion energy.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -40,6 +49,10 @@ pub struct ImpurityEnergy {
     pub energy: f64,
     /// The reference centring: the spring centring farthest from the ends and every impurity.
     pub reference: f64,
+    /// The centre the energy is taken at: the spring's centring `p + 1/2`, or, where no antikink
+    /// with one wall is centred there (next to a stiff spring, `5k` at `theta_bar = 0.4`: the path
+    /// ends where a kink-antikink pair nucleates on the way), the point of the path nearest it.
+    pub centre: f64,
 }
 
 /// The springs whose stiffness or rest length differs from the chain's (the value most springs
@@ -91,30 +104,54 @@ pub fn default_centre<M: ChainModel + ?Sized>(model: &M) -> f64 {
     farthest_centring(model.rotor_count(), &impurity_springs(model), 0.0)
 }
 
-/// Every centring within [`LANDSCAPE_REACH`] of `place` (kept in `[1, n - 2]`), solved at fixed
-/// centring, and the energies of the impurity springs among them ([`ImpurityEnergy`]).
+/// The landscape within [`LANDSCAPE_REACH`] of `place` (kept in `[1, n - 2]`) and the energies
+/// of the impurity springs in it ([`ImpurityEnergy`]).
+///
+/// With `impurities` (the springs of [`impurity_springs`]), from the adiabatic path
+/// ([`super::path_scan`]): every centring (integer and half-integer) as the path point there, its
+/// centre held (`held = 1`), and every free equilibrium of the path (a zero of `dE/dc`, polished
+/// and classified: `held = 0`), in order of centre. An equilibrium within [`ON_CENTRING`] of a
+/// centring takes that centring's place (`requested` the centring); the others keep the centre
+/// they were found at as `requested`. A centring where the path has ended (between its stretches,
+/// [`PathScan::segments`]: next to a soft impurity a pair nucleates on the way) is solved from its
+/// symmetric guess, as every centring is without impurities (a uniform chain whose middle pair is
+/// not resolved) and with [`Ends::Free`] (the path needs held ends).
 ///
 /// # Errors
-/// Those of Newton's method at a centring (a centring whose antikink is lost at an end is left
-/// out instead).
+/// Those of [`super::path_scan::scan_path`], and of Newton's method at a centring or at the
+/// reference centring.
 pub fn scan<M: ChainModel + ?Sized>(
     model: &M,
     place: f64,
     impurities: &[usize],
     options: &AntikinkOptions,
 ) -> Result<(Vec<Antikink>, Vec<ImpurityEnergy>), StaticsError> {
+    scan_with_path(model, place, impurities, options).map(|(landscape, energies, _)| (landscape, energies))
+}
+
+/// What [`scan_with_path`] returns: the landscape, the impurities' energies and the path walked.
+pub(crate) type Scanned = (Vec<Antikink>, Vec<ImpurityEnergy>, Option<PathScan>);
+
+/// [`scan`] and the path it walked (on a chain with impurities).
+pub(crate) fn scan_with_path<M: ChainModel + ?Sized>(
+    model: &M,
+    place: f64,
+    impurities: &[usize],
+    options: &AntikinkOptions,
+) -> Result<Scanned, StaticsError> {
     let n = model.rotor_count();
     let last = n as f64 - 2.0;
-    let lo = libm::ceil(2.0 * (place - LANDSCAPE_REACH).max(1.0)) as i64;
-    let hi = libm::floor(2.0 * (place + LANDSCAPE_REACH).min(last)) as i64;
-    let mut landscape = Vec::new();
-    for twice in lo..=hi {
-        match solve_centring(model, twice as f64 / 2.0, options) {
-            Ok(a) => landscape.push(a),
-            Err(StaticsError::DefectLost { .. }) => {}
-            Err(e) => return Err(e),
-        }
-    }
+    let (lo, hi) = ((place - LANDSCAPE_REACH).max(1.0), (place + LANDSCAPE_REACH).min(last));
+    // The path holds the end rotors (with free ends their near-null edge modes make it singular).
+    let path = if impurities.is_empty() || options.ends != Ends::Held {
+        None
+    } else {
+        Some(scan_path(model, lo, hi, impurities, options)?)
+    };
+    let landscape = match &path {
+        Some(path) => on_the_path(model, lo, hi, path, options)?,
+        None => centrings(model, lo, hi, options)?,
+    };
     let mut energies = Vec::new();
     let near: Vec<usize> = impurities
         .iter()
@@ -125,12 +162,87 @@ pub fn scan<M: ChainModel + ?Sized>(
         let reference = farthest_centring(n, impurities, 0.5);
         let far = solve_centring(model, reference, options)?.energy;
         for p in near {
-            let on = landscape.iter().find(|a| a.requested == p as f64 + 0.5).map_or_else(
-                || solve_centring(model, p as f64 + 0.5, options).map(|a| a.energy),
-                |a| Ok(a.energy),
-            )?;
-            energies.push(ImpurityEnergy { spring: p, energy: on - far, reference });
+            let centring = p as f64 + 0.5;
+            let nearest = path.as_ref().and_then(|path| path.nearest(centring));
+            let (centre, on) = match landscape.iter().find(|a| a.requested == centring) {
+                Some(a) => (centring, a.energy),
+                None => match (solve_centring(model, centring, options), nearest) {
+                    (Ok(a), _) if !a.moved() => (centring, a.energy),
+                    (Ok(_) | Err(StaticsError::DefectLost { .. }), Some(q)) => (q.centre, q.energy),
+                    (Err(e), _) => return Err(e),
+                    (Ok(a), None) => (a.centre, a.energy),
+                },
+            };
+            energies.push(ImpurityEnergy { spring: p, energy: on - far, reference, centre });
         }
     }
-    Ok((landscape, energies))
+    Ok((landscape, energies, path))
+}
+
+/// The landscape on `[lo, hi]` from the walked `path` (see [`scan`]).
+fn on_the_path<M: ChainModel + ?Sized>(
+    model: &M,
+    lo: f64,
+    hi: f64,
+    path: &PathScan,
+    options: &AntikinkOptions,
+) -> Result<Vec<Antikink>, StaticsError> {
+    let mut landscape = Vec::new();
+    let on_equilibrium = |c: f64| path.equilibria.iter().any(|e| (e.centre - c).abs() <= ON_CENTRING);
+    for twice in libm::ceil(2.0 * lo) as i64..=libm::floor(2.0 * hi) as i64 {
+        let c = twice as f64 / 2.0;
+        if on_equilibrium(c) {
+            continue;
+        }
+        match path.at(c) {
+            Some(point) => landscape.push(on_path(model, point.clone(), options)?),
+            // Where the path has ended (a pair nucleates on the way), the symmetric guess.
+            None if !path.covers(c) => match solve_centring(model, c, options) {
+                Ok(a) => landscape.push(a),
+                Err(StaticsError::DefectLost { .. }) => {}
+                Err(e) => return Err(e),
+            },
+            None => {}
+        }
+    }
+    // Where a stretch of the path ends inside the window (the path ends there: a pair nucleates
+    // one step further), its last point.
+    for segment in &path.segments {
+        for end in [segment.first(), segment.last()].into_iter().flatten() {
+            let centring = 2.0 * end.centre == libm::round(2.0 * end.centre);
+            if !centring && end.centre > lo && end.centre < hi && !on_equilibrium(end.centre) {
+                landscape.push(on_path(model, end.clone(), options)?);
+            }
+        }
+    }
+    for e in &path.equilibria {
+        let mut e = e.clone();
+        let nearest = libm::round(2.0 * e.centre) / 2.0;
+        if (e.centre - nearest).abs() <= ON_CENTRING {
+            e.requested = nearest;
+        }
+        landscape.push(e);
+    }
+    landscape.sort_by(|a, b| a.requested.total_cmp(&b.requested));
+    Ok(landscape)
+}
+
+/// Every centring in `[lo, hi]` solved at fixed centring from its symmetric guess (a centring
+/// whose antikink is lost at an end is left out): the landscape of a uniform chain whose two
+/// middle centrings are not a resolved minimum and saddle (a wide antikink held by the ends).
+fn centrings<M: ChainModel + ?Sized>(
+    model: &M,
+    lo: f64,
+    hi: f64,
+    options: &AntikinkOptions,
+) -> Result<Vec<Antikink>, StaticsError> {
+    let mut landscape = Vec::new();
+    for twice in libm::ceil(2.0 * lo) as i64..=libm::floor(2.0 * hi) as i64 {
+        match solve_centring(model, twice as f64 / 2.0, options) {
+            Ok(a) => landscape.push(a),
+            Err(StaticsError::DefectLost { .. }) => {}
+            Err(e) => return Err(e),
+        }
+    }
+    Ok(landscape)
 }

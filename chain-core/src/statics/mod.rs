@@ -17,6 +17,8 @@
 //!   pinning and repulsion energies, the default placement;
 //! - [`path`]: the antikink's adiabatic path (its energy at any fixed centre) and the descent to a
 //!   well between centrings;
+//! - [`path_scan`]: the path across a window and its free equilibria (the landscape near impurities);
+//! - [`step_off`]: leaving a saddle that a descent stopped at, along its unstable direction;
 //! - [`modes`]: eigenmodes and frequencies, classified as translation, shape, edge, extended (Sec. IV);
 //! - [`counting`]: Maxwell-Calladine counting, zero modes, states of self-stress, tensional modes;
 //! - [`impurity`]: a spring-length impurity, its two-kink state, soft modes, `l_critical` (Sec. VII-A);
@@ -53,6 +55,10 @@ pub mod linkage;
 pub mod modes;
 #[cfg(feature = "alloc")]
 pub mod path;
+#[cfg(feature = "alloc")]
+pub mod path_scan;
+#[cfg(feature = "alloc")]
+pub mod step_off;
 #[cfg(feature = "alloc")]
 mod validate;
 pub mod walls;

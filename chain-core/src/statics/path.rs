@@ -67,6 +67,9 @@ pub struct PathPoint {
     pub index: usize,
     /// Constrained Newton steps taken.
     pub iterations: usize,
+    /// `max |T^T dV/dtheta| / ||K||` at the end: the force left in the directions that keep the
+    /// centre (the constraint's own force is `dE/dc`).
+    pub residual: f64,
 }
 
 /// The constrained pair: the rotors `(i, i + 1)` whose sign change is held at `c = i + f`.
@@ -275,6 +278,7 @@ pub fn at_centre<M: ChainModel + ?Sized>(
         theta,
         index,
         iterations,
+        residual,
     })
 }
 
@@ -367,9 +371,9 @@ pub fn descend<M: ChainModel + ?Sized>(
     Ok(Descent::End(p))
 }
 
-/// Closes the bracket `(a, b)` (slopes of opposite signs, `a` the downhill side) on the zero of
-/// the slope by regula falsi with the Illinois halving.
-fn refine<M: ChainModel + ?Sized>(
+/// Closes the bracket `(a, b)` (slopes of opposite signs) on the zero of the slope by regula
+/// falsi with the Illinois halving, at most [`MAX_REFINEMENTS`] steps.
+pub(crate) fn refine<M: ChainModel + ?Sized>(
     model: &M,
     mut a: PathPoint,
     mut b: PathPoint,
