@@ -68,12 +68,16 @@ pub(crate) fn eigenpairs(
     target: Target,
     k: usize,
 ) -> Result<Vec<Eigenpair>, LinalgError> {
-    eigenpairs_with(a, norm, target, k, &mut || false)
+    eigenpairs_with(a, norm, target, k, 0, &mut || false)
 }
 
 /// [`eigenpairs`] with a stop question, asked before each block iteration and within its
 /// `O(n p^2)` parts (Gram-Schmidt, Rayleigh-Ritz and the rotations, once per column), so that an
-/// answer comes after `O(n p)` work: a yes ends it with [`LinalgError::Stopped`].
+/// answer comes after `O(n p)` work: a yes ends it with [`LinalgError::Stopped`]. After the
+/// residuals are met it iterates `polish` more times (within [`MAX_ITERATIONS`]): each divides the
+/// pairs' components along the unwanted eigenvectors by about `|lambda_{p+1} - sigma| / |lambda_j
+/// - sigma|` again, below what the residual can show (`null_space`'s refinement needs them at
+/// the rounding floor).
 ///
 /// # Errors
 /// As [`eigenpairs`], and `Stopped`.
@@ -82,6 +86,7 @@ pub(crate) fn eigenpairs_with(
     norm: f64,
     target: Target,
     k: usize,
+    mut polish: usize,
     stop: &mut dyn FnMut() -> bool,
 ) -> Result<Vec<Eigenpair>, LinalgError> {
     let n = a.n;
@@ -137,7 +142,9 @@ pub(crate) fn eigenpairs_with(
                 worst = (j, r);
             }
         }
-        if worst.1 <= RESIDUAL_TOLERANCE {
+        if worst.1 <= RESIDUAL_TOLERANCE && polish > 0 {
+            polish -= 1;
+        } else if worst.1 <= RESIDUAL_TOLERANCE {
             let mut pairs: Vec<Eigenpair> = wanted
                 .iter()
                 .map(|&j| Eigenpair { value: values[j], vector: signed(&x[j * n..(j + 1) * n]) })
@@ -207,7 +214,7 @@ fn check_complete(a: &Upper<'_>, norm: f64, target: Target, pairs: &[Eigenpair])
 }
 
 /// `p` columns of a fixed pseudo-random start (SplitMix64, the same every call).
-fn start_block(n: usize, p: usize) -> Result<Vec<f64>, LinalgError> {
+pub(crate) fn start_block(n: usize, p: usize) -> Result<Vec<f64>, LinalgError> {
     let mut x = try_vec(n * p)?;
     let mut state = 0x9E37_79B9_7F4A_7C15u64;
     for _ in 0..n * p {
