@@ -603,6 +603,10 @@ pub fn cell(py: Python<'_>, e: &CellError) -> PyErr {
 /// An analysis of a network that cannot be carried out: `NetworkError` (`WindingUndefined` and
 /// `WeylPoints` for a winding that does not exist), with the variant's numbers.
 pub fn network(py: Python<'_>, e: &NetworkError) -> PyErr {
+    // A patch or model the allocator cannot hold: MemoryError with the bytes.
+    if let &NetworkError::OutOfMemory(a) = e {
+        return crate::args::memory_error(a);
+    }
     let d = Details::new(py, "");
     let d = match e {
         NetworkError::PatchSize { what, direction, found, rule } => Details { variant: "PatchSize", ..d }
