@@ -480,6 +480,10 @@ pub fn grid(py: Python<'_>, e: &GridError) -> PyErr {
 
 /// Errors of results files. The path, when the variant has one, is the `path` attribute.
 pub fn sweep(py: Python<'_>, e: &SweepError) -> PyErr {
+    // A result buffer the allocator cannot hold: MemoryError with the bytes.
+    if let &SweepError::OutOfMemory(a) = e {
+        return crate::args::memory_error(a);
+    }
     let d = Details::new(py, "");
     let path = |p: &std::path::Path| p.display().to_string();
     let d = match e {
