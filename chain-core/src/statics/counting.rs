@@ -104,10 +104,17 @@ impl Rows {
     fn of<M: SpringNetwork + ?Sized>(model: &M, theta: &[f64]) -> Result<Self, StaticsError> {
         validate::angles(model, theta)?;
         let (n, m) = (model.dof_count(), model.spring_count());
-        let mut values = vec![0.0; model.compatibility_values()];
+        // Sized by the network: allocated fallibly (`LinalgError::OutOfMemory`).
+        let what = "the compatibility matrix";
+        let oom =
+            |e: crate::allocation::AllocationError| StaticsError::from(crate::linalg::LinalgError::from(e));
+        let mut values =
+            crate::allocation::try_filled(model.compatibility_values(), 0.0, what).map_err(oom)?;
         model.compatibility_into(theta, &mut values);
         validate::finite("the compatibility matrix", &values)?;
-        let (mut starts, mut entries) = (vec![0], Vec::with_capacity(values.len()));
+        let mut starts = crate::allocation::try_vec(m + 1, what).map_err(oom)?;
+        starts.push(0);
+        let mut entries = crate::allocation::try_vec(values.len().max(2 * m), what).map_err(oom)?;
         match model.compatibility_layout() {
             CompatibilityLayout::Bidiagonal => {
                 let (left, right) = bidiagonal_parts(m, &values);
@@ -119,7 +126,8 @@ impl Rows {
             CompatibilityLayout::Sparse(pattern) => {
                 pattern.check(false).map_err(crate::linalg::LinalgError::from)?;
                 entries.extend(pattern.columns.iter().copied().zip(values.iter().copied()));
-                starts = pattern.row_starts.to_vec();
+                starts.clear();
+                starts.extend_from_slice(pattern.row_starts);
             }
         }
         if starts.len() != m + 1 || entries.iter().any(|&(c, _)| c >= n) {
@@ -228,6 +236,8 @@ pub fn maxwell_calladine_with<M: SpringNetwork + ?Sized>(
     if stop() {
         return Err(crate::linalg::LinalgError::Stopped { what: "SVDs", done: 0, of: 2 }.into());
     }
+    // The dense matrices here (C, its padded square and the SVD's) hold at most 512^2 values,
+    // 2 MiB each (the side is bounded above), so they are allocated as nalgebra does.
     let c = rows.to_dense();
     // nalgebra's `singular_values()` iterates without a bound; LAPACK's `dbdsqr` allows
     // 6 n^2 sweeps, which is what this gives.

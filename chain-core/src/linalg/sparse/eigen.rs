@@ -115,6 +115,8 @@ pub(crate) fn eigenpairs_with(
     orthonormalise(&mut x, n, p, &mut asked);
     let mut ax = try_vec(n * p)?;
     ax.resize(n * p, 0.0);
+    let mut rotated = try_vec(n * p)?;
+    rotated.resize(n * p, 0.0);
     let mut worst = (0, f64::INFINITY);
     for iteration in 0..MAX_ITERATIONS {
         let stopped =
@@ -128,8 +130,8 @@ pub(crate) fn eigenpairs_with(
             a.mul_vec_shifted(0.0, &x[j * n..(j + 1) * n], &mut ax[j * n..(j + 1) * n]);
         }
         let (values, w) = rayleigh_ritz(&x, &ax, n, p, &mut asked);
-        rotate(&mut x, &w, n, p, &mut asked);
-        rotate(&mut ax, &w, n, p, &mut asked);
+        rotate(&mut x, &w, n, p, &mut rotated, &mut asked);
+        rotate(&mut ax, &w, n, p, &mut rotated, &mut asked);
         if asked.yes {
             return Err(stopped);
         }
@@ -307,9 +309,10 @@ fn rayleigh_ritz(
     (eig.eigenvalues.iter().copied().collect(), eig.eigenvectors)
 }
 
-/// `X <- X W` for the `n x p` block `x` and the `p x p` matrix `w`.
-fn rotate(x: &mut [f64], w: &DMatrix<f64>, n: usize, p: usize, asked: &mut Asked<'_>) {
-    let mut out = vec![0.0; n * p];
+/// `X <- X W` for the `n x p` block `x` and the `p x p` matrix `w`, through `out` (`n p` values,
+/// allocated once before the iterations).
+fn rotate(x: &mut [f64], w: &DMatrix<f64>, n: usize, p: usize, out: &mut [f64], asked: &mut Asked<'_>) {
+    out.fill(0.0);
     for j in 0..p {
         if asked.now() {
             return;
@@ -322,7 +325,7 @@ fn rotate(x: &mut [f64], w: &DMatrix<f64>, n: usize, p: usize, asked: &mut Asked
             }
         }
     }
-    x.copy_from_slice(&out);
+    x.copy_from_slice(out);
 }
 
 /// The vector with its entry of largest magnitude positive (as the dense and tridiagonal paths).
