@@ -119,6 +119,23 @@ pub enum CellError {
         /// The key.
         at: Location,
     },
+    /// More nodes or bonds than a unit cell may have ([`crate::MAX_CELL_NODES`],
+    /// [`crate::MAX_CELL_BONDS`]): the Bloch analyses hold dense bonds x degrees-of-freedom
+    /// matrices at every wave vector.
+    #[error(
+        "{at}: the cell has {found} {what}, more than the limit of {max} (the Bloch analyses hold dense \
+         bonds x degrees-of-freedom matrices at every wave vector; a patch of many cells is built with `--cells`)"
+    )]
+    TooLarge {
+        /// The key (`node` or `bond`).
+        at: Location,
+        /// `nodes` or `bonds`.
+        what: &'static str,
+        /// How many the cell has.
+        found: usize,
+        /// The limit.
+        max: usize,
+    },
     /// `kind` is neither `joint` nor `rotor`.
     #[error("{at}: unknown kind `{found}` (expected `joint` or `rotor`)")]
     UnknownKind {
@@ -147,8 +164,12 @@ pub enum CellError {
         /// The closest node name, if one is close.
         suggestion: Option<String>,
     },
-    /// A bond whose two ends coincide in the reference configuration.
-    #[error("{at}: bond {bond} has zero length ({length:e}): its ends coincide")]
+    /// A bond whose two ends coincide in the reference configuration: its length is not above
+    /// `RELATIVE_TOLERANCE` (1e-9) times the cell's length scale, the longer lattice vector.
+    #[error(
+        "{at}: bond {bond} has length {length:e}, not above 1e-9 times the cell's length scale {scale:e} \
+         (the longer lattice vector): its ends coincide"
+    )]
     ZeroLengthBond {
         /// The bond's key.
         at: Location,
@@ -156,6 +177,8 @@ pub enum CellError {
         bond: usize,
         /// Its length.
         length: f64,
+        /// The cell's length scale: the longer lattice vector's length.
+        scale: f64,
     },
     /// A `law` that is not a law of the cell format.
     #[error("{at}: {problem}")]
@@ -190,6 +213,7 @@ impl CellError {
             | CellError::Dimension { at, .. }
             | CellError::DegenerateLattice { at, .. }
             | CellError::Empty { at }
+            | CellError::TooLarge { at, .. }
             | CellError::UnknownKind { at, .. }
             | CellError::BadName { at, .. }
             | CellError::UnknownNode { at, .. }

@@ -34,6 +34,7 @@ pub use builder::{BondDescription, CellBuilder, CellDescription, NodeDescription
 pub use error::{CellError, Location};
 pub use law::{BondLaw, Polynomial, PolynomialProblem};
 use std::path::Path;
+pub use validate::{MAX_CELL_BONDS, MAX_CELL_NODES};
 
 /// What a node is.
 #[derive(Clone, Debug, PartialEq)]

@@ -3,12 +3,14 @@
 //! names its key (and line, for text).
 //!
 //! Rules: `dimension` is 1 or 2; `lattice` has `dimension` rows of two finite numbers spanning a
-//! cell; at least one node; node names non-empty and unique; a joint has `position`, a rotor
+//! cell; at least one node and at most [`MAX_CELL_NODES`] nodes and [`MAX_CELL_BONDS`] bonds; node names non-empty and unique; a joint has `position`, a rotor
 //! `pivot`, `length > 0` and `angle`, and neither takes the other's keys; every bond names two
 //! existing nodes, has `dimension` integer cell offsets, `k > 0` and `rest_length > 0` when
 //! given; no bond has zero length; no two bonds join the same two node instances; a `law` (of
 //! the cell or of a bond) is `"harmonic"`, `"quartic"` or `{ polynomial = [c2, ...] }` with one
 //! to five finite coefficients.
+
+use std::collections::BTreeMap;
 
 use super::{Bond, BondLaw, Cell, Node, NodeKind, Polynomial, PolynomialProblem};
 use crate::error::{CellError, Location};
@@ -118,6 +120,15 @@ fn polynomial_problem(key: &str, line: Option<usize>, e: PolynomialProblem) -> C
 /// vector) and far above rounding of the positions.
 pub const RELATIVE_TOLERANCE: f64 = 1e-9;
 
+/// The most nodes a unit cell may have: 1024 degrees of freedom, whose dense complex Bloch
+/// matrices (`Q(k)`, `D(k)`) take a second per wave vector to decompose, and which no periodic
+/// lattice of the literature's needs (a kagome cell has 3 nodes; a patch of many cells is built
+/// from the cell, not written as one).
+pub const MAX_CELL_NODES: usize = 512;
+/// The most bonds a unit cell may have: four per degree of freedom at [`MAX_CELL_NODES`] (a
+/// `Q(k)` of 2048 x 1024 complex numbers, 32 MiB).
+pub const MAX_CELL_BONDS: usize = 2048;
+
 fn at(key: impl Into<String>, line: Option<usize>) -> Location {
     Location { key: key.into(), line }
 }
@@ -203,7 +214,16 @@ pub(crate) fn validate_raw(raw: Raw) -> Result<Cell, CellError> {
     if raw.nodes.is_empty() {
         return Err(CellError::Empty { at: at("node", raw.line) });
     }
+    for (key, what, found, max) in [
+        ("node", "nodes", raw.nodes.len(), MAX_CELL_NODES),
+        ("bond", "bonds", raw.bonds.len(), MAX_CELL_BONDS),
+    ] {
+        if found > max {
+            return Err(CellError::TooLarge { at: at(key, raw.line), what, found, max });
+        }
+    }
     let mut nodes: Vec<Node> = Vec::with_capacity(raw.nodes.len());
+    let mut index: BTreeMap<&str, usize> = BTreeMap::new();
     for (i, n) in raw.nodes.iter().enumerate() {
         let key = |k: &str| format!("node[{i}].{k}");
         let name = n
@@ -217,13 +237,15 @@ pub(crate) fn validate_raw(raw: Raw) -> Result<Cell, CellError> {
                 problem: "is empty".into(),
             });
         }
-        if let Some(j) = nodes.iter().position(|m| m.name == name.value) {
+        // A map, not a scan of the nodes so far: a cell of many nodes is checked in O(n log n).
+        if let Some(&j) = index.get(name.value.as_str()) {
             return Err(CellError::BadName {
                 at: at(key("name"), name.line),
                 name: name.value.clone(),
                 problem: format!("is already the name of node[{j}]"),
             });
         }
+        index.insert(name.value.as_str(), i);
         let kind = n
             .kind
             .as_ref()
@@ -286,7 +308,7 @@ pub(crate) fn validate_raw(raw: Raw) -> Result<Cell, CellError> {
     let find = |key: String, v: &Option<Val<String>>, line: Option<usize>| -> Result<usize, CellError> {
         let v =
             v.as_ref().ok_or_else(|| CellError::Missing { at: at(key.clone(), line), why: "a node name" })?;
-        nodes.iter().position(|n| n.name == v.value).ok_or_else(|| {
+        index.get(v.value.as_str()).copied().ok_or_else(|| {
             let suggestion = nodes
                 .iter()
                 .map(|n| (distance(&n.name, &v.value), &n.name))
@@ -340,12 +362,18 @@ pub(crate) fn validate_raw(raw: Raw) -> Result<Cell, CellError> {
         bonds.push((Bond { from, to, cell, k, rest_length: rest.unwrap_or(f64::NAN), law }, b.line));
     }
     let cell = Cell::from_parts(dimension, lattice, nodes, bonds.iter().map(|(b, _)| b.clone()).collect());
-    let mut seen: Vec<(usize, usize, [i64; 2])> = Vec::with_capacity(bonds.len());
+    // Each bond's two node instances, to its index: duplicates found in O(b log b).
+    let mut seen: BTreeMap<(usize, usize, [i64; 2]), usize> = BTreeMap::new();
     let mut finished = Vec::with_capacity(bonds.len());
     for (i, (mut bond, line)) in bonds.into_iter().enumerate() {
         let length = cell.bond_length(i);
         if length.is_nan() || length <= RELATIVE_TOLERANCE * scale {
-            return Err(CellError::ZeroLengthBond { at: at(format!("bond[{i}]"), line), bond: i, length });
+            return Err(CellError::ZeroLengthBond {
+                at: at(format!("bond[{i}]"), line),
+                bond: i,
+                length,
+                scale,
+            });
         }
         // The same two node instances, whichever end is written first.
         let neg = [-bond.cell[0], -bond.cell[1]];
@@ -354,10 +382,10 @@ pub(crate) fn validate_raw(raw: Raw) -> Result<Cell, CellError> {
         } else {
             (bond.to, bond.from, neg)
         };
-        if let Some(first) = seen.iter().position(|s| *s == canon) {
+        if let Some(&first) = seen.get(&canon) {
             return Err(CellError::DuplicateBond { at: at(format!("bond[{i}]"), line), first, second: i });
         }
-        seen.push(canon);
+        seen.insert(canon, i);
         if bond.rest_length.is_nan() {
             bond.rest_length = length;
         }

@@ -4,8 +4,8 @@
 //! [`NetworkError`](crate::NetworkError).
 
 pub use chain_cell::{
-    Bond, BondDescription, BondLaw, Cell, CellBuilder, CellDescription, Node, NodeDescription, NodeKind,
-    Polynomial, PolynomialProblem,
+    Bond, BondDescription, BondLaw, Cell, CellBuilder, CellDescription, MAX_CELL_BONDS, MAX_CELL_NODES, Node,
+    NodeDescription, NodeKind, Polynomial, PolynomialProblem,
 };
 
 /// Ready cells of the standard lattices (`chain_cell::ready`), and a ready cell by name.

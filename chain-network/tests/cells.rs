@@ -79,6 +79,60 @@ fn err(text: &str) -> CellError {
 
 const HEAD: &str = "dimension = 2\nlattice = [[1.0, 0.0], [0.0, 1.0]]\n";
 
+/// `count` joints named `n0`, `n1`, ... on a line inside the cell, and a bond between each pair of
+/// neighbours (`bonds` of them).
+fn many(count: usize, bonds: usize) -> String {
+    let mut text = HEAD.to_owned();
+    for i in 0..count {
+        text +=
+            &format!("[[node]]\nname = \"n{i}\"\nkind = \"joint\"\nposition = [{}, 0.5]\n", i as f64 * 1e-3);
+    }
+    for i in 0..bonds {
+        text += &format!("[[bond]]\nfrom = \"n{i}\"\nto = \"n{}\"\n", i + 1);
+    }
+    text
+}
+
+#[test]
+fn a_cell_is_bounded_and_read_in_one_pass() {
+    use chain_network::cell::{MAX_CELL_BONDS, MAX_CELL_NODES};
+    // At the bound it reads: nodes by name and duplicate bonds found through maps.
+    let cell = Cell::from_toml_str(&many(MAX_CELL_NODES, MAX_CELL_NODES - 1)).unwrap();
+    assert_eq!((cell.nodes().len(), cell.bonds().len()), (MAX_CELL_NODES, MAX_CELL_NODES - 1));
+    let e = err(&many(MAX_CELL_NODES + 1, 0));
+    assert!(
+        matches!(&e, CellError::TooLarge { what: "nodes", found, max, .. } if *found == MAX_CELL_NODES + 1 && *max == MAX_CELL_NODES),
+        "{e}"
+    );
+    assert!(
+        e.to_string()
+            .contains(&format!("{} nodes, more than the limit of {MAX_CELL_NODES}", MAX_CELL_NODES + 1)),
+        "{e}"
+    );
+    // Bonds past their bound (between the same few nodes: counted before they are checked).
+    let mut text = many(3, 0);
+    for _ in 0..=MAX_CELL_BONDS {
+        text += "[[bond]]\nfrom = \"n0\"\nto = \"n1\"\n";
+    }
+    let e = err(&text);
+    assert!(
+        matches!(&e, CellError::TooLarge { what: "bonds", found, .. } if *found == MAX_CELL_BONDS + 1),
+        "{e}"
+    );
+    // A file of 100 000 nodes is refused after one pass over its text: the line of each value was
+    // found by scanning the text before it, which took minutes (25 s for 10 000 nodes, debug).
+    let e = err(&many(100_000, 0));
+    assert!(matches!(&e, CellError::TooLarge { found: 100_000, .. }), "{e}");
+    // A name used twice among many nodes names the first node that has it; the line is the
+    // second's (each node takes 4 lines after the 2 of the head).
+    let text = many(400, 0) + "[[node]]\nname = \"n123\"\nkind = \"joint\"\nposition = [0.9, 0.9]\n";
+    let e = err(&text);
+    assert!(
+        e.to_string().contains("is already the name of node[123]") && e.line() == Some(2 + 4 * 400 + 2),
+        "{e}"
+    );
+}
+
 #[test]
 fn bad_input_names_the_key_and_line() {
     // Unknown node name, with a suggestion.

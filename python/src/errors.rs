@@ -586,6 +586,9 @@ pub fn cell(py: Python<'_>, e: &CellError) -> PyErr {
             Details { variant: "DegenerateLattice", ..d }.f("det", *det).f("relative", *relative)
         }
         CellError::Empty { .. } => Details { variant: "Empty", ..d },
+        CellError::TooLarge { what, found, max, .. } => {
+            Details { variant: "TooLarge", ..d }.f("what", *what).f("found", *found).f("max", *max)
+        }
         CellError::UnknownKind { found, .. } => {
             Details { variant: "UnknownKind", ..d }.f("found", found.clone())
         }
@@ -593,9 +596,10 @@ pub fn cell(py: Python<'_>, e: &CellError) -> PyErr {
         CellError::UnknownNode { name, suggestion, .. } => Details { variant: "UnknownNode", ..d }
             .f("name", name.clone())
             .f("suggestion", suggestion.clone()),
-        CellError::ZeroLengthBond { bond, length, .. } => {
-            Details { variant: "ZeroLengthBond", ..d }.f("bond", *bond).f("length", *length)
-        }
+        CellError::ZeroLengthBond { bond, length, scale, .. } => Details { variant: "ZeroLengthBond", ..d }
+            .f("bond", *bond)
+            .f("length", *length)
+            .f("scale", *scale),
         CellError::DuplicateBond { first, second, .. } => {
             Details { variant: "DuplicateBond", ..d }.f("first", *first).f("second", *second)
         }

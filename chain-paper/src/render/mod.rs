@@ -91,11 +91,13 @@ pub struct Layout {
 /// The rows of panels, in reading order. A figure of one panel is [`SINGLE`]. Otherwise the
 /// width is two [`CELL`]s: consecutive drawings of the chain share a row of height [`CHAIN_ROW`];
 /// a drawing followed by another kind of panel has such a row to itself, across the width if it
-/// is the figure's only drawing; other panels go two to a row of height `CELL.1`.
+/// is the figure's only drawing; other panels go two to a row of height `CELL.1`, lowered for a row
+/// of network drawings to what the taller one fills at equal scale ([`network::natural_height`]).
 pub fn layout(panels: &[Chart]) -> Layout {
     if panels.len() <= 1 {
         let size = match panels.first() {
             Some(Chart::Chain(_)) => (2 * CELL.0, CHAIN_ROW),
+            Some(Chart::Network(d)) => (SINGLE.0, network::natural_height(d, SINGLE.0, SINGLE.1)),
             _ => SINGLE,
         };
         return Layout {
@@ -110,7 +112,18 @@ pub fn layout(panels: &[Chart]) -> Layout {
     let (mut slots, mut top, mut i) = (Vec::new(), 0, 0);
     while i < panels.len() {
         let pair = i + 1 < panels.len() && is_chain(i) == is_chain(i + 1);
-        let height = if is_chain(i) { CHAIN_ROW } else { CELL.1 };
+        // A row of network drawings is as tall as its taller drawing needs at a cell's width.
+        let natural = |k: usize| match panels.get(k) {
+            Some(Chart::Network(d)) => network::natural_height(d, CELL.0, CELL.1),
+            _ => CELL.1,
+        };
+        let height = if is_chain(i) {
+            CHAIN_ROW
+        } else if pair {
+            natural(i).max(natural(i + 1))
+        } else {
+            natural(i)
+        };
         if pair {
             slots.push((i, 0, top, CELL.0, height));
             slots.push((i + 1, CELL.0, top, CELL.0, height));
@@ -292,5 +305,28 @@ mod tests {
         ]);
         assert_eq!(l.size, (2 * CELL.0, CHAIN_ROW + CELL.1));
         assert_eq!(l.slots[1], (1, CELL.0, 0, CELL.0, CHAIN_ROW));
+    }
+
+    fn patch(width: f64, height: f64) -> Chart {
+        let nodes = vec![(0.0, 0.0), (width, height)];
+        Chart::Network(crate::network::NetworkDrawing { nodes, ..Default::default() })
+    }
+
+    #[test]
+    fn a_row_of_wide_network_drawings_is_as_tall_as_they_fill() {
+        // 10 x 1 drawn, no arrows, margins of 5 % of 10 on each side: 11 x 2 at 800 - 24 pixels
+        // wide is 141.1 pixels tall, plus 40 above and 12 below.
+        let wide = 40 + 12 + (776.0_f64 * 2.0 / 11.0).ceil() as u32;
+        assert_eq!(wide, 194);
+        let l = layout(&[patch(10.0, 1.0), patch(10.0, 1.0), lines(), lines()]);
+        assert_eq!(l.slots[1], (1, CELL.0, 0, CELL.0, wide));
+        assert_eq!(l.slots[2], (2, 0, wide, CELL.0, CELL.1));
+        assert_eq!(l.size, (2 * CELL.0, wide + CELL.1));
+        // The taller of a pair sets the row; a square drawing keeps the cell.
+        let l = layout(&[patch(10.0, 1.0), patch(1.0, 1.0)]);
+        assert_eq!(l.size, (2 * CELL.0, CELL.1));
+        // A single wide drawing: 1000 - 24 pixels wide.
+        let single = 40 + 12 + (976.0_f64 * 2.0 / 11.0).ceil() as u32;
+        assert_eq!(layout(&[patch(10.0, 1.0)]).size, (SINGLE.0, single));
     }
 }

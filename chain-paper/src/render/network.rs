@@ -26,26 +26,11 @@ where
         (width as i32 / 2, 8),
         title.into_text_style(area).pos(Pos::new(HPos::Center, VPos::Top)),
     ))?;
-    let body = area.clone().margin(40, 12, 12, 12);
-    let points: Vec<(f64, f64)> = d
-        .bonds
-        .iter()
-        .chain(&d.arms)
-        .flat_map(|&(a, b)| [a, b])
-        .chain(d.cell.iter().copied())
-        .chain(d.nodes.iter().copied())
-        .collect();
-    if points.is_empty() {
+    let body = area.clone().margin(TOP, SIDE, SIDE, SIDE);
+    let Some(Bounds { x0, x1, y0, y1, extent }) = bounds(d) else {
         return Ok(());
-    }
-    let (x0, x1) =
-        points.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), p| (a.min(p.0), b.max(p.0)));
-    let (y0, y1) =
-        points.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), p| (a.min(p.1), b.max(p.1)));
-    let extent = (x1 - x0).max(y1 - y0).max(1e-9);
+    };
     let arrow_length = ARROW * extent;
-    let pad = 0.05 * extent + arrow_length;
-    let (x0, x1, y0, y1) = (x0 - pad, x1 + pad, y0 - pad, y1 + pad);
     let (bw, bh) = body.dim_in_pixel();
     let scale = (f64::from(bw) / (x1 - x0)).min(f64::from(bh) / (y1 - y0));
     let (ox, oy) = (0.5 * (f64::from(bw) - scale * (x1 - x0)), 0.5 * (f64::from(bh) - scale * (y1 - y0)));
@@ -91,6 +76,53 @@ where
         }
     }
     Ok(())
+}
+
+/// Margin above the drawing (its title), pixels.
+const TOP: u32 = 40;
+/// Margin on the other sides, pixels.
+const SIDE: u32 = 12;
+
+/// The region drawn: everything in `d` with a margin of 5 % of the larger extent, plus the longest
+/// arrow's length when there are arrows, so arrows at the edge stay inside.
+struct Bounds {
+    x0: f64,
+    x1: f64,
+    y0: f64,
+    y1: f64,
+    /// The larger extent of what is drawn, before the margin.
+    extent: f64,
+}
+
+fn bounds(d: &NetworkDrawing) -> Option<Bounds> {
+    let mut points = d
+        .bonds
+        .iter()
+        .chain(&d.arms)
+        .flat_map(|&(a, b)| [a, b])
+        .chain(d.cell.iter().copied())
+        .chain(d.nodes.iter().copied())
+        .peekable();
+    points.peek()?;
+    let (x0, x1, y0, y1) = points
+        .fold((f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY), |(a, b, c, e), p| {
+            (a.min(p.0), b.max(p.0), c.min(p.1), e.max(p.1))
+        });
+    let extent = (x1 - x0).max(y1 - y0).max(1e-9);
+    let arrows = if d.arrows.is_empty() { 0.0 } else { ARROW * extent };
+    let pad = 0.05 * extent + arrows;
+    Some(Bounds { x0: x0 - pad, x1: x1 + pad, y0: y0 - pad, y1: y1 + pad, extent })
+}
+
+/// The height in pixels that `d` fills when drawn `width` pixels wide at equal scale in x and y,
+/// title and margins included, at most `max` (a drawing taller than wide is then narrower). A wide
+/// lattice gets a short panel instead of white space above and below it.
+pub fn natural_height(d: &NetworkDrawing, width: u32, max: u32) -> u32 {
+    let Some(b) = bounds(d) else { return max };
+    let inner = f64::from(width.saturating_sub(2 * SIDE));
+    let height = inner * (b.y1 - b.y0) / (b.x1 - b.x0);
+    // `as` saturates a NaN or a huge ratio; the `min` keeps the panel within `max`.
+    (TOP + SIDE + height.ceil() as u32).min(max)
 }
 
 /// Blue for a tilt of +1, red for -1, through grey at 0 (clamped to `[-1, 1]`).
