@@ -50,7 +50,7 @@ fn a_slightly_twisted_kagome_counts_its_lifted_line_modes_as_the_dense_svd_does(
     assert!(counting.tolerance >= 0.95 * dense_tolerance, "{:e} vs {dense_tolerance:e}", counting.tolerance);
     // The candidates' singular values are the dense SVD's lowest, to a few eps ||C||: the two
     // zeros, the lifted line modes' and the lowest phonons'.
-    let mut reference: Vec<f64> = sigma.iter().copied().collect();
+    let mut reference: Vec<f64> = sigma.to_vec();
     reference.sort_by(f64::total_cmp);
     reference.truncate(counting.singular_values.len());
     reference.reverse();

@@ -271,7 +271,7 @@ pub(crate) fn parse_point<R: Record>(
 /// are all returned.
 pub fn read_points<R: Record>(path: impl AsRef<Path>) -> Result<Vec<Point<R>>, SweepError> {
     let path = path.as_ref();
-    let bytes = read_file(path, &mut std::fs::File::open(path).map_err(SweepError::io("open", path))?)?;
+    let bytes = read_file(path, &mut std::fs::File::open(path).map_err(SweepError::io("read", path))?)?;
     let (mut lines, _) = complete_lines(&bytes);
     let columns = read_preamble::<R>(path, lines.next().map(|l| l.1), lines.next().map(|l| l.1))?.columns;
     // At most one point per line, all of them held before any is parsed.

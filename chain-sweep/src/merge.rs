@@ -62,7 +62,7 @@ type Seen<'a> = HashMap<(usize, usize), (&'a Path, &'a ShardPoint)>;
 
 fn read_shard<R: Record>(path: &Path) -> Result<ShardFile, SweepError> {
     check_regular(path)?;
-    let bytes = file::read_file(path, &mut std::fs::File::open(path).map_err(SweepError::io("open", path))?)?;
+    let bytes = file::read_file(path, &mut std::fs::File::open(path).map_err(SweepError::io("read", path))?)?;
     // An unfinished last line (a shard killed while writing) is not a point.
     let (mut lines, _) = complete_lines(&bytes);
     let preamble = read_preamble::<R>(path, lines.next().map(|l| l.1), lines.next().map(|l| l.1))?;

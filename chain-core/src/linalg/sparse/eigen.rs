@@ -75,9 +75,9 @@ pub(crate) fn eigenpairs(
 /// `O(n p^2)` parts (Gram-Schmidt, Rayleigh-Ritz and the rotations, once per column), so that an
 /// answer comes after `O(n p)` work: a yes ends it with [`LinalgError::Stopped`]. After the
 /// residuals are met it iterates `polish` more times (within [`MAX_ITERATIONS`]): each divides the
-/// pairs' components along the unwanted eigenvectors by about `|lambda_{p+1} - sigma| / |lambda_j
-/// - sigma|` again, below what the residual can show (`null_space`'s refinement needs them at
-/// the rounding floor).
+/// pairs' components along the unwanted eigenvectors by about
+/// `|lambda_{p+1} - sigma| / |lambda_j - sigma|` again, below what the residual can show
+/// (`null_space`'s refinement needs them at the rounding floor).
 ///
 /// # Errors
 /// As [`eigenpairs`], and `Stopped`.

@@ -13,7 +13,7 @@
 //! which add about `eps ||C||^2 / sigma_next` to the values; below the dense rule's tolerance while
 //! the next singular value above `sqrt(tau)` is more than `||C|| / max(n, m)`.)
 //!
-//! The dense rule needs `sigma_max = ||C||_2`: [`largest_singular_value`] estimates it by power
+//! The dense rule needs `sigma_max = ||C||_2`: `largest_singular_value` estimates it by power
 //! iteration on `C^T C` (a lower bound, converged to [`POWER_TOLERANCE`]).
 
 use alloc::vec::Vec;
