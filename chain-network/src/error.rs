@@ -104,6 +104,10 @@ pub enum NetworkError {
     /// outside its range ([`chain_core::Validate`]).
     #[error(transparent)]
     InvalidOption(#[from] InvalidOption),
+    /// Memory for a patch or its model (sized by the patch's cells) that the allocator could not
+    /// give: the bytes asked for and what they were for.
+    #[error(transparent)]
+    OutOfMemory(#[from] chain_core::allocation::AllocationError),
     /// An argument out of its range (lattice direction, wave number, path).
     #[error("{what}: {problem}")]
     Argument {

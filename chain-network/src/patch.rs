@@ -107,7 +107,7 @@ impl<'a> Patch<'a> {
         if boundary == Boundary::Periodic {
             check_periodic_images(cell, cells)?;
         }
-        let mut bonds = Vec::with_capacity(count);
+        let mut bonds = chain_core::allocation::try_vec(count, "the patch's bonds")?;
         for c2 in 0..cells[1] {
             for c1 in 0..cells[0] {
                 for (b, bond) in cell.bonds().iter().enumerate() {

@@ -52,9 +52,8 @@ fn periodic_square_and_kagome_above_the_bound_have_one_mode_and_stress_per_line(
         let counting = count(&patch);
         assert_eq!((counting.zero_modes.len(), counting.self_stresses.len()), (lines, lines), "{n:?}");
         assert_eq!(counting.rank, patch.dof() - lines);
-        // The sparse path's singular values: the zero modes'.
-        assert_eq!(counting.singular_values.len(), lines);
-        assert!(counting.singular_values.iter().all(|&s| s <= counting.tolerance));
+        // The sparse path's singular values: its candidates', the zero modes' among them.
+        assert_eq!(counting.singular_values.iter().filter(|&&s| s <= counting.tolerance).count(), lines);
         check_vectors(&patch, &counting);
     }
 }
@@ -129,26 +128,35 @@ fn projector_distance(a: &[Vec<f64>], b: &[Vec<f64>]) -> f64 {
     (projector(a) - projector(b)).norm_max()
 }
 
-/// A stop question that answers yes ends the count with `Stopped`: at once, and on its third asking
-/// (the start of the first subspace iteration's Gram-Schmidt, after both inertia counts).
+/// A stop question that answers yes ends the count with `Stopped`, wherever it is asked: at once
+/// (the power iteration for `sigma_max`), and at every later asking tried (the factorizations,
+/// the subspace iterations' Gram-Schmidt, Rayleigh-Ritz and rotations), never running on.
 #[test]
 fn a_stop_question_stops_the_sparse_count() {
     let kagome = ready::kagome();
     let patch = Patch::new(&kagome, [12, 12], Boundary::Periodic).unwrap();
     let model = NetworkModel::builder(&patch).build().unwrap();
     let x = model.reference();
-    for after in [0, 2] {
+    let mut total = 0;
+    maxwell_calladine_with(&model, &x, None, &mut || {
+        total += 1;
+        false
+    })
+    .unwrap();
+    let mut seen = Vec::new();
+    for after in [0, total / 4, total / 2, total - 1] {
         let mut asked = 0;
         let stop = &mut || {
             asked += 1;
             asked > after
         };
         let err = maxwell_calladine_with(&model, &x, None, stop).unwrap_err();
-        let StaticsError::Linalg(LinalgError::Stopped { what, done, .. }) = err else { panic!("{err}") };
-        match after {
-            0 => assert_eq!((what, done), ("inertia counts", 0)),
-            _ => assert_eq!(what, "subspace iterations"),
+        let StaticsError::Linalg(LinalgError::Stopped { what, .. }) = err else { panic!("{err}") };
+        if after == 0 {
+            assert_eq!(what, "power iterations");
         }
+        seen.push(what);
         assert_eq!(asked, after + 1);
     }
+    assert!(seen.contains(&"subspace iterations"), "{seen:?} of {total} askings");
 }

@@ -254,6 +254,10 @@ pub enum SweepError {
         /// Points this run computed and wrote before it stopped.
         computed: usize,
     },
+    /// A result buffer sized by the grid or a results file (the grid's points, a file's records,
+    /// the merge's tables) that the allocator could not give: the bytes and what they were for.
+    #[error(transparent)]
+    OutOfMemory(#[from] rotor_chain::allocation::AllocationError),
 }
 
 impl OptionError for SweepError {

@@ -18,7 +18,10 @@
 //! - Every line ends with `\n`; a last line without one is a write that was cut short and is not
 //!   a point (the sweep cuts it off before appending).
 
+use std::io::Read;
 use std::path::Path;
+
+use rotor_chain::allocation::try_vec;
 
 use crate::error::SweepError;
 use crate::grid::Grid;
@@ -268,13 +271,24 @@ pub(crate) fn parse_point<R: Record>(
 /// are all returned.
 pub fn read_points<R: Record>(path: impl AsRef<Path>) -> Result<Vec<Point<R>>, SweepError> {
     let path = path.as_ref();
-    let bytes = std::fs::read(path).map_err(SweepError::io("read", path))?;
+    let bytes = read_file(path, &mut std::fs::File::open(path).map_err(SweepError::io("read", path))?)?;
     let (mut lines, _) = complete_lines(&bytes);
     let columns = read_preamble::<R>(path, lines.next().map(|l| l.1), lines.next().map(|l| l.1))?.columns;
-    lines
-        .filter(|(_, bytes)| !bytes.is_empty())
-        .map(|(line, bytes)| parse_point(path, line, bytes, columns, None, None))
-        .collect()
+    // At most one point per line, all of them held before any is parsed.
+    let mut points = try_vec(bytes.iter().filter(|&&b| b == b'\n').count(), "the file's records")?;
+    for (line, bytes) in lines.filter(|(_, bytes)| !bytes.is_empty()) {
+        points.push(parse_point(path, line, bytes, columns, None, None)?);
+    }
+    Ok(points)
+}
+
+/// The bytes of `file` (at `path`), allocated fallibly for the length its metadata gives
+/// (`read_to_end` fills that room first and grows it only for a file that grew meanwhile).
+pub(crate) fn read_file(path: &Path, file: &mut std::fs::File) -> Result<Vec<u8>, SweepError> {
+    let len = file.metadata().map_err(SweepError::io("read", path))?.len();
+    let mut bytes = try_vec(usize::try_from(len).unwrap_or(usize::MAX), "a results file's bytes")?;
+    file.read_to_end(&mut bytes).map_err(SweepError::io("read", path))?;
+    Ok(bytes)
 }
 
 /// One row of [`read_results`]: `((i, j), (x, y), record)`.
@@ -284,5 +298,7 @@ pub type ResultRow<R> = ((usize, usize), (f64, f64), R);
 /// [`read_points`] for them).
 pub fn read_results<R: Record>(path: impl AsRef<Path>) -> Result<Vec<ResultRow<R>>, SweepError> {
     let points = read_points::<R>(path)?;
-    Ok(points.into_iter().filter_map(|p| Some((p.index, p.coords, p.outcome.ok()?))).collect())
+    let mut rows = try_vec(points.iter().filter(|p| p.outcome.is_ok()).count(), "the file's records")?;
+    rows.extend(points.into_iter().filter_map(|p| Some((p.index, p.coords, p.outcome.ok()?))));
+    Ok(rows)
 }

@@ -14,6 +14,8 @@ use std::fs::File;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
+use rotor_chain::allocation::{AllocationError, bytes_of, try_filled, try_grow, try_vec};
+
 use crate::error::SweepError;
 use crate::file::{self, complete_lines, parse_point, read_preamble};
 use crate::grid::{Axis, Grid, signature_dims};
@@ -60,7 +62,7 @@ type Seen<'a> = HashMap<(usize, usize), (&'a Path, &'a ShardPoint)>;
 
 fn read_shard<R: Record>(path: &Path) -> Result<ShardFile, SweepError> {
     check_regular(path)?;
-    let bytes = std::fs::read(path).map_err(SweepError::io("read", path))?;
+    let bytes = file::read_file(path, &mut std::fs::File::open(path).map_err(SweepError::io("read", path))?)?;
     // An unfinished last line (a shard killed while writing) is not a point.
     let (mut lines, _) = complete_lines(&bytes);
     let preamble = read_preamble::<R>(path, lines.next().map(|l| l.1), lines.next().map(|l| l.1))?;
@@ -71,7 +73,8 @@ fn read_shard<R: Record>(path: &Path) -> Result<ShardFile, SweepError> {
         line: 1,
         reason: format!("cannot read the grid's point counts from `{grid}`"),
     })?;
-    let mut points = Vec::new();
+    // At most one point per line.
+    let mut points = try_vec(bytes.iter().filter(|&&b| b == b'\n').count(), "a shard's points")?;
     for (line, text) in lines.filter(|(_, text)| !text.is_empty()) {
         let point = parse_point::<R>(path, line, text, preamble.columns, None, None)?;
         let (i, j) = point.index;
@@ -101,7 +104,7 @@ pub fn merge_shards<R: Record>(shards: &[PathBuf], out: &Path) -> Result<MergeSu
     let files = shards.iter().map(|p| read_shard::<R>(p)).collect::<Result<Vec<_>, _>>()?;
     let first = &files[0];
     let count = first.shard.count();
-    let mut by_index: Vec<Option<&Path>> = vec![None; count];
+    let mut by_index: Vec<Option<&Path>> = try_filled(count, None, "the merge's shard table")?;
     for f in &files {
         if f.grid != first.grid {
             let (expected, found) = (first.grid.clone(), f.grid.clone());
@@ -138,7 +141,11 @@ pub fn merge_shards<R: Record>(shards: &[PathBuf], out: &Path) -> Result<MergeSu
 
     let (nx, ny) = signature_dims(&first.grid).unwrap_or_default();
     let total = nx * ny;
-    let mut seen: Seen<'_> = HashMap::with_capacity(total);
+    let mut seen: Seen<'_> = HashMap::new();
+    seen.try_reserve(total).map_err(|_| AllocationError {
+        bytes: bytes_of::<((usize, usize), (&Path, &ShardPoint))>(total),
+        what: "the merge's table of points",
+    })?;
     for f in &files {
         for point in &f.points {
             match seen.entry(point.index) {
@@ -179,6 +186,8 @@ pub fn merge_shards<R: Record>(shards: &[PathBuf], out: &Path) -> Result<MergeSu
 
     check_replaceable::<R>(out, &first.grid, &first.run, shards)?;
     let mut text = file::preamble::<R>(&grid, &first.run, None).into_bytes();
+    let lines: usize = seen.values().map(|(_, p)| p.line.len() + 1).sum();
+    try_grow(&mut text, lines, "the merged file's text")?;
     for index in grid.indices() {
         text.extend_from_slice(&seen[&index].1.line);
         text.push(b'\n');
@@ -211,7 +220,8 @@ fn rebuild_grid(
     };
     let xs: Vec<f64> = x_votes.iter().map(|v| most(v).unwrap_or(f64::NAN)).collect();
     let ys: Vec<f64> = y_votes.iter().map(|v| most(v).unwrap_or(f64::NAN)).collect();
-    let mut indices: Vec<&(usize, usize)> = seen.keys().collect();
+    let mut indices: Vec<&(usize, usize)> = try_vec(seen.len(), "the merge's table of points")?;
+    indices.extend(seen.keys());
     indices.sort_unstable();
     for &(i, j) in indices {
         let (path, point) = seen[&(i, j)];

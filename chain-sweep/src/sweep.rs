@@ -15,7 +15,7 @@ use std::collections::HashMap;
 use std::collections::hash_map::Entry;
 use std::fmt::Display;
 use std::fs::{File, OpenOptions, TryLockError};
-use std::io::{IsTerminal, Read, Write};
+use std::io::{IsTerminal, Write};
 use std::marker::PhantomData;
 use std::panic::{AssertUnwindSafe, catch_unwind};
 use std::path::{Path, PathBuf};
@@ -34,6 +34,7 @@ use crate::grid::Grid;
 use crate::record::Record;
 use crate::shard::Shard;
 use crate::threads::worker_threads;
+use rotor_chain::allocation::try_vec;
 use rotor_chain::validate::Validate;
 
 /// How a sweep runs. Build with [`SweepOptions::new`] and change fields as needed.
@@ -339,17 +340,22 @@ where
     F: Fn(f64, f64) -> Result<R, E> + Sync,
 {
     grid.validate()?;
+    // Every point's place before any is computed: a grid whose results cannot be held is an
+    // error at once, not an abort after the work.
+    let mut points = try_vec(grid.len(), "the grid's points")?;
     let pool = thread_pool(threads, grid.len())?;
-    let indices: Vec<(usize, usize)> = grid.indices().collect();
-    Ok(pool.install(|| {
-        indices
-            .par_iter()
-            .map(|&(i, j)| {
+    let ny = grid.ys().len();
+    pool.install(|| {
+        (0..grid.len())
+            .into_par_iter()
+            .map(|k| {
+                let (i, j) = (k / ny, k % ny);
                 let coords = (grid.xs()[i], grid.ys()[j]);
                 Point { index: (i, j), coords, outcome: compute_one(&compute, coords), line: 0 }
             })
-            .collect()
-    }))
+            .collect_into_vec(&mut points)
+    });
+    Ok(points)
 }
 
 /// A pool of [`worker_threads`] threads for `points` points.
@@ -394,8 +400,7 @@ struct Resumed {
 /// last line, and collect the finished points.
 fn resume<R: Record>(grid: &Grid, path: &Path, options: &SweepOptions) -> Result<Resumed, SweepError> {
     let mut file = open_locked(path)?;
-    let mut bytes = Vec::new();
-    file.read_to_end(&mut bytes).map_err(SweepError::io("read", path))?;
+    let bytes = crate::file::read_file(path, &mut file)?;
     let preamble = file::preamble::<R>(grid, &options.run, options.shard);
     let mut resumed =
         Resumed { file, done: HashMap::new(), duplicates: Vec::new(), repaired_bytes: 0, retried: 0 };

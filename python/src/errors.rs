@@ -482,6 +482,10 @@ pub fn grid(py: Python<'_>, e: &GridError) -> PyErr {
 
 /// Errors of results files. The path, when the variant has one, is the `path` attribute.
 pub fn sweep(py: Python<'_>, e: &SweepError) -> PyErr {
+    // A result buffer the allocator cannot hold: MemoryError with the bytes.
+    if let &SweepError::OutOfMemory(a) = e {
+        return crate::args::memory_error(a);
+    }
     let d = Details::new(py, "");
     let path = |p: &std::path::Path| p.display().to_string();
     let d = match e {
@@ -613,6 +617,10 @@ pub fn cell(py: Python<'_>, e: &CellError) -> PyErr {
 /// An analysis of a network that cannot be carried out: `NetworkError` (`WindingUndefined` and
 /// `WeylPoints` for a winding that does not exist), with the variant's numbers.
 pub fn network(py: Python<'_>, e: &NetworkError) -> PyErr {
+    // A patch or model the allocator cannot hold: MemoryError with the bytes.
+    if let &NetworkError::OutOfMemory(a) = e {
+        return crate::args::memory_error(a);
+    }
     let d = Details::new(py, "");
     let d = match e {
         NetworkError::PatchSize { what, direction, found, rule } => Details { variant: "PatchSize", ..d }

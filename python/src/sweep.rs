@@ -151,15 +151,22 @@ impl PhaseDiagram {
     ) -> PyResult<Vec<Bound<'py, PyDict>>> {
         let threads = threads.map(thread_count).transpose()?;
         let threads = worker_threads(threads, points.len()).map_err(|e| errors::sweep(py, &e))?;
-        let results =
-            py.detach(|| -> Result<Vec<Result<PointRecord, String>>, rayon::ThreadPoolBuildError> {
+        // Every point's record has its place before any is computed: MemoryError at once.
+        let mut results: Vec<Result<PointRecord, String>> =
+            rotor_chain::allocation::try_vec(points.len(), "the points' records")
+                .map_err(crate::args::memory_error)?;
+        let results = py
+            .detach(|| -> Result<(), rayon::ThreadPoolBuildError> {
                 let one = |&(_, _, ki, v0): &GridPoint| compute_one(&self.d, ki, v0);
                 if threads == 1 {
-                    return Ok(points.iter().map(one).collect());
+                    results.extend(points.iter().map(one));
+                    return Ok(());
                 }
                 let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build()?;
-                Ok(pool.install(|| points.par_iter().map(one).collect()))
-            });
+                pool.install(|| points.par_iter().map(one).collect_into_vec(&mut results));
+                Ok(())
+            })
+            .map(|()| results);
         let results = results
             .map_err(|e| pyo3::exceptions::PyRuntimeError::new_err(format!("cannot start threads: {e}")))?;
         points.iter().zip(&results).map(|(p, r)| record_dict(py, *p, r)).collect()

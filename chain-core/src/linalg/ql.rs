@@ -24,6 +24,7 @@ use nalgebra::DMatrix;
 use super::bands::{self, Scaled};
 use super::bisection::eigenvalues_in_index_range;
 use super::error::LinalgError;
+use crate::allocation::{try_filled, try_vec};
 
 /// All eigenvalues of the symmetric tridiagonal matrix (`diag`, `off`), ascending, by the implicit
 /// QL iteration. O(n^2).
@@ -64,7 +65,9 @@ pub fn eigenpairs(diag: &[f64], off: &[f64]) -> Result<(Vec<f64>, DMatrix<f64>),
 }
 
 /// [`eigenpairs`] with a stop question, asked at every QL iteration (O(n^2) each with the
-/// vectors): a yes ends the call with [`LinalgError::Stopped`].
+/// vectors): a yes ends the call with [`LinalgError::Stopped`]. The two `n x n` matrices (the
+/// rotations and the sorted vectors) are allocated fallibly before the iteration:
+/// [`LinalgError::OutOfMemory`] with the bytes of one of them.
 pub fn eigenpairs_with(
     diag: &[f64],
     off: &[f64],
@@ -73,14 +76,21 @@ pub fn eigenpairs_with(
     bands::check_bands(diag, off)?;
     let n = diag.len();
     let (mut d, mut e, scale) = prepare(diag, off);
-    let mut z = DMatrix::<f64>::identity(n, n);
+    let what = "the eigenvectors";
+    let mut z = DMatrix::from_vec(n, n, try_filled(n.saturating_mul(n), 0.0, what)?);
+    z.fill_diagonal(1.0);
+    let mut sorted = try_vec(n.saturating_mul(n), what)?;
     let mut rotations = Rotations::new(z.as_mut_slice(), n);
     implicit_ql(&mut d, &mut e, Some(&mut rotations), scale, stop)?;
     rotations.apply();
     let mut order: Vec<usize> = (0..n).collect();
     order.sort_by(|&i, &j| d[i].total_cmp(&d[j]));
     let values = order.iter().map(|&i| d[i] / scale).collect();
-    let mut vectors = DMatrix::from_fn(n, n, |row, col| z[(row, order[col])]);
+    for &col in &order {
+        sorted.extend_from_slice(&z.as_slice()[col * n..(col + 1) * n]);
+    }
+    drop(z);
+    let mut vectors = DMatrix::from_vec(n, n, sorted);
     // n = 0 has no columns (and chunks_exact_mut refuses a zero length).
     for column in vectors.as_mut_slice().chunks_exact_mut(n.max(1)) {
         bands::orient(column);

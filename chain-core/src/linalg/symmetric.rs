@@ -358,13 +358,15 @@ impl SymmetricMatrix {
     /// The dense matrix.
     ///
     /// # Errors
-    /// More than [`MAX_DENSE_VALUES`] entries ([`LinalgError::TooLarge`]).
+    /// More than [`MAX_DENSE_VALUES`] entries ([`LinalgError::TooLarge`]), or memory the allocator
+    /// cannot give ([`LinalgError::OutOfMemory`]; nalgebra's decompositions of it then take
+    /// workspace of its size, which they allocate themselves).
     pub fn to_dense(&self) -> Result<DMatrix<f64>, LinalgError> {
         let n = self.n;
         if n.saturating_mul(n) > MAX_DENSE_VALUES {
             return Err(LinalgError::TooLarge { n, max: MAX_DENSE_VALUES });
         }
-        let mut m = DMatrix::zeros(n, n);
+        let mut m = DMatrix::from_vec(n, n, crate::allocation::try_filled(n * n, 0.0, "a dense matrix")?);
         for (i, j, v) in self.entries() {
             m[(i, j)] = v;
             m[(j, i)] = v;

@@ -15,8 +15,8 @@
 //! O(n^2) in all, stoppable ([`maxwell_calladine_with`]). Any other layout (a network's sparse
 //! `C`) goes through a dense SVD up to [`MAX_DENSE_SVD_SIDE`], and beyond it through the sparse
 //! path ([`maxwell_calladine_sparse`]: inertia counts of `C^T C - tau I` and `C C^T - tau I` by a
-//! sparse `LBL^T`, the null vectors by shift-invert subspace iteration, stoppable; its threshold
-//! `tau` is set by the rounding of the Gram matrix, `linalg::sparse::null_space`). In the dense SVD the vectors of both null
+//! sparse `LBL^T` choose the candidates, shift-invert subspace iteration their vectors, and the
+//! singular values of `C` on their span decide with the same rule; stoppable). In the dense SVD the vectors of both null
 //! spaces are singular vectors of `C` with a row of zeros appended (square, so that its
 //! decomposition holds all right vectors; nalgebra's decomposition with vectors is less
 //! accurate in its singular values, 1e-5 to 3e-3 seen, so the values come from a decomposition
@@ -50,10 +50,11 @@ pub struct Counting {
     /// Springs (constraints).
     pub springs: usize,
     /// Singular values of `C`, descending: all of them, except on the sparse path
-    /// ([`maxwell_calladine_sparse`]), which gives only the zero modes': the square roots of the
-    /// lowest `N_zero` eigenvalues of `C^T C` (negative ones as 0), each below the tolerance.
+    /// ([`maxwell_calladine_sparse`]), which gives only its candidates': the singular values of
+    /// `C` on the span of the eigenvectors of `C^T C` below its threshold, the zero modes' and
+    /// any other too small for the Gram matrix to resolve.
     pub singular_values: Vec<f64>,
-    /// Singular values at or below this count as zero (on the sparse path, below).
+    /// Singular values at or below this count as zero.
     pub tolerance: f64,
     /// Rank of the compatibility matrix.
     pub rank: usize,
@@ -103,10 +104,17 @@ impl Rows {
     fn of<M: SpringNetwork + ?Sized>(model: &M, theta: &[f64]) -> Result<Self, StaticsError> {
         validate::angles(model, theta)?;
         let (n, m) = (model.dof_count(), model.spring_count());
-        let mut values = vec![0.0; model.compatibility_values()];
+        // Sized by the network: allocated fallibly (`LinalgError::OutOfMemory`).
+        let what = "the compatibility matrix";
+        let oom =
+            |e: crate::allocation::AllocationError| StaticsError::from(crate::linalg::LinalgError::from(e));
+        let mut values =
+            crate::allocation::try_filled(model.compatibility_values(), 0.0, what).map_err(oom)?;
         model.compatibility_into(theta, &mut values);
         validate::finite("the compatibility matrix", &values)?;
-        let (mut starts, mut entries) = (vec![0], Vec::with_capacity(values.len()));
+        let mut starts = crate::allocation::try_vec(m + 1, what).map_err(oom)?;
+        starts.push(0);
+        let mut entries = crate::allocation::try_vec(values.len().max(2 * m), what).map_err(oom)?;
         match model.compatibility_layout() {
             CompatibilityLayout::Bidiagonal => {
                 let (left, right) = bidiagonal_parts(m, &values);
@@ -118,7 +126,8 @@ impl Rows {
             CompatibilityLayout::Sparse(pattern) => {
                 pattern.check(false).map_err(crate::linalg::LinalgError::from)?;
                 entries.extend(pattern.columns.iter().copied().zip(values.iter().copied()));
-                starts = pattern.row_starts.to_vec();
+                starts.clear();
+                starts.extend_from_slice(pattern.row_starts);
             }
         }
         if starts.len() != m + 1 || entries.iter().any(|&(c, _)| c >= n) {
@@ -227,6 +236,8 @@ pub fn maxwell_calladine_with<M: SpringNetwork + ?Sized>(
     if stop() {
         return Err(crate::linalg::LinalgError::Stopped { what: "SVDs", done: 0, of: 2 }.into());
     }
+    // The dense matrices here (C, its padded square and the SVD's) hold at most 512^2 values,
+    // 2 MiB each (the side is bounded above), so they are allocated as nalgebra does.
     let c = rows.to_dense();
     // nalgebra's `singular_values()` iterates without a bound; LAPACK's `dbdsqr` allows
     // 6 n^2 sweeps, which is what this gives.
@@ -273,19 +284,25 @@ pub fn maxwell_calladine_with<M: SpringNetwork + ?Sized>(
 }
 
 /// [`maxwell_calladine_with`] through the sparse path, whatever the size (above
-/// [`MAX_DENSE_SVD_SIDE`] the counting takes it anyway): `N_zero = dim ker C` is the number of
-/// eigenvalues of `C^T C` below a threshold `tau`, read from the inertia of the sparse `LBL^T`
-/// of `C^T C - tau I` (Sylvester's law), `N_selfstress` the same of `C C^T`, checked against
-/// each other by the index theorem; the bases are the lowest eigenvectors of the two Gram
-/// matrices by shift-invert block subspace iteration (`linalg/sparse/`). `tau` is
-/// `128 max(n, m) eps ||C^T C||_inf`, twice the worst perturbation of a zero eigenvalue by the
-/// Gram matrix's rounding and the factorization's accepted backward error
-/// (`linalg::sparse::null_space`); a `tolerance` on the singular values raises it to
-/// `tolerance^2`, never lowers it. Singular values below about `sqrt(tau)` therefore count as
-/// zero: coarser than the dense rule, and the reason the dense SVD is kept where it can run.
+/// [`MAX_DENSE_SVD_SIDE`] the counting takes it anyway), with the dense path's rule: a singular
+/// value of `C` counts as zero at or below `tolerance`, by default `max(n, m) eps sigma_max`
+/// (`sigma_max` by power iteration on `C^T C`).
 ///
-/// The stop question is asked before each of the two factorizations and at every iteration of
-/// the subspace iteration.
+/// The candidates are the eigenvalues of `C^T C` below
+/// `tau = tolerance^2 + 128 max(n, m) eps ||C^T C||_inf`, counted by the inertia of the sparse
+/// `LBL^T` of `C^T C - tau I` (Sylvester's law), their vectors by shift-invert block subspace
+/// iteration (`linalg/sparse/`). The second term is twice the worst perturbation of an eigenvalue
+/// by the Gram matrix's rounding and the factorization's accepted backward error
+/// (`linalg::sparse::null_space`), so every singular value at or below the tolerance is a
+/// candidate; but the Gram matrix cannot resolve singular values below about `sqrt(tau)`
+/// (`5e-6 ||C||` at 1000 rows), so it does not decide. The singular values of `C` on the
+/// candidates' span (`C V`, `m x p`, its QR and a `p x p` SVD: accurate to a few `eps ||C||`, where
+/// the Gram matrix's are accurate to `sqrt(eps) ||C||`) decide, as the dense SVD's would; the
+/// zero modes are the combinations of the candidates they call zero. The self-stresses are the same
+/// on `C^T` with the candidates of `C C^T`, and the two counts are checked by the index theorem.
+///
+/// The stop question is asked at each power iteration, before each of the two factorizations and
+/// at every iteration of the subspace iteration.
 ///
 /// # Errors
 /// As [`maxwell_calladine_with`]; a failed allocation (`LinalgError::OutOfMemory` with its
@@ -310,19 +327,19 @@ fn sparse_counting(
     stop: &mut dyn FnMut() -> bool,
 ) -> Result<Counting, StaticsError> {
     let c = null_space::Rows { columns: rows.columns, starts: &rows.starts, entries: &rows.entries };
-    let found = null_space::null_spaces(c, tolerance.map_or(0.0, |t| t * t), stop)?;
+    let found = null_space::null_spaces(c, tolerance, stop)?;
     let (n, m) = (rows.columns, rows.rows());
-    let mut singular_values: Vec<f64> =
-        found.right_pairs.iter().map(|p| crate::math::sqrt(p.value.max(0.0))).collect();
+    let mut singular_values = found.right_values;
     singular_values.reverse();
-    let zero_modes = found.right_pairs.into_iter().take(found.right).map(|p| oriented(p.vector)).collect();
-    let self_stresses = found.left_pairs.into_iter().map(|p| oriented(p.vector)).collect();
+    let rank = n - found.zero_modes.len();
+    let zero_modes = found.zero_modes.into_iter().map(oriented).collect();
+    let self_stresses = found.self_stresses.into_iter().map(oriented).collect();
     Ok(Counting {
         rotors: n,
         springs: m,
         singular_values,
-        tolerance: crate::math::sqrt(found.threshold),
-        rank: n - found.right,
+        tolerance: found.tolerance,
+        rank,
         zero_modes,
         self_stresses,
     })

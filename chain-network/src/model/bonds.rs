@@ -2,6 +2,7 @@
 //! generated kernel ([`crate::kernel`]) on every bond of a group; the sparse patterns of the
 //! tangent stiffness and the compatibility matrix, with where each bond's entries go.
 
+use chain_core::allocation::{AllocationError, try_grow};
 use chain_core::model::Pattern;
 
 /// A bond type (the kernel modules `joint_joint`, `joint_rotor`, `rotor_rotor`), in the order
@@ -65,6 +66,22 @@ impl Group {
 
     pub fn len(&self) -> usize {
         self.spring.len()
+    }
+
+    /// Room for `bonds` bonds in every array (`coefficients` too when `with_coefficients`),
+    /// exactly, before they are pushed.
+    pub fn try_reserve(&mut self, bonds: usize, with_coefficients: bool) -> Result<(), AllocationError> {
+        let what = "the model's bonds";
+        try_grow(&mut self.spring, bonds, what)?;
+        try_grow(&mut self.dofs, bonds, what)?;
+        try_grow(&mut self.offset, bonds, what)?;
+        try_grow(&mut self.radius, bonds, what)?;
+        try_grow(&mut self.k, bonds, what)?;
+        try_grow(&mut self.l0, bonds, what)?;
+        if with_coefficients {
+            try_grow(&mut self.coefficients, bonds, what)?;
+        }
+        Ok(())
     }
 
     pub fn heap_bytes(&self) -> usize {

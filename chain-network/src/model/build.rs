@@ -9,6 +9,7 @@ use super::stencil::Stencil;
 use crate::cell::{BondLaw, NodeKind};
 use crate::error::NetworkError;
 use crate::patch::Patch;
+use chain_core::allocation::{try_filled, try_vec};
 use std::collections::HashMap;
 use std::sync::OnceLock;
 
@@ -110,7 +111,8 @@ impl<'p, 'c> NetworkModelBuilder<'p, 'c> {
         let nodes = cell.nodes();
         let springs_count = patch.bonds().len();
         positive("mass", "every node".into(), self.mass)?;
-        let mut masses = vec![self.mass; patch.cell_count() * nodes.len()];
+        // Every array sized by the patch is allocated fallibly (`NetworkError::OutOfMemory`).
+        let mut masses = try_filled(patch.cell_count() * nodes.len(), self.mass, "the node masses")?;
         for &(c, n, m) in &self.node_masses {
             if c[0] >= n1 || c[1] >= n2 || n >= nodes.len() {
                 return Err(NetworkError::Argument {
@@ -124,11 +126,10 @@ impl<'p, 'c> NetworkModelBuilder<'p, 'c> {
             masses[patch.cell_index(c) * nodes.len() + n] =
                 positive("node mass", format!("cell {c:?}, node {n}"), m)?;
         }
-        let mut springs: Vec<[f64; 2]> = patch
-            .bonds()
-            .iter()
-            .map(|pb| [cell.bonds()[pb.bond].k, cell.bonds()[pb.bond].rest_length])
-            .collect();
+        let mut springs: Vec<[f64; 2]> = try_vec(springs_count, "the springs' constants and rest lengths")?;
+        springs.extend(
+            patch.bonds().iter().map(|pb| [cell.bonds()[pb.bond].k, cell.bonds()[pb.bond].rest_length]),
+        );
         for (what, list, slot) in
             [("spring constant", &self.constants, 0), ("rest length", &self.rest_lengths, 1)]
         {
@@ -164,10 +165,11 @@ impl<'p, 'c> NetworkModelBuilder<'p, 'c> {
         let (kernel, coefficients) = kernel_of(springs_count, law_of)?;
 
         let dof = patch.dof();
-        let mut inertia = vec![0.0; dof];
-        let mut reference = vec![0.0; dof];
-        let mut rotor_of = vec![u32::MAX; dof];
-        let mut rotors = Vec::new();
+        let mut inertia = try_filled(dof, 0.0, "the inertia")?;
+        let mut reference = try_filled(dof, 0.0, "the reference coordinates")?;
+        let mut rotor_of = try_filled(dof, u32::MAX, "the rotor index")?;
+        let rotors_per_cell = nodes.iter().filter(|n| matches!(n.kind, NodeKind::Rotor { .. })).count();
+        let mut rotors = try_vec(rotors_per_cell * patch.cell_count(), "the rotor index")?;
         for c2 in 0..n2 {
             for c1 in 0..n1 {
                 let c = [c1, c2];
@@ -199,6 +201,15 @@ impl<'p, 'c> NetworkModelBuilder<'p, 'c> {
 
         let mut groups =
             [Group::new(Kind::JointJoint), Group::new(Kind::JointRotor), Group::new(Kind::RotorRotor)];
+        let joint = |n: usize| matches!(nodes[n].kind, NodeKind::Joint { .. });
+        let mut per_kind = [0; 3];
+        for pb in patch.bonds() {
+            let bond = &cell.bonds()[pb.bond];
+            per_kind[usize::from(!joint(bond.from)) + usize::from(!joint(bond.to))] += 1;
+        }
+        for (g, &bonds) in groups.iter_mut().zip(&per_kind) {
+            g.try_reserve(bonds, !coefficients.is_empty())?;
+        }
         let anchor = |n: usize, c: [usize; 2]| {
             let s = cell.shift([c[0] as i64, c[1] as i64]);
             match nodes[n].kind {
@@ -218,7 +229,6 @@ impl<'p, 'c> NetworkModelBuilder<'p, 'c> {
                 patch.column(pb.to_cell, cell.dof_offset(bond.to)),
             );
             let ((pf, rf), (pt, rt)) = (anchor(bond.from, pb.from_cell), anchor(bond.to, pb.to_cell));
-            let joint = |n: usize| matches!(nodes[n].kind, NodeKind::Joint { .. });
             let (kind, dofs, offset, radius) = match (joint(bond.from), joint(bond.to)) {
                 (true, true) => (Kind::JointJoint, [df, df + 1, dt, dt + 1], wrap, [0.0, 0.0]),
                 (true, false) => {
@@ -246,7 +256,7 @@ impl<'p, 'c> NetworkModelBuilder<'p, 'c> {
                 g.coefficients.push(*c);
             }
         }
-        let stencil = Stencil::new(&groups, cell.dof(), patch.cell_count(), |j| rotor_of[j] != u32::MAX);
+        let stencil = Stencil::new(&groups, cell.dof(), patch.cell_count(), |j| rotor_of[j] != u32::MAX)?;
         let kernels = self.kernels.unwrap_or_else(|| match kernel {
             Kernel::Harmonic => Kernels::of::<crate::kernel::harmonic::Law>(),
             Kernel::Quartic => Kernels::of::<crate::kernel::quartic::Law>(),

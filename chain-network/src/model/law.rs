@@ -67,12 +67,12 @@ pub(super) fn kernel_of(
         (Some(_), None) => Ok((Kernel::Quartic, Vec::new())),
         _ if (0..springs).all(|p| law(p) == BondLaw::Harmonic) => Ok((Kernel::Harmonic, Vec::new())),
         _ => {
-            let coefficients = (0..springs)
-                .map(|p| match law(p) {
-                    BondLaw::Polynomial(c) => c.coefficients,
-                    _ => Polynomial::harmonic().coefficients,
-                })
-                .collect();
+            let mut coefficients =
+                chain_core::allocation::try_vec(springs, "the springs' polynomial coefficients")?;
+            coefficients.extend((0..springs).map(|p| match law(p) {
+                BondLaw::Polynomial(c) => c.coefficients,
+                _ => Polynomial::harmonic().coefficients,
+            }));
             Ok((Kernel::Polynomial, coefficients))
         }
     }

@@ -23,6 +23,7 @@
 //! second end, so the adds of a vector of bonds never collide.
 
 use super::bonds::{Group, Kind};
+use chain_core::allocation::{AllocationError, bytes_of, try_vec};
 use std::collections::HashMap;
 
 /// The most parameters a bond passes after its geometry: `k`, `l0` and a law's own (the
@@ -82,10 +83,27 @@ pub(super) struct Stencil {
     pub kinds: [Runs; 3],
 }
 
+/// Room for `additional` more values in `v`, growing by doubling (the runs' count is found as they
+/// are built).
+fn reserve<T>(v: &mut Vec<T>, additional: usize, what: &'static str) -> Result<(), AllocationError> {
+    v.try_reserve(additional)
+        .map_err(|_| AllocationError { bytes: bytes_of::<T>(v.len().saturating_add(additional)), what })
+}
+
 impl Stencil {
     /// The runs of `groups`' bonds on a patch of `cells` cells of `per_cell` degrees of freedom;
     /// `is_rotor(d)` says whether degree of freedom `d` is a rotor angle (the same in every cell).
-    pub fn new(groups: &[Group; 3], per_cell: usize, cells: usize, is_rotor: impl Fn(usize) -> bool) -> Self {
+    ///
+    /// # Errors
+    /// The arrays sized by the bonds (their order, the runs, the per-bond parameters) allocated
+    /// fallibly; the cell's slots are bounded by the cell.
+    pub fn new(
+        groups: &[Group; 3],
+        per_cell: usize,
+        cells: usize,
+        is_rotor: impl Fn(usize) -> bool,
+    ) -> Result<Self, AllocationError> {
+        let what = "the model's runs of bonds";
         let rotor_slots: Vec<usize> = (0..per_cell).filter(|&j| is_rotor(j)).collect();
         let mut rotor_index = vec![usize::MAX; per_cell];
         for (r, &j) in rotor_slots.iter().enumerate() {
@@ -103,7 +121,7 @@ impl Stencil {
                 ([(per_cell + 2 * r) * cells + c, (per_cell + 2 * r + 1) * cells + c], [j * cells + c, 0], 1)
             }
         };
-        let kinds = groups.each_ref().map(|g| {
+        let runs_of = |g: &Group| -> Result<Runs, AllocationError> {
             let (first_joint, second_joint, second_at) = match g.kind {
                 Kind::JointJoint => (true, true, 2),
                 Kind::JointRotor => (true, false, 2),
@@ -125,48 +143,51 @@ impl Stencil {
                 };
                 ([a1[0], a1[1], a2[0], a2[1]], grads, constants)
             };
-            // Bonds with the same two slots and cell distance, in the group's (the patch's) order,
-            // which is ascending in the first end's cell.
-            let mut buckets: HashMap<(usize, usize, isize), Vec<usize>> = HashMap::new();
-            let mut keys = Vec::new();
+            // Bonds with the same two slots and cell distance (a key; a few per bond of the cell),
+            // keys in order of first appearance, each key's bonds in the group's (the patch's)
+            // order, which is ascending in the first end's cell: the bonds sorted by (key's rank,
+            // index), in place.
+            let mut ranks: HashMap<(usize, usize, isize), usize> = HashMap::new();
+            let mut order: Vec<(usize, usize)> = try_vec(g.len(), what)?;
             for i in 0..g.len() {
                 let d = g.dofs[i];
                 let (d1, d2) = (d[0], d[second_at]);
                 let key = (d1 % per_cell, d2 % per_cell, (d2 / per_cell) as isize - (d1 / per_cell) as isize);
-                buckets
-                    .entry(key)
-                    .or_insert_with(|| {
-                        keys.push(key);
-                        Vec::new()
-                    })
-                    .push(i);
+                let next = ranks.len();
+                order.push((*ranks.entry(key).or_insert(next), i));
             }
+            order.sort_unstable();
             // The bonds of each run, found first; its parameters are then shared or per bond.
             let mut runs = Runs { runs: Vec::new(), values: Vec::new() };
-            let mut members: Vec<usize> = Vec::with_capacity(g.len());
+            let mut members: Vec<usize> = try_vec(g.len(), what)?;
             let used = g.kind.dofs();
-            for key in keys {
-                let mut last: Option<([usize; 4], [usize; 4], [f64; 4])> = None;
-                for &i in &buckets[&key] {
-                    let (ends, grads, constants) = bond(i);
-                    let follows = last.is_some_and(|(e, gr, c)| {
-                        (0..4).all(|a| ends[a] == e[a] + 1)
-                            && (0..used).all(|a| grads[a] == gr[a] + 1)
-                            && c.map(f64::to_bits) == constants.map(f64::to_bits)
-                    });
-                    match runs.runs.last_mut() {
-                        Some(run) if follows => run.len += 1,
-                        _ => runs.runs.push(Run {
+            let mut rank = usize::MAX;
+            let mut last: Option<([usize; 4], [usize; 4], [f64; 4])> = None;
+            for &(key, i) in &order {
+                if key != rank {
+                    (rank, last) = (key, None);
+                }
+                let (ends, grads, constants) = bond(i);
+                let follows = last.is_some_and(|(e, gr, c)| {
+                    (0..4).all(|a| ends[a] == e[a] + 1)
+                        && (0..used).all(|a| grads[a] == gr[a] + 1)
+                        && c.map(f64::to_bits) == constants.map(f64::to_bits)
+                });
+                match runs.runs.last_mut() {
+                    Some(run) if follows => run.len += 1,
+                    _ => {
+                        reserve(&mut runs.runs, 1, what)?;
+                        runs.runs.push(Run {
                             len: 1,
                             ends,
                             grads,
                             constants,
                             parameters: [Parameter::Shared(0.0); PARAMETERS],
-                        }),
+                        });
                     }
-                    members.push(i);
-                    last = Some((ends, grads, constants));
                 }
+                members.push(i);
+                last = Some((ends, grads, constants));
             }
             // Bond `i`'s parameter `j` (`k`, `l0`, then the coefficients where the law has them).
             let parameter = |i: usize, j: usize| match j {
@@ -182,15 +203,17 @@ impl Stencil {
                     *slot = if bonds.iter().all(|&i| parameter(i, j).to_bits() == first.to_bits()) {
                         Parameter::Shared(first)
                     } else {
+                        reserve(&mut runs.values, run.len, what)?;
                         runs.values.extend(bonds.iter().map(|&i| parameter(i, j)));
                         Parameter::PerBond(runs.values.len() - run.len)
                     };
                 }
                 start += run.len;
             }
-            runs
-        });
-        Self { cells, per_cell, rotor_slots, kinds }
+            Ok(runs)
+        };
+        let [a, b, c] = groups.each_ref().map(runs_of);
+        Ok(Self { cells, per_cell, rotor_slots, kinds: [a?, b?, c?] })
     }
 
     /// Values of the input buffer: the coordinates, then a sine and a cosine per rotor slot.

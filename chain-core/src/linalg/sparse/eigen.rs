@@ -68,12 +68,16 @@ pub(crate) fn eigenpairs(
     target: Target,
     k: usize,
 ) -> Result<Vec<Eigenpair>, LinalgError> {
-    eigenpairs_with(a, norm, target, k, &mut || false)
+    eigenpairs_with(a, norm, target, k, 0, &mut || false)
 }
 
 /// [`eigenpairs`] with a stop question, asked before each block iteration and within its
 /// `O(n p^2)` parts (Gram-Schmidt, Rayleigh-Ritz and the rotations, once per column), so that an
-/// answer comes after `O(n p)` work: a yes ends it with [`LinalgError::Stopped`].
+/// answer comes after `O(n p)` work: a yes ends it with [`LinalgError::Stopped`]. After the
+/// residuals are met it iterates `polish` more times (within [`MAX_ITERATIONS`]): each divides the
+/// pairs' components along the unwanted eigenvectors by about
+/// `|lambda_{p+1} - sigma| / |lambda_j - sigma|` again, below what the residual can show
+/// (`null_space`'s refinement needs them at the rounding floor).
 ///
 /// # Errors
 /// As [`eigenpairs`], and `Stopped`.
@@ -82,6 +86,7 @@ pub(crate) fn eigenpairs_with(
     norm: f64,
     target: Target,
     k: usize,
+    mut polish: usize,
     stop: &mut dyn FnMut() -> bool,
 ) -> Result<Vec<Eigenpair>, LinalgError> {
     let n = a.n;
@@ -110,6 +115,8 @@ pub(crate) fn eigenpairs_with(
     orthonormalise(&mut x, n, p, &mut asked);
     let mut ax = try_vec(n * p)?;
     ax.resize(n * p, 0.0);
+    let mut rotated = try_vec(n * p)?;
+    rotated.resize(n * p, 0.0);
     let mut worst = (0, f64::INFINITY);
     for iteration in 0..MAX_ITERATIONS {
         let stopped =
@@ -123,8 +130,8 @@ pub(crate) fn eigenpairs_with(
             a.mul_vec_shifted(0.0, &x[j * n..(j + 1) * n], &mut ax[j * n..(j + 1) * n]);
         }
         let (values, w) = rayleigh_ritz(&x, &ax, n, p, &mut asked);
-        rotate(&mut x, &w, n, p, &mut asked);
-        rotate(&mut ax, &w, n, p, &mut asked);
+        rotate(&mut x, &w, n, p, &mut rotated, &mut asked);
+        rotate(&mut ax, &w, n, p, &mut rotated, &mut asked);
         if asked.yes {
             return Err(stopped);
         }
@@ -137,7 +144,9 @@ pub(crate) fn eigenpairs_with(
                 worst = (j, r);
             }
         }
-        if worst.1 <= RESIDUAL_TOLERANCE {
+        if worst.1 <= RESIDUAL_TOLERANCE && polish > 0 {
+            polish -= 1;
+        } else if worst.1 <= RESIDUAL_TOLERANCE {
             let mut pairs: Vec<Eigenpair> = wanted
                 .iter()
                 .map(|&j| Eigenpair { value: values[j], vector: signed(&x[j * n..(j + 1) * n]) })
@@ -207,7 +216,7 @@ fn check_complete(a: &Upper<'_>, norm: f64, target: Target, pairs: &[Eigenpair])
 }
 
 /// `p` columns of a fixed pseudo-random start (SplitMix64, the same every call).
-fn start_block(n: usize, p: usize) -> Result<Vec<f64>, LinalgError> {
+pub(crate) fn start_block(n: usize, p: usize) -> Result<Vec<f64>, LinalgError> {
     let mut x = try_vec(n * p)?;
     let mut state = 0x9E37_79B9_7F4A_7C15u64;
     for _ in 0..n * p {
@@ -300,9 +309,10 @@ fn rayleigh_ritz(
     (eig.eigenvalues.iter().copied().collect(), eig.eigenvectors)
 }
 
-/// `X <- X W` for the `n x p` block `x` and the `p x p` matrix `w`.
-fn rotate(x: &mut [f64], w: &DMatrix<f64>, n: usize, p: usize, asked: &mut Asked<'_>) {
-    let mut out = vec![0.0; n * p];
+/// `X <- X W` for the `n x p` block `x` and the `p x p` matrix `w`, through `out` (`n p` values,
+/// allocated once before the iterations).
+fn rotate(x: &mut [f64], w: &DMatrix<f64>, n: usize, p: usize, out: &mut [f64], asked: &mut Asked<'_>) {
+    out.fill(0.0);
     for j in 0..p {
         if asked.now() {
             return;
@@ -315,7 +325,7 @@ fn rotate(x: &mut [f64], w: &DMatrix<f64>, n: usize, p: usize, asked: &mut Asked
             }
         }
     }
-    x.copy_from_slice(&out);
+    x.copy_from_slice(out);
 }
 
 /// The vector with its entry of largest magnitude positive (as the dense and tridiagonal paths).

@@ -9,7 +9,8 @@
 //! - [`eigen`]: the eigenpairs nearest a value or at the bottom of the spectrum, by shift-invert
 //!   block subspace iteration, checked complete by an inertia count.
 //! - [`null_space`]: the null spaces of a sparse rectangular matrix (a network's compatibility
-//!   matrix) counted by inertia of its Gram matrices, their bases by the subspace iteration.
+//!   matrix): candidates counted by inertia of its Gram matrices, their bases by the subspace
+//!   iteration, decided by [`refine`]: the singular values of the matrix itself on their span.
 //!
 //! Costs for a 2D lattice patch of `n` degrees of freedom with nested-dissection-like fill: the
 //! factor holds `O(n log n)` values, a factorization takes `O(n^{3/2})`, a solve `O(n log n)`;
@@ -19,6 +20,7 @@
 pub mod eigen;
 pub mod lblt;
 pub mod null_space;
+pub mod refine;
 
 /// A symmetric matrix by its upper triangle in compressed rows (the `Upper` layout's arrays).
 #[derive(Clone, Copy, Debug)]

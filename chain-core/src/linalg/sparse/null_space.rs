@@ -5,18 +5,23 @@
 //! same Gram matrices. A network's Maxwell-Calladine count beyond the dense bound
 //! (`statics::counting`) runs here.
 //!
-//! **Threshold.** `C^T C` is formed in floating point (each entry a sum of at most `m` products,
+//! **Candidates.** `C^T C` is formed in floating point (each entry a sum of at most `m` products,
 //! error below `m eps ||C^T C||_inf`), and a factorization is accepted when its backward error is
 //! below `64 n eps` ([`MAX_BACKWARD_ERROR_FACTOR`](super::lblt::MAX_BACKWARD_ERROR_FACTOR)): its
 //! inertia is exact for a matrix within `(m + 64 n) eps ||C^T C||_inf` of `C^T C`, so by Weyl's
-//! inequality (and `||E||_2 <= ||E||_inf` for symmetric `E`) a zero eigenvalue is seen within that
-//! distance of 0. The threshold is twice the larger of the two terms' worst case,
-//! [`ROUNDING_FACTOR`]` max(n, m) eps ||C^T C||_inf`: every exact zero counts as zero, and a
-//! singular value `sigma` counts as nonzero when `sigma^2` is above it, that is above
-//! `sqrt(128 max(n, m) eps) ||C||` (`5e-5 ||C||` at 1000 rows): coarser than the dense rule
-//! (`max(n, m) eps sigma_max`) by a square root, the price of the Gram matrix. `C C^T` has the same
-//! nonzero eigenvalues, so the same threshold counts its zeros, and the index theorem
-//! `dim ker C - dim ker C^T = n - m` checks the two counts against each other.
+//! inequality (and `||E||_2 <= ||E||_inf` for symmetric `E`) an eigenvalue `sigma^2` is seen within
+//! that distance of itself. The candidates are the eigenvalues below
+//! `tau = tolerance^2 + `[`ROUNDING_FACTOR`]` max(n, m) eps ||C^T C||_inf`, twice the larger of the
+//! two terms' worst case above the square of the tolerance: every singular value at or below the
+//! tolerance is a candidate. The Gram matrix alone cannot tell apart singular values below about
+//! `sqrt(tau)` (`5e-6 ||C||` at 1000 rows), so it only chooses the candidates.
+//!
+//! **The count.** The singular values of `C` on the candidates' span are computed from `C` itself
+//! ([`refine`]: `C V`, its QR, a small dense SVD; accurate to a few `eps ||C||`), and the dense
+//! SVD's rule decides: zero at or below `max(n, m) eps sigma_max` (or the caller's tolerance). The
+//! same on `C^T` with the candidates of `C C^T` counts the self-stresses, and the index theorem
+//! `dim ker C - dim ker C^T = n - m` checks the two counts against each other (and the candidate
+//! counts, `C^T C` and `C C^T` having the same nonzero eigenvalues).
 //!
 //! **Stopping.** A stop question is asked before each factorization and at every iteration of the
 //! subspace iteration, per column of its `O(n p^2)` parts (`eigen::eigenpairs_with`).
@@ -26,11 +31,28 @@ use alloc::vec::Vec;
 use super::Upper;
 use super::eigen::{self, Target};
 use super::lblt::{Lblt, try_vec};
+use super::refine;
 use crate::linalg::{Eigenpair, LinalgError};
 
 /// The threshold's multiple of `max(n, m) eps ||C^T C||_inf` (see the module doc): twice the
 /// accepted backward error's factor.
 pub const ROUNDING_FACTOR: f64 = 2.0 * super::lblt::MAX_BACKWARD_ERROR_FACTOR;
+
+/// Subspace iterations after the residuals are met: the candidates' components along the other
+/// singular vectors (each iteration divides them by the gap's ratio, about `1e-5` on a lattice)
+/// reach the rounding floor, so that `C` on their span shows its own small singular values and not
+/// those components (two more: `5.6e-13` left on the translations of a twisted kagome, whose dense
+/// tolerance is `3.3e-13`, without them; `6e-16` with them).
+const POLISH: usize = 2;
+
+/// The candidates take in every singular value below `SPAN_FACTOR sigma_max / max(n, m)` as well
+/// as those the Gram matrix cannot resolve: a null vector of the rounded Gram matrix carries a
+/// component `~ eps ||C||^2 / sigma^2` along each singular vector of value `sigma` outside the
+/// candidates, which `C` maps to `eps ||C||^2 / sigma`; with `sigma` above this bound that is below
+/// `max(n, m) eps ||C|| / 64`, a 64th of the dense rule's tolerance. (Without it a square patch
+/// whose line modes a disturbance lifted to `1e-2` left its translations at `1e-13`, above the
+/// tolerance `1.3e-14`.)
+const SPAN_FACTOR: f64 = 64.0;
 
 /// A sparse matrix by rows: each row's `(column, value)` entries, ascending, between
 /// `starts[p]..starts[p + 1]`.
@@ -42,12 +64,19 @@ pub(crate) struct Rows<'a> {
 }
 
 impl Rows<'_> {
-    fn rows(&self) -> usize {
+    pub(crate) fn rows(&self) -> usize {
         self.starts.len() - 1
     }
 
     fn row(&self, p: usize) -> &[(usize, f64)] {
         &self.entries[self.starts[p]..self.starts[p + 1]]
+    }
+
+    /// `y = M x` (`x` one entry per column, `y` one per row).
+    pub(crate) fn mul_vec(&self, x: &[f64], y: &mut [f64]) {
+        for (p, y) in y.iter_mut().enumerate().take(self.rows()) {
+            *y = self.row(p).iter().fold(0.0, |s, &(i, v)| s + v * x[i]);
+        }
     }
 }
 
@@ -162,21 +191,24 @@ fn out_of_memory<T>(len: usize) -> LinalgError {
 /// The null spaces of `C`.
 #[derive(Clone, Debug)]
 pub(crate) struct NullSpaces {
-    /// The threshold `tau` on the Gram matrices' eigenvalues.
-    pub threshold: f64,
-    /// `dim ker C`.
-    pub right: usize,
-    /// The lowest `right` eigenpairs of `C^T C`, ascending: its null space. (Not one more, the
-    /// smallest kept: the subspace iteration's completeness check factors just below the highest
-    /// eigenvalue found, which on a lattice is often a multiple one, too near for a stable
-    /// factorization.)
-    pub right_pairs: Vec<Eigenpair>,
-    /// The lowest `dim ker C^T` eigenpairs of `C C^T`: its null space.
-    pub left_pairs: Vec<Eigenpair>,
+    /// The tolerance on the singular values: at or below it they count as zero.
+    pub tolerance: f64,
+    /// The singular values of `C` on the candidates of its null space (the eigenvectors of `C^T C`
+    /// below `tau`), ascending.
+    pub right_values: Vec<f64>,
+    /// An orthonormal basis of `ker C`: the candidates' combinations with singular values at or
+    /// below the tolerance.
+    pub zero_modes: Vec<Vec<f64>>,
+    /// An orthonormal basis of `ker C^T`.
+    pub self_stresses: Vec<Vec<f64>>,
 }
 
-/// Counts and bases of the null spaces of `C` and `C^T`. `threshold` raises
-/// `tau` above its rounding floor (see the module doc), never below.
+/// Counts and bases of the null spaces of `C` and `C^T`, the dense SVD's rule applied to singular
+/// values computed on the Gram matrices' candidates ([`refine`]): a singular value counts as zero
+/// at or below `tolerance`, by default `max(n, m) eps sigma_max` (`sigma_max` by power iteration,
+/// [`refine::largest_singular_value`]). The candidates are the eigenvectors of `C^T C` (and
+/// `C C^T`) below `tau = tolerance^2 + `[`ROUNDING_FACTOR`]` max(n, m) eps ||C^T C||_inf` (see the
+/// module doc): every singular value at or below the tolerance is among them.
 ///
 /// # Errors
 /// A failed allocation, an unstable factorization, a subspace iteration that does not converge or
@@ -184,7 +216,7 @@ pub(crate) struct NullSpaces {
 /// count, then what `n - m` asks), or `Stopped` when `stop` answered yes.
 pub(crate) fn null_spaces(
     c: Rows<'_>,
-    threshold: f64,
+    tolerance: Option<f64>,
     stop: &mut dyn FnMut() -> bool,
 ) -> Result<NullSpaces, LinalgError> {
     let (m, n) = (c.rows(), c.columns);
@@ -193,17 +225,21 @@ pub(crate) fn null_spaces(
     let norm = ctc.inf_norm();
     if norm == 0.0 {
         // No nonzero entry: every vector is in both null spaces.
-        let unit = |len: usize| -> Vec<Eigenpair> {
-            (0..len)
-                .map(|i| Eigenpair {
-                    value: 0.0,
-                    vector: (0..len).map(|j| f64::from(u8::from(i == j))).collect(),
-                })
-                .collect()
+        let unit = |len: usize| -> Vec<Vec<f64>> {
+            (0..len).map(|i| (0..len).map(|j| f64::from(u8::from(i == j))).collect()).collect()
         };
-        return Ok(NullSpaces { threshold: 0.0, right: n, right_pairs: unit(n), left_pairs: unit(m) });
+        return Ok(NullSpaces {
+            tolerance: tolerance.unwrap_or(0.0),
+            right_values: alloc::vec![0.0; n],
+            zero_modes: unit(n),
+            self_stresses: unit(m),
+        });
     }
-    let tau = threshold.max(ROUNDING_FACTOR * n.max(m) as f64 * f64::EPSILON * norm);
+    let side = n.max(m) as f64;
+    let sigma_max = refine::largest_singular_value(c, t.view(), stop)?;
+    let tolerance = tolerance.unwrap_or(side * f64::EPSILON * sigma_max);
+    let tau = (tolerance * tolerance + ROUNDING_FACTOR * side * f64::EPSILON * norm)
+        .max((SPAN_FACTOR * sigma_max / side) * (SPAN_FACTOR * sigma_max / side));
     let stopped = |done| LinalgError::Stopped { what: "inertia counts", done, of: 2 };
     if stop() {
         return Err(stopped(0));
@@ -217,8 +253,9 @@ pub(crate) fn null_spaces(
     if right as isize - left as isize != n as isize - m as isize {
         return Err(LinalgError::Missed { below: tau, counted: left, found: (right + m).saturating_sub(n) });
     }
-    let right_pairs = eigen::eigenpairs_with(&ctc.upper(), norm, Target::Lowest, right, stop)?;
-    let left_pairs = eigen::eigenpairs_with(&cct.upper(), cct.inf_norm(), Target::Lowest, left, stop)?;
+    let right_pairs = eigen::eigenpairs_with(&ctc.upper(), norm, Target::Lowest, right, POLISH, stop)?;
+    let left_pairs =
+        eigen::eigenpairs_with(&cct.upper(), cct.inf_norm(), Target::Lowest, left, POLISH, stop)?;
     // The pairs' eigenvalues and the inertia counts come from different computations: both must
     // put the same number below tau.
     let below = |pairs: &[Eigenpair]| pairs.iter().filter(|p| p.value < tau).count();
@@ -228,5 +265,23 @@ pub(crate) fn null_spaces(
     if below(&left_pairs) != left {
         return Err(LinalgError::Missed { below: tau, counted: left, found: below(&left_pairs) });
     }
-    Ok(NullSpaces { threshold: tau, right, right_pairs, left_pairs })
+    fn vectors(pairs: &[Eigenpair]) -> Vec<&[f64]> {
+        pairs.iter().map(|p| p.vector.as_slice()).collect()
+    }
+    let zero = refine::on_subspace(c, &vectors(&right_pairs), tolerance)?;
+    let stress = refine::on_subspace(t.view(), &vectors(&left_pairs), tolerance)?;
+    let (zero_count, stress_count) = (zero.vectors.len(), stress.vectors.len());
+    if zero_count as isize - stress_count as isize != n as isize - m as isize {
+        return Err(LinalgError::Missed {
+            below: tolerance,
+            counted: stress_count,
+            found: (zero_count + m).saturating_sub(n),
+        });
+    }
+    Ok(NullSpaces {
+        tolerance,
+        right_values: zero.values,
+        zero_modes: zero.vectors,
+        self_stresses: stress.vectors,
+    })
 }
