@@ -11,16 +11,28 @@
 //!   (the null space is the union of the blocks' null spaces, each Bloch wave
 //!   `u e^{i k . R}`). `Q(-k)` is the complex conjugate of `Q(k)` and has the same singular
 //!   values, so only half of the blocks are decomposed.
-//! - **Free patches** are counted by a singular value decomposition of the whole compatibility
-//!   matrix (singular values only, 2 threads). Not through `C^T C`, which squares the `1e-9`
-//!   threshold below rounding, and not by an unpivoted QR, which misses null vectors that decay
-//!   against the elimination order (as polarized lattices' edge modes do).
+//! - **Free patches** up to [`MAX_DENSE_FREE_SIDE`] rows or columns are counted by a singular
+//!   value decomposition of the whole compatibility matrix (singular values only, 2 threads). Not
+//!   through `C^T C` alone, which squares the `1e-9` threshold below rounding, and not by an
+//!   unpivoted QR, which misses null vectors that decay against the elimination order (as
+//!   polarized lattices' edge modes do). Larger free patches take chain-core's sparse, stoppable
+//!   count ([`rotor_chain::statics::counting::maxwell_calladine_sparse`] on the patch's
+//!   [`NetworkModel`] at its reference configuration): the Gram matrices' inertia chooses the
+//!   candidates and the singular values of `C` on their span decide, with chain-core's rule
+//!   (`max(n, m) eps sigma_max`, below this module's `1e-9 sigma_max`: a singular value between
+//!   the two is counted in the rank there); a dense SVD of that size cannot be stopped and takes
+//!   minutes.
+//!
+//! Every count asks its stop question ([`counts_with`], [`null_spaces_with`]) before each Bloch
+//! block or decomposition; Python's `Network.counts` and `.null_spaces` pass Ctrl-C.
 
 use crate::bloch;
 use crate::compatibility::bond_rows;
 use crate::error::NetworkError;
 use crate::linalg::{self, RANK_TOLERANCE};
+use crate::model::NetworkModel;
 use crate::patch::{Boundary, Patch};
+use chain_core::statics::counting::{Counting, maxwell_calladine_sparse};
 use faer::{Mat, c64};
 use std::f64::consts::TAU;
 
@@ -37,6 +49,23 @@ pub enum Method {
     },
     /// One singular value decomposition of the whole compatibility matrix.
     DenseSvd,
+    /// chain-core's sparse count (a free patch above [`MAX_DENSE_FREE_SIDE`]).
+    Sparse,
+}
+
+/// The most rows or columns of a free patch's compatibility matrix counted by a dense SVD
+/// (singular values only, about 0.3 s at 1024 in release); larger free patches take the sparse,
+/// stoppable path. Vectors ([`null_spaces`]) are computed densely up to the same side.
+pub const MAX_DENSE_FREE_SIDE: usize = 1024;
+
+/// The stop question of [`counts`] and [`null_spaces`]: never.
+fn never() -> bool {
+    false
+}
+
+/// The error of a count stopped by its question.
+fn stopped(what: &'static str, done: usize, of: usize) -> NetworkError {
+    NetworkError::Statics(chain_core::linalg::LinalgError::Stopped { what, done, of }.into())
 }
 
 /// The counts of a patch.
@@ -52,12 +81,14 @@ pub struct Counts {
     pub zero_modes: usize,
     /// States of self-stress `Nss = bonds - rank`.
     pub self_stresses: usize,
-    /// The largest singular value.
+    /// The largest singular value (on the sparse path by power iteration, from below).
     pub largest_singular_value: f64,
-    /// The smallest singular value counted in the rank (`None` if the rank is 0).
+    /// The smallest singular value counted in the rank (`None` if the rank is 0; on the sparse
+    /// path the smallest among its candidates, `None` if every candidate was zero).
     pub smallest_kept: Option<f64>,
     /// The largest singular value counted as zero (`None` if none is): with `smallest_kept`, how
-    /// clear the decision at the threshold `1e-9 * largest` was.
+    /// clear the decision at the threshold (`1e-9 * largest`; on the sparse path chain-core's
+    /// `max(n, m) eps * largest`) was.
     pub largest_dropped: Option<f64>,
     /// How the singular values were obtained.
     pub method: Method,
@@ -135,8 +166,15 @@ fn bloch_grid(patch: &Patch) -> Vec<([usize; 2], [f64; 2], bool)> {
     out
 }
 
-/// The counts of a patch: through Bloch blocks if periodic, one dense SVD if free.
+/// The counts of a patch: through Bloch blocks if periodic, one dense SVD if free (the sparse
+/// path above [`MAX_DENSE_FREE_SIDE`]).
 pub fn counts(patch: &Patch) -> Result<Counts, NetworkError> {
+    counts_with(patch, &mut never)
+}
+
+/// [`counts`] with a stop question, asked before each Bloch block, before the dense SVD and
+/// throughout the sparse path; a yes is `NetworkError::Statics` holding `LinalgError::Stopped`.
+pub fn counts_with(patch: &Patch, stop: &mut dyn FnMut() -> bool) -> Result<Counts, NetworkError> {
     let cell = patch.cell();
     let (dof, bonds) = (patch.dof(), patch.bonds().len());
     match patch.boundary() {
@@ -146,7 +184,10 @@ pub fn counts(patch: &Patch) -> Result<Counts, NetworkError> {
             let mut q = Mat::<c64>::zeros(cell.bonds().len(), cell.dof());
             let mut values: Vec<(f64, usize)> =
                 Vec::with_capacity(grid.len() * cell.dof().min(cell.bonds().len()));
-            for &(_, theta, paired) in &grid {
+            for (done, &(_, theta, paired)) in grid.iter().enumerate() {
+                if stop() {
+                    return Err(stopped("Bloch blocks", done, grid.len()));
+                }
                 bloch::fill(&rows, theta, &mut q);
                 let s = linalg::singular_values("Bloch block Q(k)", q.as_ref())?;
                 values.extend(s.into_iter().map(|s| (s, if paired { 2 } else { 1 })));
@@ -155,13 +196,48 @@ pub fn counts(patch: &Patch) -> Result<Counts, NetworkError> {
             let method = Method::BlochBlocks { blocks: patch.cell_count(), decomposed: grid.len() };
             Counts::new(dof, bonds, values.into_iter(), largest, method)
         }
+        Boundary::Free if dof.max(bonds) > MAX_DENSE_FREE_SIDE => Ok(sparse(patch, stop)?.0),
         Boundary::Free => {
+            if stop() {
+                return Err(stopped("SVDs", 0, 1));
+            }
             let c = patch.compatibility_matrix()?;
             let s = linalg::singular_values("compatibility matrix", c.as_ref())?;
             let largest = s.first().copied().unwrap_or(0.0);
             Counts::new(dof, bonds, s.into_iter().map(|s| (s, 1)), largest, Method::DenseSvd)
         }
     }
+}
+
+/// A free patch counted by chain-core's sparse path on its model at the reference
+/// configuration, with the counting (its null vectors in the model's coordinates: a rotor's
+/// angle, where the patch's columns take its tip's arc length).
+fn sparse(patch: &Patch, stop: &mut dyn FnMut() -> bool) -> Result<(Counts, Counting), NetworkError> {
+    let model = NetworkModel::builder(patch).build()?;
+    let counting = maxwell_calladine_sparse(&model, &model.reference(), None, stop)?;
+    let (dof, bonds) = (patch.dof(), patch.bonds().len());
+    // The candidates' singular values, descending: the zero modes' are the last `dof - rank`.
+    let (mut kept, mut dropped): (Option<f64>, Option<f64>) = (None, None);
+    for &s in &counting.singular_values {
+        if s > counting.tolerance {
+            kept = Some(kept.map_or(s, |k| k.min(s)));
+        } else {
+            dropped = Some(dropped.map_or(s, |d| d.max(s)));
+        }
+    }
+    let counts = Counts {
+        dof,
+        bonds,
+        rank: counting.rank,
+        zero_modes: dof - counting.rank,
+        self_stresses: bonds - counting.rank,
+        largest_singular_value: counting.largest_singular_value,
+        smallest_kept: kept,
+        largest_dropped: dropped,
+        method: Method::Sparse,
+    };
+    counts.check_index_theorem()?;
+    Ok((counts, counting))
 }
 
 /// Zero modes and states of self-stress as real orthonormal vectors (columns).
@@ -185,6 +261,14 @@ pub const MAX_VECTOR_DOF: usize = 6000;
 /// parts (orthogonal, of equal norm), for a real block (`2k` on the grid's origin) the real null
 /// vectors of the real block; all normalised.
 pub fn null_spaces(patch: &Patch) -> Result<NullSpaces, NetworkError> {
+    null_spaces_with(patch, &mut never)
+}
+
+/// [`null_spaces`] with a stop question, asked as [`counts_with`] asks it. A free patch above
+/// [`MAX_DENSE_FREE_SIDE`] takes the sparse path: its zero modes, found in the model's
+/// coordinates (a rotor's angle), are taken to the patch's (the tip's arc length: times the
+/// rotor's length) and orthonormalised again.
+pub fn null_spaces_with(patch: &Patch, stop: &mut dyn FnMut() -> bool) -> Result<NullSpaces, NetworkError> {
     let (dof, bonds) = (patch.dof(), patch.bonds().len());
     if dof.max(bonds) > MAX_VECTOR_DOF {
         return Err(NetworkError::TooLarge {
@@ -195,7 +279,20 @@ pub fn null_spaces(patch: &Patch) -> Result<NullSpaces, NetworkError> {
         });
     }
     match patch.boundary() {
+        Boundary::Free if dof.max(bonds) > MAX_DENSE_FREE_SIDE => {
+            let (counts, counting) = sparse(patch, stop)?;
+            let arc = arc_lengths(patch);
+            let modes = Mat::<f64>::from_fn(dof, counting.zero_modes.len(), |i, j| {
+                counting.zero_modes[j][i] * arc[i]
+            });
+            let stresses =
+                Mat::<f64>::from_fn(bonds, counting.self_stresses.len(), |i, j| counting.self_stresses[j][i]);
+            Ok(NullSpaces { counts, zero_modes: orthonormal(modes), self_stresses: stresses })
+        }
         Boundary::Free => {
+            if stop() {
+                return Err(stopped("SVDs", 0, 1));
+            }
             let c = patch.compatibility_matrix()?;
             let svd = linalg::full_svd("compatibility matrix", c.as_ref())?;
             let largest = svd.s.first().copied().unwrap_or(0.0);
@@ -206,17 +303,43 @@ pub fn null_spaces(patch: &Patch) -> Result<NullSpaces, NetworkError> {
                 self_stresses: svd.left_null(largest),
             })
         }
-        Boundary::Periodic => periodic_null_spaces(patch),
+        Boundary::Periodic => periodic_null_spaces(patch, stop),
     }
 }
 
-fn periodic_null_spaces(patch: &Patch) -> Result<NullSpaces, NetworkError> {
+/// Per degree of freedom of the patch, the factor from the model's coordinate to the patch's: 1
+/// for a joint's, the rotor's length for a rotor's angle.
+fn arc_lengths(patch: &Patch) -> Vec<f64> {
+    let per_cell: Vec<f64> = patch
+        .cell()
+        .nodes()
+        .iter()
+        .flat_map(|node| match node.kind {
+            crate::NodeKind::Rotor { length, .. } => vec![length],
+            crate::NodeKind::Joint { .. } => vec![1.0, 1.0],
+        })
+        .collect();
+    per_cell.iter().copied().cycle().take(patch.dof()).collect()
+}
+
+/// The columns of `a` orthonormalised (the thin `Q` of its QR decomposition).
+fn orthonormal(a: Mat<f64>) -> Mat<f64> {
+    if a.ncols() == 0 {
+        return a;
+    }
+    a.qr().compute_thin_Q()
+}
+
+fn periodic_null_spaces(patch: &Patch, stop: &mut dyn FnMut() -> bool) -> Result<NullSpaces, NetworkError> {
     let cell = patch.cell();
 
     let grid = bloch_grid(patch);
     let mut blocks = Vec::with_capacity(grid.len());
     let mut largest: f64 = 0.0;
-    for &(m, theta, paired) in &grid {
+    for (done, &(m, theta, paired)) in grid.iter().enumerate() {
+        if stop() {
+            return Err(stopped("Bloch blocks", done, grid.len()));
+        }
         let q = bloch::compatibility(cell, theta);
         let svd = linalg::full_svd("Bloch block Q(k)", q.as_ref())?;
         largest = largest.max(svd.s.first().copied().unwrap_or(0.0));

@@ -108,6 +108,10 @@ pub enum NetworkError {
     /// give: the bytes asked for and what they were for.
     #[error(transparent)]
     OutOfMemory(#[from] chain_core::allocation::AllocationError),
+    /// A count on the sparse path ([`crate::counts`] of a large free patch) that failed or was
+    /// stopped by its question (`LinalgError::Stopped` inside).
+    #[error(transparent)]
+    Statics(#[from] chain_core::statics::StaticsError),
     /// An argument out of its range (lattice direction, wave number, path).
     #[error("{what}: {problem}")]
     Argument {

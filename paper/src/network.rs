@@ -339,6 +339,7 @@ fn run(command: Command) -> Result<(), Failure> {
             let method = match k.method {
                 Method::BlochBlocks { .. } => "bloch-blocks",
                 Method::DenseSvd => "dense-svd",
+                Method::Sparse => "sparse",
             };
             let value = json!({
                 "cells": if c.dimension() == 2 { json!(n) } else { json!([n[0]]) },

@@ -621,6 +621,10 @@ pub fn network(py: Python<'_>, e: &NetworkError) -> PyErr {
     if let &NetworkError::OutOfMemory(a) = e {
         return crate::args::memory_error(a);
     }
+    // A large free patch's count on the sparse path: the statics' exception, with its numbers.
+    if let NetworkError::Statics(s) = e {
+        return statics(py, s);
+    }
     let d = Details::new(py, "");
     let d = match e {
         NetworkError::PatchSize { what, direction, found, rule } => Details { variant: "PatchSize", ..d }

@@ -8,13 +8,14 @@ use numpy::{IntoPyArray, PyArray1, PyArray2, PyArray3};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList, PyTuple};
 use rotor_chain::network::cell::{BondDescription, NodeDescription, ready};
-use rotor_chain::network::counts::{Counts, Method, counts, null_spaces};
+use rotor_chain::network::counts::{Counts, Method, counts_with, null_spaces_with};
 use rotor_chain::network::faer::Mat;
 use rotor_chain::network::patch::{Boundary, Patch};
 use rotor_chain::network::strip::{Strip, strip_modes};
 use rotor_chain::network::winding::{WindingOptions, winding};
 use rotor_chain::network::{Cell, CellDescription, bloch, c64, guest};
 
+use crate::dynamics::Interrupt;
 use crate::errors::{self, value_error};
 
 /// Two real arrays.
@@ -81,6 +82,7 @@ fn counts_dict<'py>(py: Python<'py>, c: &Counts) -> PyResult<Bound<'py, PyDict>>
         match c.method {
             Method::BlochBlocks { .. } => "bloch-blocks",
             Method::DenseSvd => "dense-svd",
+            Method::Sparse => "sparse",
         },
     )?;
     Ok(d)
@@ -227,10 +229,12 @@ impl Network {
         let n = cells_of(&self.cell, cells)?;
         let boundary = boundary_of(boundary)?;
         let cell = &self.cell;
-        let c = py
-            .detach(|| Patch::new(cell, n, boundary).and_then(|p| counts(&p)))
-            .map_err(|e| errors::network(py, &e))?;
-        counts_dict(py, &c)
+        let mut interrupt = Interrupt::default();
+        let c = py.detach(|| {
+            Patch::new(cell, n, boundary).and_then(|p| counts_with(&p, &mut || interrupt.pending()))
+        });
+        interrupt.raise()?;
+        counts_dict(py, &c.map_err(|e| errors::network(py, &e))?)
     }
 
     /// `(zero_modes, self_stresses)` of a patch as orthonormal columns (`dof x N0`,
@@ -245,9 +249,12 @@ impl Network {
         let n = cells_of(&self.cell, cells)?;
         let boundary = boundary_of(boundary)?;
         let cell = &self.cell;
-        let ns = py
-            .detach(|| Patch::new(cell, n, boundary).and_then(|p| null_spaces(&p)))
-            .map_err(|e| errors::network(py, &e))?;
+        let mut interrupt = Interrupt::default();
+        let ns = py.detach(|| {
+            Patch::new(cell, n, boundary).and_then(|p| null_spaces_with(&p, &mut || interrupt.pending()))
+        });
+        interrupt.raise()?;
+        let ns = ns.map_err(|e| errors::network(py, &e))?;
         Ok((real_matrix(py, &ns.zero_modes), real_matrix(py, &ns.self_stresses)))
     }
 

@@ -56,6 +56,9 @@ pub struct Counting {
     pub singular_values: Vec<f64>,
     /// Singular values at or below this count as zero.
     pub tolerance: f64,
+    /// The largest singular value of `C`: the first of `singular_values` on the dense and chain
+    /// paths; by power iteration on `C^T C` on the sparse path (approached from below).
+    pub largest_singular_value: f64,
     /// Rank of the compatibility matrix.
     pub rank: usize,
     /// Orthonormal basis of the zero modes (rotor displacements `r_i dtheta_i`).
@@ -280,7 +283,16 @@ pub fn maxwell_calladine_with<M: SpringNetwork + ?Sized>(
     let zero_modes = without_last_axes(zero_span, side - n).into_iter().map(oriented).collect();
     let stress_span = least(&left_vectors, side - rank, |u| rows.transpose_residual(u));
     let self_stresses = without_last_axes(stress_span, side - m).into_iter().map(oriented).collect();
-    Ok(Counting { rotors: n, springs: m, singular_values, tolerance, rank, zero_modes, self_stresses })
+    Ok(Counting {
+        rotors: n,
+        springs: m,
+        singular_values,
+        tolerance,
+        largest_singular_value: sigma_max,
+        rank,
+        zero_modes,
+        self_stresses,
+    })
 }
 
 /// [`maxwell_calladine_with`] through the sparse path, whatever the size (above
@@ -339,6 +351,7 @@ fn sparse_counting(
         springs: m,
         singular_values,
         tolerance: found.tolerance,
+        largest_singular_value: found.sigma_max,
         rank,
         zero_modes,
         self_stresses,
@@ -380,6 +393,7 @@ fn chain_counting(
         springs: m,
         singular_values,
         tolerance,
+        largest_singular_value: sigma_max,
         rank,
         zero_modes: zero_modes.into_iter().map(oriented).collect(),
         self_stresses: self_stresses.into_iter().map(oriented).collect(),

@@ -193,6 +193,9 @@ fn out_of_memory<T>(len: usize) -> LinalgError {
 pub(crate) struct NullSpaces {
     /// The tolerance on the singular values: at or below it they count as zero.
     pub tolerance: f64,
+    /// The largest singular value of `C`, by power iteration ([`refine::largest_singular_value`]:
+    /// from below).
+    pub sigma_max: f64,
     /// The singular values of `C` on the candidates of its null space (the eigenvectors of `C^T C`
     /// below `tau`), ascending.
     pub right_values: Vec<f64>,
@@ -230,6 +233,7 @@ pub(crate) fn null_spaces(
         };
         return Ok(NullSpaces {
             tolerance: tolerance.unwrap_or(0.0),
+            sigma_max: 0.0,
             right_values: alloc::vec![0.0; n],
             zero_modes: unit(n),
             self_stresses: unit(m),
@@ -280,6 +284,7 @@ pub(crate) fn null_spaces(
     }
     Ok(NullSpaces {
         tolerance,
+        sigma_max,
         right_values: zero.values,
         zero_modes: zero.vectors,
         self_stresses: stress.vectors,
