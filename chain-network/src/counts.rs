@@ -16,7 +16,7 @@
 //!   through `C^T C` alone, which squares the `1e-9` threshold below rounding, and not by an
 //!   unpivoted QR, which misses null vectors that decay against the elimination order (as
 //!   polarized lattices' edge modes do). Larger free patches take chain-core's sparse, stoppable
-//!   count ([`rotor_chain::statics::counting::maxwell_calladine_sparse`] on the patch's
+//!   count ([`chain_core::statics::counting::maxwell_calladine_sparse`] on the patch's
 //!   [`NetworkModel`] at its reference configuration): the Gram matrices' inertia chooses the
 //!   candidates and the singular values of `C` on their span decide, with chain-core's rule
 //!   (`max(n, m) eps sigma_max`, below this module's `1e-9 sigma_max`: a singular value between

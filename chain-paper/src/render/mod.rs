@@ -92,7 +92,7 @@ pub struct Layout {
 /// width is two [`CELL`]s: consecutive drawings of the chain share a row of height [`CHAIN_ROW`];
 /// a drawing followed by another kind of panel has such a row to itself, across the width if it
 /// is the figure's only drawing; other panels go two to a row of height `CELL.1`, lowered for a row
-/// of network drawings to what the taller one fills at equal scale ([`network::natural_height`]).
+/// of network drawings to what the taller one fills at equal scale (`render::network::natural_height`).
 pub fn layout(panels: &[Chart]) -> Layout {
     if panels.len() <= 1 {
         let size = match panels.first() {
