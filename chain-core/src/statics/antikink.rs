@@ -282,8 +282,7 @@ pub(crate) fn solve_centring<M: ChainModel + ?Sized>(
 /// impurity ahead) the relaxation is run again from its last point.
 ///
 /// Where that equilibrium is a free saddle (the path's stationary point with a direction across
-/// the path unstable: n = 40, `theta_bar = 0.4`, spring 19 at `0.3k`, from 14.5, index 1 at
-/// 16.911) the search steps off it along its unstable eigenvector, both ways, by damped
+/// the path unstable) the search steps off it along its unstable eigenvector, both ways, by damped
 /// relaxation ([`super::step_off`], which says why), follows each side down as above and keeps
 /// the side that ends at a free minimum (the lower if both do); at most
 /// [`super::step_off::MAX_STEP_OFFS`] times. Each saddle left and where its descent went are in

@@ -351,16 +351,20 @@ pub fn descend<M: ChainModel + ?Sized>(
                 slope: p.slope,
             });
         }
+        // A step fails where Newton's method does not converge, a pair nucleates, or it converged
+        // to an equilibrium of another branch ([`left_branch`]): the step is halved, and at
+        // MIN_STEP the path ends at `p`.
         let q = match at_centre(model, &p.theta, c, options) {
-            Ok(q) => q,
-            Err(StaticsError::NoConvergence { .. } | StaticsError::DefectLost { .. }) if step > MIN_STEP => {
+            Ok(q) if !left_branch(&p, &q, model.rotor_count()) => Some(q),
+            Ok(_) | Err(StaticsError::NoConvergence { .. } | StaticsError::DefectLost { .. }) => None,
+            Err(e) => return Err(e),
+        };
+        let Some(q) = q else {
+            if step > MIN_STEP {
                 step *= 0.5;
                 continue;
             }
-            Err(StaticsError::NoConvergence { .. } | StaticsError::DefectLost { .. }) => {
-                return Ok(Descent::End(p));
-            }
-            Err(e) => return Err(e),
+            return Ok(Descent::End(p));
         };
         if dir * q.slope >= 0.0 {
             return refine(model, p, q, options).map(Descent::Bottom);
@@ -369,6 +373,23 @@ pub fn descend<M: ChainModel + ?Sized>(
         step = PATH_STEP;
     }
     Ok(Descent::End(p))
+}
+
+/// Whether `q`, a step of the descent from `p`, left the path's branch: its energy rose by more
+/// than the slopes allow. On the branch, `E(q) - E(p)` is the integral of `dE/dc` over the step,
+/// which is downhill at `p`: it can rise only past a minimum, by at most the step times `q`'s
+/// uphill slope (the slope grows through the minimum), plus the energies' rounding (`64 n eps
+/// |E|`). A larger rise is another equilibrium with the centre held: n = 40, `theta_bar = 0.4`,
+/// spring 19 at `0.3k`, where the path folds at c = 16.6 (Newton's method fails there and
+/// a pair nucleates for a few steps beyond), a halved step from 16.56 converged to a configuration
+/// of energy 4166 (the antikink's 468), whose bracket led the descent to an index-1 saddle of
+/// that branch.
+fn left_branch(p: &PathPoint, q: &PathPoint, n: usize) -> bool {
+    let step = (q.centre - p.centre).abs();
+    let downhill = if q.centre > p.centre { 1.0 } else { -1.0 };
+    let rounding = 64.0 * n as f64 * f64::EPSILON * p.energy.abs().max(q.energy.abs());
+    let allowed = step * (downhill * q.slope).max(0.0) + rounding;
+    !(q.energy - p.energy <= allowed)
 }
 
 /// Closes the bracket `(a, b)` (slopes of opposite signs) on the zero of the slope by regula

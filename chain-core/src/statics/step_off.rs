@@ -3,9 +3,10 @@
 //! The descent along the adiabatic path ([`super::path::descend`]) stops where `dE/dc` changes
 //! sign. That point is a free equilibrium, but it is a minimum only if the path is a valley floor
 //! there: where a direction *across* the path is unstable, the path's stationary point is a saddle
-//! of the free energy (n = 40, `theta_bar = 0.4`, spring 19 at `0.3k`, from 14.5: index 1 at
-//! 16.911, with the soft spring's pinned minimum further on). The search leaves such a saddle
-//! along the unstable eigenvector `v` of its tangent stiffness (end rotors held), both signs:
+//! of the free energy. (The saddle of n = 40, `theta_bar = 0.4`, spring 19 at `0.3k`, index 1
+//! at 16.911 and `V = 4166`, that first called for this was on another branch, reached by a step
+//! of the path that climbed; the descent now refuses such steps, `path::descend`.) The search
+//! leaves such a saddle along the unstable eigenvector `v` of its tangent stiffness (end rotors held), both signs:
 //!
 //! - **The step** `s` along `v` is scaled by the curvature `lambda < 0`: the force there,
 //!   `|lambda| s`, is [`STEP_FORCE`] times the relaxation's tolerance (relative to `||K||`), so
@@ -109,4 +110,37 @@ pub(crate) fn step_off<M: ChainModel + ?Sized>(
         RelaxOptions { hold_ends: true, tolerance: tolerance.min(0.25 * force), ..options.relax };
     let (relaxed, steps) = relax(model, &theta, &relax_options)?;
     Ok((relaxed, steps, curvature, step))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::Potential;
+    use crate::runtime::RuntimeChain;
+    use crate::statics::antikink::antikink_at;
+    use crate::statics::walls::{Charge, domain_walls};
+
+    /// The bond-centred antikink of a uniform chain is the Peierls-Nabarro saddle (index 1,
+    /// paper Sec. V): stepped off either way, the relaxation lowers the energy and moves the
+    /// wall towards the site-centred minimum on that side (19 or 20), mirror images of each other.
+    #[test]
+    fn a_bond_centred_antikink_is_left_towards_the_site_centred_wells_on_either_side() {
+        let model = RuntimeChain::builder(40, 0.8, 1.0, 0.4).build().unwrap();
+        let options = AntikinkOptions::default();
+        let saddle = antikink_at(&model, 19.5, &options).unwrap();
+        assert_eq!(saddle.classification.index, 1, "{saddle:?}");
+        let mut ends = Vec::new();
+        for sign in [1.0, -1.0] {
+            let (theta, _, curvature, step) = step_off(&model, &saddle, sign, &options).unwrap();
+            assert!(curvature < 0.0 && step * sign > 0.0 && step.abs() <= MAX_STEP);
+            assert!(model.energy(&theta) < saddle.energy, "{sign}");
+            let wall = domain_walls(&theta).into_iter().find(|w| w.charge == Charge::Antikink).unwrap();
+            ends.push((wall.position, model.energy(&theta)));
+        }
+        // One step went left of 19.5, the other right, by the same amount and to the same energy.
+        let (a, b) = (ends[0].0.min(ends[1].0), ends[0].0.max(ends[1].0));
+        assert!(a < 19.5 && b > 19.5, "{ends:?}");
+        assert!(((19.5 - a) - (b - 19.5)).abs() < 1e-6, "{ends:?}");
+        assert!((ends[0].1 - ends[1].1).abs() < 1e-9 * ends[0].1, "{ends:?}");
+    }
 }
