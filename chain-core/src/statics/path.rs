@@ -389,7 +389,9 @@ fn left_branch(p: &PathPoint, q: &PathPoint, n: usize) -> bool {
     let downhill = if q.centre > p.centre { 1.0 } else { -1.0 };
     let rounding = 64.0 * n as f64 * f64::EPSILON * p.energy.abs().max(q.energy.abs());
     let allowed = step * (downhill * q.slope).max(0.0) + rounding;
-    !(q.energy - p.energy <= allowed)
+    // A NaN energy is not on the branch either.
+    let rise = q.energy - p.energy;
+    rise.is_nan() || rise > allowed
 }
 
 /// Closes the bracket `(a, b)` (slopes of opposite signs) on the zero of the slope by regula
