@@ -147,23 +147,29 @@ impl Stencil {
             // keys in order of first appearance, each key's bonds in the group's (the patch's)
             // order, which is ascending in the first end's cell: the bonds sorted by (key's rank,
             // index), in place.
-            let mut ranks: HashMap<(usize, usize, isize), usize> = HashMap::new();
-            let mut order: Vec<(usize, usize)> = try_vec(g.len(), what)?;
+            // As `u32` pairs, 8 bytes a bond (the buckets this replaced held one `usize` a bond): a
+            // group has at most `MAX_PATCH_BONDS` = 2^25 bonds, and as many keys.
+            debug_assert!(
+                g.len() <= crate::patch::MAX_PATCH_BONDS && crate::patch::MAX_PATCH_BONDS < 1 << 32
+            );
+            let mut ranks: HashMap<(usize, usize, isize), u32> = HashMap::new();
+            let mut order: Vec<(u32, u32)> = try_vec(g.len(), what)?;
             for i in 0..g.len() {
                 let d = g.dofs[i];
                 let (d1, d2) = (d[0], d[second_at]);
                 let key = (d1 % per_cell, d2 % per_cell, (d2 / per_cell) as isize - (d1 / per_cell) as isize);
-                let next = ranks.len();
-                order.push((*ranks.entry(key).or_insert(next), i));
+                let next = ranks.len() as u32;
+                order.push((*ranks.entry(key).or_insert(next), i as u32));
             }
             order.sort_unstable();
             // The bonds of each run, found first; its parameters are then shared or per bond.
             let mut runs = Runs { runs: Vec::new(), values: Vec::new() };
             let mut members: Vec<usize> = try_vec(g.len(), what)?;
             let used = g.kind.dofs();
-            let mut rank = usize::MAX;
+            let mut rank = u32::MAX;
             let mut last: Option<([usize; 4], [usize; 4], [f64; 4])> = None;
             for &(key, i) in &order {
+                let i = i as usize;
                 if key != rank {
                     (rank, last) = (key, None);
                 }
