@@ -335,13 +335,11 @@ pub fn descend<M: ChainModel + ?Sized>(
     // A start exactly at a stationary point goes right: past a maximum the slope falls on, at a
     // minimum the first step brackets it.
     let dir = if p.slope > 0.0 { -1.0 } else { 1.0 };
-    // Each accepted step moves at least MIN_STEP one way after at most six halvings, so the
-    // region is crossed in a bounded number of tries.
-    let steps = 7 * (libm::ceil((hi - lo) / MIN_STEP) as usize + 1);
-    let mut step = PATH_STEP;
-    for _ in 0..steps {
-        let c = (p.centre + dir * step).clamp(lo, hi);
-        if c == p.centre {
+    // Each accepted step moves at least MIN_STEP (or reaches an edge of the region, after which
+    // the next target is the point itself), so the region is crossed in a bounded number of steps.
+    for _ in 0..libm::ceil((hi - lo) / MIN_STEP) as usize + 2 {
+        let target = (p.centre + dir * PATH_STEP).clamp(lo, hi);
+        if target == p.centre {
             return Err(StaticsError::DescentLeftRegion {
                 start: from,
                 lo,
@@ -351,47 +349,67 @@ pub fn descend<M: ChainModel + ?Sized>(
                 slope: p.slope,
             });
         }
-        // A step fails where Newton's method does not converge, a pair nucleates, or it converged
-        // to an equilibrium of another branch ([`left_branch`]): the step is halved, and at
-        // MIN_STEP the path ends at `p`.
-        let q = match at_centre(model, &p.theta, c, options) {
-            Ok(q) if !left_branch(&p, &q, model.rotor_count()) => Some(q),
-            Ok(_) | Err(StaticsError::NoConvergence { .. } | StaticsError::DefectLost { .. }) => None,
-            Err(e) => return Err(e),
-        };
-        let Some(q) = q else {
-            if step > MIN_STEP {
-                step *= 0.5;
-                continue;
-            }
+        let Some(q) = next_point(model, &p, target, options)? else {
             return Ok(Descent::End(p));
         };
         if dir * q.slope >= 0.0 {
             return refine(model, p, q, options).map(Descent::Bottom);
         }
         p = q;
-        step = PATH_STEP;
     }
     Ok(Descent::End(p))
 }
 
-/// Whether `q`, a step of the descent from `p`, left the path's branch: its energy rose by more
-/// than the slopes allow. On the branch, `E(q) - E(p)` is the integral of `dE/dc` over the step,
-/// which is downhill at `p`: it can rise only past a minimum, by at most the step times `q`'s
-/// uphill slope (the slope grows through the minimum), plus the energies' rounding (`64 n eps
-/// |E|`). A larger rise is another equilibrium with the centre held: n = 40, `theta_bar = 0.4`,
-/// spring 19 at `0.3k`, where the path folds at c = 16.6 (Newton's method fails there and
-/// a pair nucleates for a few steps beyond), a halved step from 16.56 converged to a configuration
-/// of energy 4166 (the antikink's 468), whose bracket led the descent to an index-1 saddle of
-/// that branch.
-fn left_branch(p: &PathPoint, q: &PathPoint, n: usize) -> bool {
-    let step = (q.centre - p.centre).abs();
-    let downhill = if q.centre > p.centre { 1.0 } else { -1.0 };
+/// The next point of the path from `p` toward `target`: held at `target`, else half the way, a
+/// quarter, ... down to [`MIN_STEP`]; `None` where none of them is a point of `p`'s branch
+/// (Newton's method does not converge, a pair nucleates, or it converged to an equilibrium of
+/// another branch, [`continues`]): the path ends at `p`. The one step of the descent and of the
+/// path scan (`path_scan`), at most 7 tries for a step of [`PATH_STEP`].
+///
+/// # Errors
+/// The errors of [`at_centre`] other than a lost antikink or Newton's method not converging.
+pub(crate) fn next_point<M: ChainModel + ?Sized>(
+    model: &M,
+    p: &PathPoint,
+    target: f64,
+    options: &AntikinkOptions,
+) -> Result<Option<PathPoint>, StaticsError> {
+    let n = model.rotor_count();
+    let mut step = target - p.centre;
+    let mut c = target;
+    loop {
+        match at_centre(model, &p.theta, c, options) {
+            Ok(q) if continues(p, &q, n) => return Ok(Some(q)),
+            Ok(_) | Err(StaticsError::NoConvergence { .. } | StaticsError::DefectLost { .. }) => {}
+            Err(e) => return Err(e),
+        }
+        // Not `!(>)`: a NaN step ends the path too.
+        if step.abs() <= MIN_STEP || step.is_nan() {
+            return Ok(None);
+        }
+        step *= 0.5;
+        c = p.centre + step;
+    }
+}
+
+/// Whether `q`, a point of the path found from `p` (Newton's method warm-started there), lies on
+/// `p`'s branch. On the branch, `E(q) - E(p)` is the integral of `dE/dc` over the step: between
+/// the step times the smaller and the larger of the two end slopes where the slope is monotone
+/// over the step, and here allowed their spread again on either side (a slope that is not
+/// monotone over an eighth of a site), plus the energies' rounding (`64 n eps |E|`). A change far
+/// outside is another equilibrium with the centre held: n = 40, `theta_bar = 0.4`, spring 19 at
+/// `0.3k`, where the path folds at c = 16.6 (Newton's method fails there and a pair nucleates for
+/// a few steps beyond), a halved step from 16.56 converged to a configuration of energy 4166 (the
+/// antikink's 468), whose bracket led the descent to an index-1 saddle of that branch. A NaN
+/// energy or slope is not on the branch either.
+fn continues(p: &PathPoint, q: &PathPoint, n: usize) -> bool {
+    let dc = q.centre - p.centre;
+    let (a, b) = (p.slope * dc, q.slope * dc);
+    let (low, high) = (a.min(b), a.max(b));
+    let spread = high - low;
     let rounding = 64.0 * n as f64 * f64::EPSILON * p.energy.abs().max(q.energy.abs());
-    let allowed = step * (downhill * q.slope).max(0.0) + rounding;
-    // A NaN energy is not on the branch either.
-    let rise = q.energy - p.energy;
-    rise.is_nan() || rise > allowed
+    let change = q.energy - p.energy;
+    change >= low - spread - rounding && change <= high + spread + rounding
 }
 
 /// Closes the bracket `(a, b)` (slopes of opposite signs) on the zero of the slope by regula

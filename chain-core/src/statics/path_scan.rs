@@ -8,8 +8,9 @@
 //! with its centre held ([`super::path::at_centre`]) every [`PATH_STEP`] from the centre farthest
 //! from every impurity in the window outward to both edges, each warm-started from its
 //! neighbour, so the antikink is carried continuously onto the impurity. A step that finds no
-//! path point is halved down to [`MIN_STEP`]; below that the path has ended (a pair nucleates, or
-//! a fold) and the walk stops on that side.
+//! point of the same branch is halved down to [`MIN_STEP`] (`path::next_point`, the descent's
+//! step); below that the path has ended (a pair nucleates, or a fold) and the walk stops on that
+//! side.
 //!
 //! Every sign change of `dE/dc` between neighbouring points brackets a free equilibrium: closed
 //! by regula falsi (Illinois, as in the descent, to [`super::path::PATH_RESOLUTION`]) and
@@ -23,7 +24,7 @@ use alloc::vec::Vec;
 use super::antikink::{Antikink, AntikinkOptions};
 use super::error::StaticsError;
 use super::kink::reflected_kink;
-use super::path::{MIN_STEP, PATH_STEP, PathPoint, at_centre, refine};
+use super::path::{MIN_STEP, PATH_STEP, PathPoint, at_centre, next_point, refine};
 use crate::model::ChainModel;
 
 /// The path across a window and its free equilibria.
@@ -72,8 +73,9 @@ fn walk<M: ChainModel + ?Sized>(
 ) -> Result<Option<f64>, StaticsError> {
     let dir = if edge >= start.centre { 1.0 } else { -1.0 };
     let mut p = start.clone();
-    // Each target is the next multiple of PATH_STEP; each try that fails halves the way to it,
-    // and each success moves at least MIN_STEP, so a target takes at most 7 * 64 tries.
+    // Each target is the next multiple of PATH_STEP; each point found moves at least MIN_STEP / 2
+    // toward it (`next_point` halves down to MIN_STEP), so a target takes at most 128 points; the
+    // bound below is looser.
     let targets = libm::floor((edge - start.centre).abs() / PATH_STEP) as usize;
     for m in 1..=targets {
         let target = start.centre + dir * m as f64 * PATH_STEP;
@@ -81,24 +83,7 @@ fn walk<M: ChainModel + ?Sized>(
             if p.centre == target {
                 break;
             }
-            let mut step = target - p.centre;
-            let mut halved = false;
-            let q = loop {
-                // The whole way lands on the target exactly (a multiple of PATH_STEP).
-                let c = if halved { p.centre + step } else { target };
-                match at_centre(model, &p.theta, c, options) {
-                    Ok(q) => break Some(q),
-                    Err(StaticsError::NoConvergence { .. } | StaticsError::DefectLost { .. })
-                        if step.abs() > MIN_STEP =>
-                    {
-                        step *= 0.5;
-                        halved = true;
-                    }
-                    Err(StaticsError::NoConvergence { .. } | StaticsError::DefectLost { .. }) => break None,
-                    Err(e) => return Err(e),
-                }
-            };
-            match q {
+            match next_point(model, &p, target, options)? {
                 Some(q) => {
                     points.push(q.clone());
                     p = q;
