@@ -5,30 +5,13 @@
 //! test, so no other test shares the limit.
 
 use chain_core::linalg::{LinalgError, eigenpairs};
-use std::process::Command;
-
-/// The bytes this process has mapped (`VmSize`).
-fn mapped() -> u64 {
-    let status = std::fs::read_to_string("/proc/self/status").unwrap();
-    let line = status.lines().find(|l| l.starts_with("VmSize:")).unwrap();
-    line.split_whitespace().nth(1).unwrap().parse::<u64>().unwrap() * 1024
-}
-
-/// Sets this process's soft address-space limit (`None`: unlimited).
-fn limit(bytes: Option<u64>) {
-    let value = bytes.map_or("unlimited".to_string(), |b| b.to_string());
-    let pid = std::process::id().to_string();
-    let done = Command::new("prlimit").args(["--pid", &pid, &format!("--as={value}:")]).status().unwrap();
-    assert!(done.success(), "prlimit failed");
-}
+use test_support::memory::with_headroom;
 
 #[test]
 fn the_eigenvectors_of_a_matrix_too_large_for_the_limit_are_an_out_of_memory_error() {
     let n = 20_000;
     let (diag, off) = (vec![2.0; n], vec![-1.0; n - 1]);
-    limit(Some(mapped() + (64 << 20)));
-    let result = eigenpairs(&diag, &off);
-    limit(None);
+    let result = with_headroom(64 << 20, || eigenpairs(&diag, &off));
     assert_eq!(result.unwrap_err(), LinalgError::OutOfMemory { bytes: n * n * 8, what: "the eigenvectors" });
     // A matrix that fits: the 1D Laplacian's eigenvalues 2 - 2 cos(k pi / (n + 1)), closed form.
     let n = 50;

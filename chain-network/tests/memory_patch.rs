@@ -7,30 +7,13 @@ use chain_core::allocation::AllocationError;
 use chain_network::cell::ready;
 use chain_network::patch::{Boundary, Patch, PatchBond};
 use chain_network::{NetworkError, NetworkModel};
-use std::process::Command;
-
-/// The bytes this process has mapped (`VmSize`).
-fn mapped() -> u64 {
-    let status = std::fs::read_to_string("/proc/self/status").unwrap();
-    let line = status.lines().find(|l| l.starts_with("VmSize:")).unwrap();
-    line.split_whitespace().nth(1).unwrap().parse::<u64>().unwrap() * 1024
-}
-
-/// Sets this process's soft address-space limit (`None`: unlimited).
-fn limit(bytes: Option<u64>) {
-    let value = bytes.map_or("unlimited".to_string(), |b| b.to_string());
-    let pid = std::process::id().to_string();
-    let done = Command::new("prlimit").args(["--pid", &pid, &format!("--as={value}:")]).status().unwrap();
-    assert!(done.success(), "prlimit failed");
-}
+use test_support::memory::with_headroom;
 
 #[test]
 fn a_patch_and_a_model_too_large_for_the_memory_limit_are_out_of_memory_errors() {
     let square = ready::square();
     // The patch: 4000 x 4000 cells of 2 bonds, under the patch rule's 2^25 bonds.
-    limit(Some(mapped() + (64 << 20)));
-    let err = Patch::new(&square, [4000, 4000], Boundary::Periodic).unwrap_err();
-    limit(None);
+    let err = with_headroom(64 << 20, || Patch::new(&square, [4000, 4000], Boundary::Periodic).unwrap_err());
     let bonds = 4000 * 4000 * 2;
     let expected =
         AllocationError { bytes: bonds * std::mem::size_of::<PatchBond>(), what: "the patch's bonds" };
@@ -42,9 +25,7 @@ fn a_patch_and_a_model_too_large_for_the_memory_limit_are_out_of_memory_errors()
     let patch = Patch::new(&square, [1000, 500], Boundary::Periodic).unwrap();
     let (nodes, bonds, dof) = (500_000, 1_000_000, 1_000_000);
     assert_eq!((patch.bonds().len(), patch.dof()), (bonds, dof));
-    limit(Some(mapped() + (8 << 20)));
-    let err = NetworkModel::builder(&patch).build().unwrap_err();
-    limit(None);
+    let err = with_headroom(8 << 20, || NetworkModel::builder(&patch).build().unwrap_err());
     let NetworkError::OutOfMemory(AllocationError { bytes, what }) = err else { panic!("{err}") };
     // Each array's size from the patch's counts: 8 B per node's mass, 16 B per spring's constant
     // and rest length, 8 B per degree of freedom's inertia or coordinate, 4 B per rotor index;

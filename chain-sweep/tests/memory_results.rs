@@ -5,23 +5,8 @@
 
 use chain_sweep::{Axis, Grid, Point, SweepError, compute_grid};
 use rotor_chain::allocation::AllocationError;
-use std::process::Command;
 use std::sync::atomic::{AtomicUsize, Ordering};
-
-/// The bytes this process has mapped (`VmSize`).
-fn mapped() -> u64 {
-    let status = std::fs::read_to_string("/proc/self/status").unwrap();
-    let line = status.lines().find(|l| l.starts_with("VmSize:")).unwrap();
-    line.split_whitespace().nth(1).unwrap().parse::<u64>().unwrap() * 1024
-}
-
-/// Sets this process's soft address-space limit (`None`: unlimited).
-fn limit(bytes: Option<u64>) {
-    let value = bytes.map_or("unlimited".to_string(), |b| b.to_string());
-    let pid = std::process::id().to_string();
-    let done = Command::new("prlimit").args(["--pid", &pid, &format!("--as={value}:")]).status().unwrap();
-    assert!(done.success(), "prlimit failed");
-}
+use test_support::memory::with_headroom;
 
 /// A record of 64 numbers per point.
 type Record = [f64; 64];
@@ -36,9 +21,7 @@ fn a_grid_whose_results_cannot_be_held_is_an_error_before_any_point() {
         calls.fetch_add(1, Ordering::Relaxed);
         Ok([0.0; 64])
     };
-    limit(Some(mapped() + (64 << 20)));
-    let result = compute_grid(&grid, compute, Some(2));
-    limit(None);
+    let result = with_headroom(64 << 20, || compute_grid(&grid, compute, Some(2)));
     let err = result.unwrap_err();
     let bytes = 10_000_000 * std::mem::size_of::<Point<Record>>();
     assert!(bytes > 5_000_000_000);
