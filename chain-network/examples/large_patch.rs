@@ -56,8 +56,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         );
     }
     println!(
-        "Verlet step {per_step:.2?} = {:.2} ns per dof; energy {e0:.6e} -> {e1:.6e}",
-        per_step.as_nanos() as f64 / dof as f64
+        "Verlet step {per_step:.2?} = {:.2} ns per dof at dispatch level {:?}; energy {e0:.6e} -> {e1:.6e}",
+        per_step.as_nanos() as f64 / dof as f64,
+        chain_core::simd::level()
     );
     Ok(())
 }
